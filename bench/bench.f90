@@ -1,0 +1,2 @@
+program veslide_bench
+end program

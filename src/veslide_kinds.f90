@@ -1,0 +1,12 @@
+!> Working precision and the constants used everywhere
+module veslide_kinds
+    use, intrinsic :: iso_fortran_env, only: dp => real64, i8 => int64
+    implicit none
+    private
+    public :: dp, i8, pi, two_pi
+
+    !> pi to working precision
+    real(dp), parameter :: pi = 3.141592653589793238462643383279502884_dp
+    !> 2 pi
+    real(dp), parameter :: two_pi = 2.0_dp*pi
+end module veslide_kinds

@@ -1,0 +1,145 @@
+!> Linear viscoelastic solid: Prony series of the creep compliance or of the relaxation modulus.
+!>
+!> Time dependence exp(+i w t). Creep form: J(t) = 1/E0 - sum_k c_k exp(-t/tau_k), so
+!> C(w) = 1/Einf + sum_k c_k/(1 + i w tau_k), 1/Einf = 1/E0 - sum_k c_k. Relaxation form
+!> (generalized Maxwell): E(w) = E0 + sum_j e_j i w rho_j/(1 + i w rho_j), C(w) = 1/E(w).
+!> Im C(w) < 0 for w > 0 in both. An elastic solid is the case with no terms.
+module veslide_material
+    use veslide_kinds, only: dp
+    use veslide_error, only: error_t, fatal_error
+    implicit none
+    private
+    public :: material_t, new_elastic, new_one_term, new_creep, new_relaxation
+    public :: MATERIAL_ELASTIC, MATERIAL_CREEP, MATERIAL_RELAXATION
+
+    integer, parameter :: MATERIAL_ELASTIC = 0, MATERIAL_CREEP = 1, MATERIAL_RELAXATION = 2
+
+    type :: material_t
+        integer :: form = MATERIAL_ELASTIC      !! which series the terms below are
+        real(dp) :: e0_pa = 0.0_dp              !! relaxed (rubbery, w -> 0) modulus [Pa]
+        real(dp) :: einf_pa = 0.0_dp            !! glassy (w -> infinity) modulus [Pa]
+        real(dp) :: poisson = 0.0_dp            !! Poisson ratio [-]
+        real(dp), allocatable :: coef(:)        !! c_k [1/Pa] (creep) or e_j [Pa] (relaxation)
+        real(dp), allocatable :: time_s(:)      !! tau_k or rho_j [s]
+    contains
+        procedure :: compliance => material_compliance
+        procedure :: is_elastic => material_is_elastic
+        procedure :: loss_peak_time => material_loss_peak_time
+    end type material_t
+
+contains
+
+    subroutine check_poisson(nu, error)
+        real(dp), intent(in) :: nu
+        type(error_t), allocatable, intent(out) :: error
+        if (.not. (nu >= 0.0_dp .and. nu <= 0.5_dp)) &
+            call fatal_error(error, "poisson must be in [0, 0.5]")
+    end subroutine check_poisson
+
+    !> Elastic solid of Young's modulus `young_pa`
+    subroutine new_elastic(self, young_pa, poisson, error)
+        type(material_t), intent(out) :: self
+        real(dp), intent(in) :: young_pa, poisson
+        type(error_t), allocatable, intent(out) :: error
+        call check_poisson(poisson, error); if (allocated(error)) return
+        if (.not. (young_pa > 0.0_dp .and. young_pa < huge(1.0_dp))) then
+            call fatal_error(error, "young_pa must be positive and finite"); return
+        end if
+        self%form = MATERIAL_ELASTIC
+        self%e0_pa = young_pa; self%einf_pa = young_pa; self%poisson = poisson
+        allocate (self%coef(0), self%time_s(0))
+    end subroutine new_elastic
+
+    !> Creep Prony series: relaxed modulus E0 and terms c_k [1/Pa], tau_k [s]
+    subroutine new_creep(self, e0_pa, c, tau_s, poisson, error)
+        type(material_t), intent(out) :: self
+        real(dp), intent(in) :: e0_pa, c(:), tau_s(:), poisson
+        type(error_t), allocatable, intent(out) :: error
+        call check_poisson(poisson, error); if (allocated(error)) return
+        if (size(c) /= size(tau_s) .or. size(c) < 1) then
+            call fatal_error(error, "creep series needs as many c_k as tau_k, at least one"); return
+        end if
+        if (.not. (e0_pa > 0.0_dp) .or. any(.not. (c > 0.0_dp)) .or. any(.not. (tau_s > 0.0_dp))) then
+            call fatal_error(error, "E0, c_k and tau_k must all be positive"); return
+        end if
+        if (.not. (sum(c) < 1.0_dp/e0_pa)) then
+            call fatal_error(error, "sum of c_k must be below 1/E0 (glassy modulus Einf > E0 > 0)"); return
+        end if
+        self%form = MATERIAL_CREEP
+        self%e0_pa = e0_pa; self%einf_pa = 1.0_dp/(1.0_dp/e0_pa - sum(c)); self%poisson = poisson
+        self%coef = c; self%time_s = tau_s
+    end subroutine new_creep
+
+    !> The paper's one-term solid: glassy modulus, ratio Einf/E0 > 1, retardation time tau
+    subroutine new_one_term(self, einf_pa, ratio, tau_s, poisson, error)
+        type(material_t), intent(out) :: self
+        real(dp), intent(in) :: einf_pa, ratio, tau_s, poisson
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: e0
+        if (.not. (einf_pa > 0.0_dp)) then
+            call fatal_error(error, "einf_pa must be positive"); return
+        end if
+        if (.not. (ratio > 1.0_dp)) then
+            call fatal_error(error, "ratio Einf/E0 must be > 1"); return
+        end if
+        e0 = einf_pa/ratio
+        call new_creep(self, e0, [1.0_dp/e0 - 1.0_dp/einf_pa], [tau_s], poisson, error)
+        if (allocated(error)) return
+        self%einf_pa = einf_pa     ! exact, not through 1/(1/E0 - c)
+    end subroutine new_one_term
+
+    !> Relaxation (generalized Maxwell) Prony series: E(t) = E0 + sum_j e_j exp(-t/rho_j)
+    subroutine new_relaxation(self, e0_pa, e, rho_s, poisson, error)
+        type(material_t), intent(out) :: self
+        real(dp), intent(in) :: e0_pa, e(:), rho_s(:), poisson
+        type(error_t), allocatable, intent(out) :: error
+        call check_poisson(poisson, error); if (allocated(error)) return
+        if (size(e) /= size(rho_s) .or. size(e) < 1) then
+            call fatal_error(error, "relaxation series needs as many e_j as rho_j, at least one"); return
+        end if
+        if (.not. (e0_pa > 0.0_dp) .or. any(.not. (e > 0.0_dp)) .or. any(.not. (rho_s > 0.0_dp))) then
+            call fatal_error(error, "E0, e_j and rho_j must all be positive"); return
+        end if
+        self%form = MATERIAL_RELAXATION
+        self%e0_pa = e0_pa; self%einf_pa = e0_pa + sum(e); self%poisson = poisson
+        self%coef = e; self%time_s = rho_s
+    end subroutine new_relaxation
+
+    !> Complex compliance C(w) = 1/E(w) [1/Pa] at angular frequency w [rad/s]
+    elemental complex(dp) function material_compliance(self, w) result(c)
+        class(material_t), intent(in) :: self
+        real(dp), intent(in) :: w
+        complex(dp) :: e
+        integer :: k
+        select case (self%form)
+        case (MATERIAL_CREEP)
+            c = cmplx(1.0_dp/self%einf_pa, 0.0_dp, dp)
+            do k = 1, size(self%coef)
+                c = c + self%coef(k)/cmplx(1.0_dp, w*self%time_s(k), dp)
+            end do
+        case (MATERIAL_RELAXATION)
+            e = cmplx(self%e0_pa, 0.0_dp, dp)
+            do k = 1, size(self%coef)
+                e = e + self%coef(k)*cmplx(0.0_dp, w*self%time_s(k), dp)/cmplx(1.0_dp, w*self%time_s(k), dp)
+            end do
+            c = 1.0_dp/e
+        case default
+            c = cmplx(1.0_dp/self%e0_pa, 0.0_dp, dp)
+        end select
+    end function material_compliance
+
+    logical function material_is_elastic(self) result(yes)
+        class(material_t), intent(in) :: self
+        yes = self%form == MATERIAL_ELASTIC
+    end function material_is_elastic
+
+    !> The time whose inverse is the frequency of the loss peak of a one-term solid, as used in
+    !> dimensionless speeds v*tau/L0: the (first) retardation time tau for creep input, the
+    !> relaxation time rho for relaxation input, 0 for an elastic solid.
+    real(dp) function material_loss_peak_time(self) result(t)
+        class(material_t), intent(in) :: self
+        t = 0.0_dp
+        if (size(self%time_s) > 0) t = self%time_s(1)
+    end function material_loss_peak_time
+
+end module veslide_material

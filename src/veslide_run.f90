@@ -1,0 +1,351 @@
+!> One case from a configuration: surface, material, kernel, solve, derived quantities, HDF5 file.
+module veslide_run
+    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use veslide_kinds, only: dp, i8, pi
+    use veslide_error, only: error_t, fatal_error
+    use veslide_config, only: config_t
+    use veslide_fftw, only: fft2d_t
+    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
+    use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
+                               paraboloid_surface, cylinder_surface, rms_height
+    use veslide_kernel, only: kernel_t, build_kernel, kernel_variant_id
+    use veslide_solver, only: solver_options_t, contact_state_t, solve_contact
+    use veslide_analysis, only: contact_area_fraction, mean_separation, tangential_force, slope_force
+    use veslide_hdf5, only: h5file_t, hdf5_library_version
+    use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
+    implicit none
+    private
+    public :: case_t, build_surface, build_material, run_case, write_case, prepare_output, &
+              commit_output, discard_output
+
+    !> Everything one solve produced
+    type :: case_t
+        real(dp), allocatable :: h(:, :)          !! rigid heights [m]
+        type(material_t) :: mat
+        type(kernel_t) :: kernel
+        type(contact_state_t) :: state
+        real(dp) :: lx_m = 0.0_dp, ly_m = 0.0_dp
+        real(dp) :: velocity_m_s(2) = 0.0_dp
+        real(dp) :: force_pa(2) = 0.0_dp          !! <p grad w>, solid on rigid surface [Pa]
+        real(dp) :: slope_force_pa(2) = 0.0_dp    !! <p grad h> [Pa] (check)
+        real(dp) :: kernel_seconds = 0.0_dp, solve_seconds = 0.0_dp, surface_seconds = 0.0_dp
+    end type case_t
+
+    interface
+        integer(c_int) function c_rename(old, new) bind(c, name='rename')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: old(*), new(*)
+        end function c_rename
+    end interface
+
+contains
+
+    real(dp) function wall_seconds() result(t)
+        integer(i8) :: count, rate
+        call system_clock(count, rate)
+        t = real(count, dp)/real(rate, dp)
+    end function wall_seconds
+
+    !> Rigid heights from the configuration (may read a file, and then fills the grid and lengths)
+    subroutine build_surface(cfg, fft, h, error)
+        type(config_t), intent(inout) :: cfg
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), allocatable, intent(out) :: h(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        type(psd_t) :: psd
+        real(dp) :: q0
+        if (cfg%surface_kind == 'file') then
+            call read_height_file(cfg, h, error); return
+        end if
+        allocate (h(cfg%nx, cfg%ny))
+        select case (cfg%surface_kind)
+        case ('self_affine')
+            q0 = 2.0_dp*pi/cfg%lx_m
+            psd = psd_t(hurst=cfg%hurst, eccentricity=cfg%eccentricity, alpha_rad=cfg%alpha_deg*pi/180.0_dp, &
+                        q_low=cfg%k_low*q0, q_roll=cfg%k_roll*q0, q_cut=cfg%k_cut*q0)
+            call random_surface(fft, cfg%lx_m, cfg%ly_m, psd, cfg%seed, cfg%rms_slope, cfg%rms_height_m, h, error, &
+                                realised=cfg%scale_to == 'realised')
+            if (allocated(error)) error%message = "veslide: "//cfg%path//": &surface: "//error%message
+        case ('cosine')
+            call cosine_surface(cfg%nx, cfg%ny, cfg%lx_m, cfg%ly_m, cfg%amplitude_m, cfg%wavelength_m, &
+                                cfg%direction_deg*pi/180.0_dp, h)
+        case ('bisinusoid')
+            call bisinusoid_surface(cfg%nx, cfg%ny, cfg%lx_m, cfg%ly_m, cfg%amplitude_m, cfg%wavelength_m, h)
+        case ('paraboloid')
+            call paraboloid_surface(cfg%nx, cfg%ny, cfg%lx_m, cfg%ly_m, cfg%radius_m, h)
+        case ('cylinder')
+            call cylinder_surface(cfg%nx, cfg%ny, cfg%lx_m, cfg%radius_m, h)
+        case ('flat')
+            h = 0.0_dp
+        end select
+    end subroutine build_surface
+
+    !> Measured topography: a square 2-D float64 dataset of heights [m]
+    subroutine read_height_file(cfg, h, error)
+        type(config_t), intent(inout) :: cfg
+        real(dp), allocatable, intent(out) :: h(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        type(h5file_t) :: f
+        integer(i8) :: dims(7)
+        integer :: rank
+        logical :: is_double, exists
+        character(len=:), allocatable :: at
+        real(dp) :: length
+        at = "veslide: "//cfg%path//": &surface file '"//cfg%height_file//"': "
+        inquire (file=cfg%height_file, exist=exists)
+        if (.not. exists) then
+            call fatal_error(error, at//"no such file"); return
+        end if
+        call f%open(cfg%height_file, 'r', error)
+        if (allocated(error)) then
+            error%message = at//"not a readable HDF5 file"; return
+        end if
+        call f%shape_of(cfg%height_dataset, dims, rank, is_double)
+        if (rank < 0) then
+            call fatal_error(error, at//"no dataset '"//cfg%height_dataset//"' (set &surface dataset)"); return
+        end if
+        if (rank /= 2 .or. .not. is_double .or. dims(1) /= dims(2) .or. dims(1) < 2) then
+            call fatal_error(error, at//"dataset '"//cfg%height_dataset// &
+                "' must be a square 2-D float64 array of heights in metres"); return
+        end if
+        allocate (h(dims(1), dims(2)))
+        call f%read_r2(cfg%height_dataset, h, error)
+        if (allocated(error)) return
+        if (.not. all(ieee_is_finite(h))) then
+            call fatal_error(error, at//"dataset '"//cfg%height_dataset//"' contains NaN or infinite heights"); return
+        end if
+        cfg%nx = int(dims(1)); cfg%ny = int(dims(2))
+        if (cfg%lx_m == 0.0_dp) then
+            if (.not. f%attr_exists(cfg%height_dataset, 'length_m')) then
+                call fatal_error(error, at//"the cell side is unknown: set &grid lx_m or a 'length_m' attribute"); return
+            end if
+            call f%read_attr_r0(cfg%height_dataset, 'length_m', length, error)
+            if (allocated(error)) return
+            if (.not. (length > 0.0_dp .and. ieee_is_finite(length))) then
+                call fatal_error(error, at//"attribute length_m must be > 0"); return
+            end if
+            cfg%lx_m = length
+        end if
+        cfg%ly_m = cfg%lx_m
+        call f%close()
+    end subroutine read_height_file
+
+    !> The solid from &material
+    subroutine build_material(cfg, mat, error)
+        type(config_t), intent(in) :: cfg
+        type(material_t), intent(out) :: mat
+        type(error_t), allocatable, intent(out) :: error
+        select case (cfg%model)
+        case ('elastic')
+            call new_elastic(mat, cfg%young_pa, cfg%poisson, error)
+        case ('one_term')
+            call new_one_term(mat, cfg%einf_pa, cfg%ratio, cfg%tau_s, cfg%poisson, error)
+        case ('creep')
+            call new_creep(mat, cfg%e0_pa, cfg%prony_coef, cfg%prony_time_s, cfg%poisson, error)
+        case ('relaxation')
+            call new_relaxation(mat, cfg%e0_pa, cfg%prony_coef, cfg%prony_time_s, cfg%poisson, error)
+        end select
+        if (allocated(error)) error%message = "veslide: "//cfg%path//": &material: "//error%message
+    end subroutine build_material
+
+    !> Build and solve one case
+    subroutine run_case(cfg, c, error)
+        type(config_t), intent(inout) :: cfg
+        type(case_t), intent(out) :: c
+        type(error_t), allocatable, intent(out) :: error
+        type(fft2d_t) :: fft
+        type(solver_options_t) :: opts
+        real(dp) :: t0, th
+
+        t0 = wall_seconds()
+        if (cfg%surface_kind == 'file') then
+            call build_surface(cfg, fft, c%h, error); if (allocated(error)) return
+            call fft%init(cfg%nx, cfg%ny, error, planner=cfg%fft_planner, nthreads=cfg%threads)
+            if (allocated(error)) return
+        else
+            call fft%init(cfg%nx, cfg%ny, error, planner=cfg%fft_planner, nthreads=cfg%threads)
+            if (allocated(error)) return
+            call build_surface(cfg, fft, c%h, error); if (allocated(error)) return
+        end if
+        c%lx_m = cfg%lx_m; c%ly_m = cfg%ly_m
+        c%surface_seconds = wall_seconds() - t0
+
+        call build_material(cfg, c%mat, error); if (allocated(error)) return
+        th = cfg%velocity_direction_deg*pi/180.0_dp
+        c%velocity_m_s = cfg%speed_m_s*[cos(th), sin(th)]
+        t0 = wall_seconds()
+        call build_kernel(c%kernel, cfg%nx, cfg%ny, cfg%lx_m, cfg%ly_m, c%mat, c%velocity_m_s, &
+                          kernel_variant_id(cfg%kernel), error, alias_tol=cfg%alias_tol, alias_max=cfg%alias_max)
+        if (allocated(error)) then
+            error%message = "veslide: "//cfg%path//": &solver kernel = '"//trim(cfg%kernel)//"': "//error%message
+            return
+        end if
+        c%kernel_seconds = wall_seconds() - t0
+
+        opts%method = cfg%method
+        opts%tolerance = cfg%tolerance
+        opts%max_iterations = cfg%max_iterations
+        t0 = wall_seconds()
+        call solve_contact(c%kernel, fft, c%h, cfg%mean_pressure_pa, opts, c%state, error)
+        if (allocated(error)) return
+        c%solve_seconds = wall_seconds() - t0
+
+        call tangential_force(c%kernel, fft, c%state%p, c%force_pa)
+        call slope_force(fft, cfg%lx_m, cfg%ly_m, c%state%p, c%h, c%slope_force_pa)
+        call fft%destroy()
+    end subroutine run_case
+
+    !> Check that the result can be written, before any work: refuses an existing file unless
+    !> `overwrite`, and creates (then removes) the temporary file it will write to
+    subroutine prepare_output(path, overwrite, tmp, error)
+        character(len=*), intent(in) :: path
+        logical, intent(in) :: overwrite
+        character(len=:), allocatable, intent(out) :: tmp
+        type(error_t), allocatable, intent(out) :: error
+        logical :: exists
+        integer :: u, stat
+        character(len=512) :: msg
+        character(len=16) :: pid
+        inquire (file=path, exist=exists)
+        if (exists .and. .not. overwrite) then
+            call fatal_error(error, "veslide: &output file '"//path//"' exists; "// &
+                "set &output overwrite = .true. or pass --overwrite to replace it"); return
+        end if
+        write (pid, '(i0)') getpid()
+        tmp = path//'.part-'//trim(pid)
+        open (newunit=u, file=tmp, status='replace', action='write', iostat=stat, iomsg=msg)
+        if (stat /= 0) then
+            call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: "//trim(msg)); return
+        end if
+        close (u, status='delete')
+    end subroutine prepare_output
+
+    !> Move the finished temporary file onto its final name
+    subroutine commit_output(tmp, path, error)
+        character(len=*), intent(in) :: tmp, path
+        type(error_t), allocatable, intent(out) :: error
+        if (c_rename(tmp//c_null_char, path//c_null_char) /= 0) &
+            call fatal_error(error, "veslide: cannot rename '"//tmp//"' to '"//path//"'")
+    end subroutine commit_output
+
+    !> Remove a temporary file, if present
+    subroutine discard_output(tmp)
+        character(len=*), intent(in) :: tmp
+        integer :: u, stat
+        logical :: exists
+        inquire (file=tmp, exist=exists)
+        if (.not. exists) return
+        open (newunit=u, file=tmp, status='old', iostat=stat)
+        if (stat == 0) close (u, status='delete')
+    end subroutine discard_output
+
+    !> Write one case to an HDF5 file (the caller writes to a temporary name, then commits)
+    subroutine write_case(path, cfg, c, error)
+        character(len=*), intent(in) :: path
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        type(error_t), allocatable, intent(out) :: error
+        type(h5file_t) :: f
+        real(dp) :: vhat(2), estar, fn, tang(2)
+        character(len=*), parameter :: layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
+        character(len=32) :: seed_text
+
+        call f%open(path, 'w', error); if (allocated(error)) return
+        ! provenance
+        call f%writeattr('/', 'veslide_version', version_string(), error); if (allocated(error)) return
+        call f%writeattr('/', 'git_revision', git_revision(), error); if (allocated(error)) return
+        call f%writeattr('/', 'compiler', compiler_string(), error); if (allocated(error)) return
+        call f%writeattr('/', 'compiler_options', compiler_flags(), error); if (allocated(error)) return
+        call f%writeattr('/', 'hdf5_version', hdf5_library_version(), error); if (allocated(error)) return
+        call f%writeattr('/', 'created', utc_timestamp(), error); if (allocated(error)) return
+        write (seed_text, '(i0)') cfg%seed
+        call f%writeattr('/', 'seed', trim(seed_text), error); if (allocated(error)) return
+        call f%writeattr('/', 'input_file', cfg%path, error); if (allocated(error)) return
+        call f%write('/input/namelist', cfg%text, error); if (allocated(error)) return
+        call f%writeattr('/input/namelist', 'units', '-', error); if (allocated(error)) return
+
+        fn = cfg%mean_pressure_pa
+        estar = c%mat%e0_pa/(1.0_dp - c%mat%poisson**2)
+        vhat = [1.0_dp, 0.0_dp]
+        if (norm2(c%velocity_m_s) > 0.0_dp) vhat = c%velocity_m_s/norm2(c%velocity_m_s)
+        tang = c%force_pa
+
+        call scalar('contact_area_fraction', contact_area_fraction(c%state%p), '-')
+        call scalar('mean_separation_m', mean_separation(c%state%g), 'm')
+        call scalar('rms_height_m', rms_height(c%h), 'm')
+        call scalar('max_pressure_pa', maxval(c%state%p), 'Pa')
+        call scalar('mean_pressure_pa', fn, 'Pa')
+        call scalar('approach_m', c%state%approach_m, 'm')
+        call iscalar('iterations', c%state%iterations)
+        call iscalar('operator_applications', c%state%operator_applications)
+        call iscalar('converged', merge(1, 0, c%state%converged))
+        call scalar('residual', c%state%residual, '-')
+        call scalar('penetration', c%state%penetration, '-')
+        call scalar('complementarity', c%state%complementarity, '-')
+        call scalar('negative_pressure', c%state%negative_pressure, '-')
+        call scalar('load_error', c%state%load_error, '-')
+        call scalar('tolerance', cfg%tolerance, '-')
+        call scalar('length_x_m', c%lx_m, 'm')
+        call scalar('length_y_m', c%ly_m, 'm')
+        call iscalar('nx', size(c%h, 1))
+        call iscalar('ny', size(c%h, 2))
+        call scalar('contact_modulus_pa', estar, 'Pa')
+        call scalar('speed_m_s', norm2(c%velocity_m_s), 'm/s')
+        call scalar('velocity_direction_deg', cfg%velocity_direction_deg, 'degree')
+        call scalar('friction_force_pa', -dot_product(tang, vhat), 'Pa')
+        call scalar('friction_coefficient', -dot_product(tang, vhat)/fn, '-')
+        call scalar('lateral_force_pa', dot_product(tang, [-vhat(2), vhat(1)]), 'Pa')
+        call scalar('lateral_force_ratio', dot_product(tang, [-vhat(2), vhat(1)])/fn, '-')
+        call scalar('force_x_pa', tang(1), 'Pa')
+        call scalar('force_y_pa', tang(2), 'Pa')
+        call scalar('friction_coefficient_slope', -dot_product(c%slope_force_pa, vhat)/fn, '-')
+        call scalar('dissipated_power_w_m2', -dot_product(tang, c%velocity_m_s), 'W/m^2')
+        call scalar('kernel_alias_error', c%kernel%alias_error, '-')
+        call iscalar('kernel_alias_zones', c%kernel%alias_zones)
+        call scalar('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
+        call scalar('surface_seconds', c%surface_seconds, 's')
+        call scalar('kernel_seconds', c%kernel_seconds, 's')
+        call scalar('solve_seconds', c%solve_seconds, 's')
+        if (allocated(error)) return
+        call f%writeattr('/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
+        call f%writeattr('/scalars', 'kernel_variant', trim(cfg%kernel), error); if (allocated(error)) return
+
+        if (cfg%write_fields) then
+            call field('height_m', c%h, 'm')
+            call field('pressure_pa', c%state%p, 'Pa')
+            call field('displacement_m', c%state%u, 'm')
+            call field('gap_m', c%state%g, 'm')
+        end if
+        call f%close()
+
+    contains
+
+        subroutine scalar(name, value, units)
+            character(len=*), intent(in) :: name, units
+            real(dp), intent(in) :: value
+            if (allocated(error)) return
+            call f%write('/scalars/'//name, value, error); if (allocated(error)) return
+            call f%writeattr('/scalars/'//name, 'units', units, error)
+        end subroutine scalar
+
+        subroutine iscalar(name, value)
+            character(len=*), intent(in) :: name
+            integer, intent(in) :: value
+            if (allocated(error)) return
+            call f%write('/scalars/'//name, value, error); if (allocated(error)) return
+            call f%writeattr('/scalars/'//name, 'units', '-', error)
+        end subroutine iscalar
+
+        subroutine field(name, value, units)
+            character(len=*), intent(in) :: name, units
+            real(dp), intent(in) :: value(:, :)
+            if (allocated(error)) return
+            call f%write('/fields/'//name, value, error); if (allocated(error)) return
+            call f%writeattr('/fields/'//name, 'units', units, error); if (allocated(error)) return
+            call f%writeattr('/fields/'//name, 'layout', layout, error)
+        end subroutine field
+
+    end subroutine write_case
+
+end module veslide_run

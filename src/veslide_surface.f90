@@ -1,0 +1,257 @@
+!> Rigid surfaces: the elliptical self-affine random surface of appendix B, deterministic
+!> validation scenes, and slope/height statistics.
+!>
+!> Heights h(x, y) [m] on an nx x ny periodic grid of cell centres, positive toward the solid
+!> (the highest points touch first). Random surfaces: h(x) = sum_q a_q exp(i q.x) with
+!> a_q = alpha + i beta, alpha, beta ~ N(0, (2 pi)^2/(Lx Ly) C(q)/2), a_{-q} = conj(a_q), a_0 = 0,
+!> Nyquist lines zero. Each a_q is drawn from (seed, signed wavenumber) alone (veslide_rng), so a
+!> finer grid with the same spectrum gives the same surface, sampled more densely.
+module veslide_surface
+    use veslide_kinds, only: dp, i8, pi, two_pi
+    use veslide_error, only: error_t, fatal_error
+    use veslide_rng, only: normal_pair_at
+    use veslide_fftw, only: fft2d_t
+    implicit none
+    private
+    public :: psd_t, psd_value, random_surface, slope_tensor, rms_height, expected_slope_tensor
+    public :: cosine_surface, bisinusoid_surface, paraboloid_surface, cylinder_surface
+
+    !> Elliptical self-affine power spectral density (appendix B, eq. B.6)
+    type :: psd_t
+        real(dp) :: hurst = 0.8_dp          !! Hurst exponent H, 0 < H < 1
+        real(dp) :: eccentricity = 1.0_dp   !! eps = b/a in (0, 1]; a^2 + b^2 = 2
+        real(dp) :: alpha_rad = 0.0_dp      !! angle of the major axis of C(q) from x [rad]
+        real(dp) :: q_low = 0.0_dp          !! lower cut-off q_l [1/m]
+        real(dp) :: q_roll = 0.0_dp         !! roll-off q_r [1/m] (plateau between q_l and q_r)
+        real(dp) :: q_cut = 0.0_dp          !! upper cut-off q_c [1/m]
+    end type psd_t
+
+contains
+
+    !> C(q) / C0 of the elliptical self-affine spectrum; zero outside [q_l, q_c]
+    elemental real(dp) function psd_value(psd, qx, qy) result(c)
+        type(psd_t), intent(in) :: psd
+        real(dp), intent(in) :: qx, qy
+        real(dp) :: q2, a2, b2, ca, sa, u, v, tqq, s
+        q2 = qx*qx + qy*qy
+        c = 0.0_dp
+        if (q2 < psd%q_low**2*(1.0_dp - 1.0e-12_dp) .or. q2 > psd%q_cut**2*(1.0_dp + 1.0e-12_dp)) return
+        a2 = 2.0_dp/(1.0_dp + psd%eccentricity**2)
+        b2 = 2.0_dp - a2
+        ca = cos(psd%alpha_rad); sa = sin(psd%alpha_rad)
+        ! components in the frame of the ellipse: T_alpha q.q = u^2/a^2 + v^2/b^2
+        u = ca*qx + sa*qy
+        v = -sa*qx + ca*qy
+        tqq = u*u/a2 + v*v/b2
+        if (q2 <= psd%q_roll**2) then
+            s = q2
+        else
+            s = psd%q_roll**2
+        end if
+        c = (tqq/s)**(-(psd%hurst + 1.0_dp))
+    end function psd_value
+
+    !> Random surface with spectrum `psd`, scaled to rms slope (sqrt of the slope-tensor trace)
+    !> `rms_slope`, or to `rms_height` when rms_slope <= 0. `realised` (default .true.) scales
+    !> the realisation itself to the target; otherwise C0 is set from the expectation.
+    subroutine random_surface(fft, lx, ly, psd, seed, rms_slope, rms_height_target, h, error, realised)
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), intent(in) :: lx, ly
+        type(psd_t), intent(in) :: psd
+        integer(i8), intent(in) :: seed
+        real(dp), intent(in) :: rms_slope, rms_height_target
+        real(dp), intent(out) :: h(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: realised
+        integer :: nx, ny, i, j, ki, kj
+        real(dp) :: qx, qy, c, sig, z1, z2, var_sum, slope_sum, scale
+        logical :: realised_, nyq
+        complex(dp) :: aq
+
+        realised_ = .true.; if (present(realised)) realised_ = realised
+        nx = fft%nx; ny = fft%ny
+        if (.not. (psd%hurst > 0.0_dp .and. psd%hurst < 1.0_dp)) then
+            call fatal_error(error, "hurst must be in (0, 1)"); return
+        end if
+        if (.not. (psd%eccentricity > 0.0_dp .and. psd%eccentricity <= 1.0_dp)) then
+            call fatal_error(error, "eccentricity must be in (0, 1]"); return
+        end if
+        if (.not. (psd%q_low > 0.0_dp .and. psd%q_low <= psd%q_roll .and. psd%q_roll <= psd%q_cut)) then
+            call fatal_error(error, "wavevectors must satisfy 0 < q_low <= q_roll <= q_cut"); return
+        end if
+        var_sum = 0.0_dp; slope_sum = 0.0_dp
+        do j = 1, ny
+            kj = j - 1; if (kj > ny/2) kj = kj - ny
+            do i = 1, nx/2 + 1
+                ki = i - 1
+                nyq = (mod(nx, 2) == 0 .and. ki == nx/2 .and. nx > 1) .or. &
+                      (mod(ny, 2) == 0 .and. kj == ny/2 .and. ny > 1)
+                qx = two_pi*ki/lx; qy = two_pi*kj/ly
+                c = psd_value(psd, qx, qy)
+                if (nyq .or. (ki == 0 .and. kj == 0) .or. c == 0.0_dp) then
+                    fft%k(i, j) = (0.0_dp, 0.0_dp); cycle
+                end if
+                ! one draw per mode pair {q, -q}, keyed by the representative with ki > 0, or
+                ! ki == 0 and kj > 0; the other member is its conjugate
+                sig = sqrt(0.5_dp*two_pi**2/(lx*ly)*c)
+                if (ki > 0 .or. kj > 0) then
+                    call normal_pair_at(seed, ki, kj, z1, z2)
+                    aq = sig*cmplx(z1, z2, dp)
+                else
+                    call normal_pair_at(seed, -ki, -kj, z1, z2)
+                    aq = sig*cmplx(z1, -z2, dp)
+                end if
+                fft%k(i, j) = aq
+                ! expected contributions, counting the conjugate partner of every stored
+                ! entry except the ki = 0 column (whose partner is stored itself)
+                var_sum = var_sum + merge(1.0_dp, 2.0_dp, ki == 0)*2.0_dp*sig**2
+                slope_sum = slope_sum + merge(1.0_dp, 2.0_dp, ki == 0)*2.0_dp*sig**2*(qx*qx + qy*qy)
+            end do
+        end do
+        if (var_sum <= 0.0_dp) then
+            call fatal_error(error, "the spectrum has no mode on this grid (check q_low, q_cut, nx, ny)"); return
+        end if
+        ! c2r without 1/N: h(x) = sum_q a_q exp(i q.x)
+        call fft%backward_unscaled()
+        h = fft%x
+        h = h - sum(h)/size(h)
+        if (realised_) then
+            if (rms_slope > 0.0_dp) then
+                block
+                    real(dp) :: m(2, 2)
+                    call slope_tensor(fft, lx, ly, h, m)
+                    scale = rms_slope/sqrt(m(1, 1) + m(2, 2))
+                end block
+            else
+                scale = rms_height_target/rms_height(h)
+            end if
+        else
+            if (rms_slope > 0.0_dp) then
+                scale = rms_slope/sqrt(slope_sum)
+            else
+                scale = rms_height_target/sqrt(var_sum)
+            end if
+        end if
+        h = h*scale
+    end subroutine random_surface
+
+    !> Expected slope tensor of the spectrum on this grid, for unit C0 (sum over modes of q q C)
+    subroutine expected_slope_tensor(nx, ny, lx, ly, psd, m, var)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: lx, ly
+        type(psd_t), intent(in) :: psd
+        real(dp), intent(out) :: m(2, 2), var
+        integer :: ki, kj
+        real(dp) :: qx, qy, c
+        m = 0.0_dp; var = 0.0_dp
+        do kj = -(ny - 1)/2, (ny - 1)/2
+            do ki = -(nx - 1)/2, (nx - 1)/2
+                if (ki == 0 .and. kj == 0) cycle
+                qx = two_pi*ki/lx; qy = two_pi*kj/ly
+                c = two_pi**2/(lx*ly)*psd_value(psd, qx, qy)
+                var = var + c
+                m(1, 1) = m(1, 1) + qx*qx*c; m(2, 2) = m(2, 2) + qy*qy*c; m(1, 2) = m(1, 2) + qx*qy*c
+            end do
+        end do
+        m(2, 1) = m(1, 2)
+    end subroutine expected_slope_tensor
+
+    !> rms of the heights about their mean
+    pure real(dp) function rms_height(h) result(r)
+        real(dp), intent(in) :: h(:, :)
+        real(dp) :: mean
+        mean = sum(h)/size(h)
+        r = sqrt(sum((h - mean)**2)/size(h))
+    end function rms_height
+
+    !> Slope tensor M_ij = <d_i h d_j h> from spectral derivatives (Parseval), optionally in the
+    !> band band(1) <= |q| <= band(2) [1/m]
+    subroutine slope_tensor(fft, lx, ly, h, m, band)
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), intent(in) :: lx, ly, h(:, :)
+        real(dp), intent(out) :: m(2, 2)
+        real(dp), intent(in), optional :: band(2)
+        integer :: i, j, nx, ny
+        real(dp) :: q(2), w, p2, qn
+        nx = fft%nx; ny = fft%ny
+        fft%x = h
+        call fft%forward()
+        m = 0.0_dp
+        do j = 1, ny
+            do i = 1, nx/2 + 1
+                q(1) = two_pi*(i - 1)/lx
+                q(2) = two_pi*merge(j - 1 - ny, j - 1, j - 1 > ny/2)/ly
+                if (mod(nx, 2) == 0 .and. i == nx/2 + 1 .and. nx > 1) q(1) = 0.0_dp   ! Nyquist: no derivative
+                if (mod(ny, 2) == 0 .and. j == ny/2 + 1 .and. ny > 1) q(2) = 0.0_dp
+                if (present(band)) then
+                    qn = norm2([two_pi*(i - 1)/lx, two_pi*merge(j - 1 - ny, j - 1, j - 1 > ny/2)/ly])
+                    if (qn < band(1) .or. qn > band(2)) cycle
+                end if
+                w = merge(1.0_dp, 2.0_dp, i == 1 .or. (mod(nx, 2) == 0 .and. i == nx/2 + 1))
+                p2 = w*abs(fft%k(i, j))**2
+                m(1, 1) = m(1, 1) + q(1)*q(1)*p2
+                m(2, 2) = m(2, 2) + q(2)*q(2)*p2
+                m(1, 2) = m(1, 2) + q(1)*q(2)*p2
+            end do
+        end do
+        m = m/(real(nx, dp)*real(ny, dp))**2
+        m(2, 1) = m(1, 2)
+    end subroutine slope_tensor
+
+    !> h = amplitude cos(q.x), q of length 2 pi/wavelength at angle direction_rad from x
+    pure subroutine cosine_surface(nx, ny, lx, ly, amplitude, wavelength, direction_rad, h)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: lx, ly, amplitude, wavelength, direction_rad
+        real(dp), intent(out) :: h(:, :)
+        integer :: i, j
+        real(dp) :: qx, qy
+        qx = two_pi/wavelength*cos(direction_rad); qy = two_pi/wavelength*sin(direction_rad)
+        do j = 1, ny
+            do i = 1, nx
+                h(i, j) = amplitude*cos(qx*(i - 1)*lx/nx + qy*(j - 1)*ly/ny)
+            end do
+        end do
+    end subroutine cosine_surface
+
+    !> h = amplitude cos(2 pi x/wavelength) cos(2 pi y/wavelength)
+    pure subroutine bisinusoid_surface(nx, ny, lx, ly, amplitude, wavelength, h)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: lx, ly, amplitude, wavelength
+        real(dp), intent(out) :: h(:, :)
+        integer :: i, j
+        do j = 1, ny
+            do i = 1, nx
+                h(i, j) = amplitude*cos(two_pi*(i - 1)*lx/nx/wavelength)*cos(two_pi*(j - 1)*ly/ny/wavelength)
+            end do
+        end do
+    end subroutine bisinusoid_surface
+
+    !> Paraboloid bump h = -r^2/(2R), apex at the cell centre point (nx/2+1, ny/2+1)
+    pure subroutine paraboloid_surface(nx, ny, lx, ly, radius, h)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: lx, ly, radius
+        real(dp), intent(out) :: h(:, :)
+        integer :: i, j
+        real(dp) :: x, y
+        do j = 1, ny
+            do i = 1, nx
+                x = (i - 1 - nx/2)*lx/nx; y = (j - 1 - ny/2)*ly/ny
+                h(i, j) = -(x*x + y*y)/(2.0_dp*radius)
+            end do
+        end do
+    end subroutine paraboloid_surface
+
+    !> Cylinder with axis along y: h = -x^2/(2R), apex line at i = nx/2+1
+    pure subroutine cylinder_surface(nx, ny, lx, radius, h)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: lx, radius
+        real(dp), intent(out) :: h(:, :)
+        integer :: i
+        real(dp) :: x
+        do i = 1, nx
+            x = (i - 1 - nx/2)*lx/nx
+            h(i, 1:ny) = -x*x/(2.0_dp*radius)
+        end do
+    end subroutine cylinder_surface
+
+end module veslide_surface

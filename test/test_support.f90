@@ -1,0 +1,66 @@
+!> Shared set-up for the tests: an elastic solve in a few lines
+module test_support
+    use veslide_kinds, only: dp
+    use veslide_error, only: error_t, fatal_error
+    use veslide_fftw, only: fft2d_t
+    use veslide_material, only: material_t, new_elastic
+    use veslide_kernel, only: kernel_t, build_kernel, KERNEL_SPECTRAL
+    use veslide_solver, only: solver_options_t, contact_state_t, solve_contact
+    implicit none
+    private
+    public :: solve_case, unique_name, write_text
+
+contains
+
+    !> Solve h on an (lx, ly) cell against material `mat` (default: elastic with E* = estar, nu = 0)
+    subroutine solve_case(h, lx, ly, p_mean, state, error, estar, mat, velocity, variant, tol, method, p_init, kernel)
+        real(dp), intent(in) :: h(:, :), lx, ly, p_mean
+        type(contact_state_t), intent(out) :: state
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: estar, velocity(2), tol, p_init(:, :)
+        type(material_t), intent(in), optional :: mat
+        integer, intent(in), optional :: variant
+        character(len=*), intent(in), optional :: method
+        type(kernel_t), intent(out), optional :: kernel
+        type(material_t) :: m
+        type(kernel_t) :: k
+        type(fft2d_t) :: fft
+        type(solver_options_t) :: opts
+        real(dp) :: v(2)
+        integer :: var
+        if (present(mat)) then
+            m = mat
+        else
+            call new_elastic(m, merge(estar, 1.0e6_dp, present(estar)), 0.0_dp, error)
+            if (allocated(error)) return
+        end if
+        v = 0.0_dp; if (present(velocity)) v = velocity
+        var = KERNEL_SPECTRAL; if (present(variant)) var = variant
+        call fft%init(size(h, 1), size(h, 2), error, planner='estimate'); if (allocated(error)) return
+        call build_kernel(k, size(h, 1), size(h, 2), lx, ly, m, v, var, error); if (allocated(error)) return
+        opts%tolerance = 1.0e-12_dp; if (present(tol)) opts%tolerance = tol
+        if (present(method)) opts%method = method
+        call solve_contact(k, fft, h, p_mean, opts, state, error, p_init=p_init)
+        if (allocated(error)) return
+        if (.not. state%converged) call fatal_error(error, "solver did not converge")
+        if (present(kernel)) kernel = k
+    end subroutine solve_case
+
+    !> A file name unique to this process and tag, in the system's temporary directory
+    function unique_name(tag) result(name)
+        character(len=*), intent(in) :: tag
+        character(len=:), allocatable :: name
+        character(len=16) :: pid
+        write (pid, '(i0)') getpid()
+        name = '/tmp/veslide-test-'//trim(pid)//'-'//tag
+    end function unique_name
+
+    subroutine write_text(path, text)
+        character(len=*), intent(in) :: path, text
+        integer :: u
+        open (newunit=u, file=path, status='replace', action='write')
+        write (u, '(a)') text
+        close (u)
+    end subroutine write_text
+
+end module test_support
