@@ -98,15 +98,16 @@ contains
     logical function h5_exists(self, name) result(yes)
         class(h5file_t), intent(in) :: self
         character(len=*), intent(in) :: name
-        integer :: ierr, k
+        integer :: ierr, k, j
         logical :: e
         yes = .false.
         if (.not. self%is_open()) return
         ! walk the path so that a missing parent group is not an error
         k = 1
         do
-            k = index(name(k + 1:), '/') + k
-            if (k == 1 .or. k > len(name)) exit
+            j = index(name(k + 1:), '/')
+            if (j == 0) exit
+            k = k + j
             call h5lexists_f(self%fid, name(1:k - 1), e, ierr)
             if (ierr /= 0 .or. .not. e) return
         end do

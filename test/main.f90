@@ -4,12 +4,16 @@ program veslide_tests
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit, stderr => error_unit
     use testsuite, only: testsuite_t, new_testsuite, run_testsuite
     use test_veslide_solver, only: collect_solver
+    use test_veslide_surface, only: collect_surface
+    use test_veslide_config, only: collect_config
     implicit none
     type(testsuite_t), allocatable :: suites(:)
     character(len=128) :: want_suite, want_test
     integer :: i, npass, nfail, nrun
 
     suites = [ &
+        new_testsuite("config", collect_config), &
+        new_testsuite("surface", collect_surface), &
         new_testsuite("solver", collect_solver) &
         ]
     want_suite = ''; want_test = ''

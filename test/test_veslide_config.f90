@@ -1,0 +1,304 @@
+!> Namelist input, error paths, measured topographies and the HDF5 output contract
+module test_veslide_config
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use veslide_kinds, only: dp
+    use veslide_error, only: fatal_error
+    use veslide_config, only: config_t, read_config
+    use veslide_fftw, only: fft2d_t
+    use veslide_hdf5, only: h5file_t
+    use veslide_run, only: case_t, build_surface, run_case, write_case, prepare_output, commit_output
+    use veslide_version, only: veslide_version_number
+    use testsuite, only: error_t, unittest_t, new_unittest, check
+    use test_support, only: unique_name, write_text
+    implicit none
+    private
+    public :: collect_config
+
+contains
+
+    subroutine collect_config(tests)
+        type(unittest_t), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest("defaults-and-values", test_values), &
+            new_unittest("out-of-range-names-group-variable-range", test_out_of_range), &
+            new_unittest("unknown-variable", test_unknown_variable), &
+            new_unittest("missing-input-file", test_missing_file), &
+            new_unittest("bad-enumeration", test_bad_enum), &
+            new_unittest("non-periodic-wave", test_nonperiodic_wave), &
+            new_unittest("height-file-read", test_height_file), &
+            new_unittest("height-file-not-square", test_height_not_square), &
+            new_unittest("height-file-nan", test_height_nan), &
+            new_unittest("height-file-missing-dataset", test_height_missing), &
+            new_unittest("output-exists-not-overwritten", test_output_exists), &
+            new_unittest("output-unwritable", test_output_unwritable), &
+            new_unittest("hdf5-contract", test_hdf5_contract), &
+            new_unittest("version-matches-fpm-toml", test_version) &
+            ]
+    end subroutine collect_config
+
+    !> Read `text` as a namelist file; return the error (if any) in `error`
+    subroutine read_text(tag, text, cfg, error)
+        character(len=*), intent(in) :: tag, text
+        type(config_t), intent(out) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        character(len=:), allocatable :: path
+        integer :: u
+        path = unique_name(tag//'.nml')
+        call write_text(path, text)
+        call read_config(path, cfg, error)
+        open (newunit=u, file=path); close (u, status='delete')
+    end subroutine read_text
+
+    !> Passes when reading `text` fails with a message containing every one of `words`
+    subroutine expect_message(tag, text, words, error)
+        character(len=*), intent(in) :: tag, text, words(:)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(error_t), allocatable :: e
+        integer :: k
+        call read_text(tag, text, cfg, e)
+        if (.not. allocated(e)) then
+            call fatal_error(error, "no error raised"); return
+        end if
+        do k = 1, size(words)
+            if (index(e%message, trim(words(k))) == 0) then
+                call fatal_error(error, "message lacks '"//trim(words(k))//"': "//e%message); return
+            end if
+        end do
+    end subroutine expect_message
+
+    subroutine test_values(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        call read_text('values', "&grid nx = 32, ny = 16 / &surface k_cut = 6 /"//new_line('a')// &
+                       "&material model='creep', e0_pa=1e6, creep_c_per_pa=1e-7,2e-7, creep_tau_s=1e-3,1e-2 /", &
+                       cfg, error)
+        if (allocated(error)) return
+        call check(error, cfg%nx == 32 .and. cfg%ny == 16, "grid"); if (allocated(error)) return
+        call check(error, cfg%ly_m, 0.005_dp, "ly_m defaults to lx_m*ny/nx", rel=1.0e-15_dp); if (allocated(error)) return
+        call check(error, size(cfg%prony_coef) == 2 .and. cfg%prony_time_s(2) == 1.0e-2_dp, "Prony terms")
+        if (allocated(error)) return
+        call check(error, index(cfg%text, "creep_tau_s") > 0, "input text kept verbatim")
+    end subroutine test_values
+
+    subroutine test_out_of_range(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=32) :: w(4)
+        w = [character(len=32) :: "&grid nx", "= 0", "allowed", "1 to 65536"]
+        call expect_message('range1', "&grid nx = 0 /", w, error); if (allocated(error)) return
+        w = [character(len=32) :: "&material poisson", "0.7", "allowed", "0 to 0.5"]
+        call expect_message('range2', "&material poisson = 0.7 /", w, error); if (allocated(error)) return
+        w = [character(len=32) :: "&load mean_pressure_pa", "allowed", "> 0", ""]
+        call expect_message('range3', "&load mean_pressure_pa = -1 /", w(1:3), error); if (allocated(error)) return
+        w = [character(len=32) :: "&surface k_cut", "Nyquist", "", ""]
+        call expect_message('range4', "&grid nx = 64, ny = 64 / &surface k_cut = 40 /", w(1:2), error)
+        if (allocated(error)) return
+        w = [character(len=32) :: "&material", "one_term", "", ""]
+        w = [character(len=32) :: "&material ratio", "> 1", "", ""]
+        call expect_message('range5', "&material model='one_term', ratio = 0.5 /", w(1:2), error)
+    end subroutine test_out_of_range
+
+    subroutine test_unknown_variable(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('unknown', "&grid nx = 32, nz = 4 /", [character(len=16) :: "&grid", "nz"], error)
+    end subroutine test_unknown_variable
+
+    subroutine test_missing_file(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(error_t), allocatable :: e
+        call read_config('/nonexistent/veslide.nml', cfg, e)
+        call check(error, allocated(e), "no error for a missing file"); if (allocated(error)) return
+        call check(error, index(e%message, '/nonexistent/veslide.nml') > 0, "message lacks the file name: "//e%message)
+    end subroutine test_missing_file
+
+    subroutine test_bad_enum(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('enum', "&solver kernel = 'fancy' /", &
+                            [character(len=16) :: "&solver kernel", "'fancy'", "galerkin"], error)
+    end subroutine test_bad_enum
+
+    subroutine test_nonperiodic_wave(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('wave', "&grid nx=64, ny=64, lx_m=1 / &surface kind='cosine', amplitude_m=1e-6, "// &
+                            "wavelength_m=0.3 /", [character(len=24) :: "&surface wavelength_m", "periodic"], error)
+    end subroutine test_nonperiodic_wave
+
+    !> Write a height dataset; `lx` > 0 adds the length_m attribute
+    subroutine write_heights(path, h, lx, error)
+        character(len=*), intent(in) :: path
+        real(dp), intent(in) :: h(:, :), lx
+        type(error_t), allocatable, intent(out) :: error
+        type(h5file_t) :: f
+        call f%open(path, 'w', error); if (allocated(error)) return
+        call f%write('/height_m', h, error); if (allocated(error)) return
+        if (lx > 0.0_dp) call f%writeattr('/height_m', 'length_m', lx, error)
+        call f%close()
+    end subroutine write_heights
+
+    !> Build the surface of a config naming a height file; returns the error of build_surface
+    subroutine surface_from(tag, h, lx, cfg, hout, error, extra)
+        character(len=*), intent(in) :: tag
+        real(dp), intent(in) :: h(:, :), lx
+        type(config_t), intent(out) :: cfg
+        real(dp), allocatable, intent(out) :: hout(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: extra
+        character(len=:), allocatable :: h5, more
+        type(fft2d_t) :: fft
+        integer :: u
+        h5 = unique_name(tag//'.h5')
+        more = ''
+        if (present(extra)) more = extra
+        call write_heights(h5, h, lx, error); if (allocated(error)) return
+        call read_text(tag, "&surface kind='file', file='"//h5//"' "//more//" /", cfg, error)
+        if (allocated(error)) return
+        call build_surface(cfg, fft, hout, error)
+        open (newunit=u, file=h5); close (u, status='delete')
+    end subroutine surface_from
+
+    subroutine test_height_file(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        real(dp) :: h(8, 8)
+        real(dp), allocatable :: hout(:, :)
+        call random_number(h)
+        call surface_from('hread', h, 2.0e-3_dp, cfg, hout, error); if (allocated(error)) return
+        call check(error, all(hout == h), "heights changed on the way"); if (allocated(error)) return
+        call check(error, cfg%nx == 8 .and. cfg%ny == 8 .and. cfg%lx_m == 2.0e-3_dp, "grid from the file")
+    end subroutine test_height_file
+
+    subroutine expect_surface_error(tag, h, lx, words, error)
+        character(len=*), intent(in) :: tag, words(:)
+        real(dp), intent(in) :: h(:, :), lx
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        real(dp), allocatable :: hout(:, :)
+        type(error_t), allocatable :: e
+        integer :: k
+        call surface_from(tag, h, lx, cfg, hout, e)
+        if (.not. allocated(e)) then
+            call fatal_error(error, "no error raised"); return
+        end if
+        do k = 1, size(words)
+            if (index(e%message, trim(words(k))) == 0) then
+                call fatal_error(error, "message lacks '"//trim(words(k))//"': "//e%message); return
+            end if
+        end do
+    end subroutine expect_surface_error
+
+    subroutine test_height_not_square(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: h(8, 6)
+        h = 0
+        call expect_surface_error('hsq', h, 1.0_dp, [character(len=16) :: "&surface file", "square"], error)
+    end subroutine test_height_not_square
+
+    subroutine test_height_nan(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: h(8, 8)
+        h = 0; h(3, 4) = ieee_value(1.0_dp, ieee_quiet_nan)
+        call expect_surface_error('hnan', h, 1.0_dp, [character(len=16) :: "&surface file", "NaN"], error)
+        if (allocated(error)) return
+        h(3, 4) = 0
+        call expect_surface_error('hlen', h, 0.0_dp, [character(len=16) :: "length_m", "lx_m"], error)
+    end subroutine test_height_nan
+
+    subroutine test_height_missing(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        real(dp), allocatable :: hout(:, :)
+        type(error_t), allocatable :: e
+        real(dp) :: h(4, 4)
+        h = 0
+        call surface_from('hmiss', h, 1.0_dp, cfg, hout, e, extra="dataset='/topo'")
+        call check(error, allocated(e), "no error"); if (allocated(error)) return
+        call check(error, index(e%message, "/topo") > 0, "message lacks the dataset: "//e%message)
+    end subroutine test_height_missing
+
+    !> An existing result is never replaced unless asked, and is left untouched
+    subroutine test_output_exists(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=:), allocatable :: path, tmp
+        type(error_t), allocatable :: e
+        character(len=16) :: line
+        integer :: u
+        path = unique_name('exists.h5')
+        call write_text(path, 'earlier result')
+        call prepare_output(path, .false., tmp, e)
+        call check(error, allocated(e), "existing output accepted"); if (allocated(error)) return
+        call check(error, index(e%message, "overwrite") > 0, "message does not say how: "//e%message)
+        if (allocated(error)) return
+        open (newunit=u, file=path, status='old'); read (u, '(a)') line; close (u, status='delete')
+        call check(error, line == 'earlier result', "earlier result changed")
+    end subroutine test_output_exists
+
+    subroutine test_output_unwritable(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=:), allocatable :: tmp
+        type(error_t), allocatable :: e
+        call prepare_output('/nonexistent-dir/out.h5', .true., tmp, e)
+        call check(error, allocated(e), "unwritable path accepted"); if (allocated(error)) return
+        call check(error, index(e%message, "/nonexistent-dir/out.h5") > 0, "message lacks the path: "//e%message)
+    end subroutine test_output_unwritable
+
+    !> A small case end to end: the paths and units of the output contract
+    subroutine test_hdf5_contract(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out, tmp
+        character(len=40) :: paths(12)
+        real(dp) :: a
+        integer :: k, u
+        out = unique_name('contract.h5')
+        call read_text('contract', "&grid nx = 32, ny = 32 / &surface k_cut = 8 / &solver fft_planner='estimate' /"// &
+                       " &output file = '"//out//"' /", cfg, error)
+        if (allocated(error)) return
+        call prepare_output(cfg%output_file, .false., tmp, error); if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call write_case(tmp, cfg, c, error); if (allocated(error)) return
+        call commit_output(tmp, out, error); if (allocated(error)) return
+        paths = [character(len=40) :: '/scalars/contact_area_fraction', '/scalars/mean_separation_m', &
+                 '/scalars/rms_height_m', '/scalars/max_pressure_pa', '/scalars/iterations', '/scalars/converged', &
+                 '/scalars/residual', '/fields/height_m', '/fields/pressure_pa', '/fields/displacement_m', &
+                 '/fields/gap_m', '/input/namelist']
+        call f%open(out, 'r', error); if (allocated(error)) return
+        do k = 1, size(paths)
+            if (.not. f%exists(trim(paths(k)))) then
+                call fatal_error(error, "missing "//trim(paths(k))); return
+            end if
+            if (.not. f%attr_exists(trim(paths(k)), 'units')) then
+                call fatal_error(error, "no units on "//trim(paths(k))); return
+            end if
+        end do
+        call check(error, f%attr_exists('/', 'git_revision') .and. f%attr_exists('/', 'compiler') .and. &
+                   f%attr_exists('/', 'seed') .and. f%attr_exists('/', 'hdf5_version') .and. &
+                   f%attr_exists('/', 'veslide_version') .and. f%attr_exists('/', 'created'), "provenance attributes")
+        if (allocated(error)) return
+        call f%read_r0('/scalars/contact_area_fraction', a, error); if (allocated(error)) return
+        call f%close()
+        open (newunit=u, file=out); close (u, status='delete')
+        call check(error, a, real(count(c%state%p > 0), dp)/1024.0_dp, "area read back", rel=0.0_dp)
+    end subroutine test_hdf5_contract
+
+    subroutine test_version(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=256) :: line
+        integer :: u, stat
+        open (newunit=u, file='fpm.toml', status='old', action='read', iostat=stat)
+        if (stat /= 0) then
+            call fatal_error(error, "fpm.toml not found (tests run from the project root)"); return
+        end if
+        do
+            read (u, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            if (index(line, 'version') == 1) exit
+        end do
+        close (u)
+        call check(error, index(line, '"'//veslide_version_number//'"') > 0, &
+                   "fpm.toml says "//trim(line)//", the code says "//veslide_version_number)
+    end subroutine test_version
+
+end module test_veslide_config
