@@ -1,2 +1,180 @@
+!> veslide-bench: measured speed and accuracy (never part of the test suite).
+!>   veslide-bench solver [N ...]   solve time, iterations and time per iteration against one
+!>                                 FFTW r2c+c2r pair, for the default rough surface at N^2
+!>                                 (writes results/bench-solver-N.h5 for bench/tamaas_parity.py)
+!>   veslide-bench kernels          Westergaard errors of every kernel variant under refinement
 program veslide_bench
-end program
+    use, intrinsic :: iso_fortran_env, only: stdout => output_unit
+    use veslide_kinds, only: dp, i8, pi
+    use veslide_error, only: error_t
+    use veslide_config, only: config_t
+    use veslide_fftw, only: fft2d_t
+    use veslide_run, only: case_t, run_case, write_case, prepare_output, commit_output
+    use veslide_material, only: material_t, new_elastic
+    use veslide_kernel, only: kernel_t, build_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION, &
+                              KERNEL_COLLOCATION_ALIAS, KERNEL_GALERKIN
+    use veslide_solver, only: solver_options_t, contact_state_t, solve_contact
+    use veslide_surface, only: cosine_surface
+    use veslide_analysis, only: contact_area_fraction, mean_separation
+    implicit none
+    character(len=64) :: arg
+    integer :: k, n
+    integer, allocatable :: sizes(:)
+
+    arg = 'solver'
+    if (command_argument_count() >= 1) call get_command_argument(1, arg)
+    select case (trim(arg))
+    case ('solver')
+        allocate (sizes(0))
+        do k = 2, command_argument_count()
+            call get_command_argument(k, arg); read (arg, *) n
+            sizes = [sizes, n]
+        end do
+        if (size(sizes) == 0) sizes = [256, 512, 1024]
+        call bench_solver(sizes)
+    case ('kernels')
+        call bench_kernels()
+    case default
+        write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels"
+        error stop 1
+    end select
+
+contains
+
+    real(dp) function now() result(t)
+        integer(i8) :: c, r
+        call system_clock(c, r)
+        t = real(c, dp)/real(r, dp)
+    end function now
+
+    real(dp) function median(x) result(m)
+        real(dp), intent(in) :: x(:)
+        real(dp) :: y(size(x)), tmp
+        integer :: i, j
+        y = x
+        do i = 2, size(y)
+            tmp = y(i); j = i - 1
+            do while (j >= 1)
+                if (y(j) <= tmp) exit
+                y(j + 1) = y(j); j = j - 1
+            end do
+            y(j + 1) = tmp
+        end do
+        m = 0.5_dp*(y((size(y) + 1)/2) + y(size(y)/2 + 1))
+    end function median
+
+    subroutine check(error)
+        type(error_t), allocatable, intent(in) :: error
+        if (allocated(error)) then
+            write (stdout, '(a)') error%message
+            error stop 1
+        end if
+    end subroutine check
+
+    !> Median time of one r2c + c2r pair (FFTW_MEASURE plans)
+    real(dp) function fft_pair_seconds(n, threads) result(tp)
+        integer, intent(in) :: n, threads
+        type(fft2d_t) :: fft
+        type(error_t), allocatable :: error
+        real(dp) :: t(31), t0
+        integer :: r
+        call fft%init(n, n, error, planner='measure', nthreads=threads); call check(error)
+        call random_number(fft%x)
+        do r = 1, size(t)
+            t0 = now()
+            call fft%forward(); call fft%backward_unscaled()
+            t(r) = now() - t0
+            fft%x = fft%x/(real(n, dp)**2)
+        end do
+        tp = median(t)
+    end function fft_pair_seconds
+
+    subroutine bench_solver(sizes)
+        integer, intent(in) :: sizes(:)
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        character(len=:), allocatable :: tmp, out
+        character(len=16) :: buf
+        real(dp) :: tpair, t(3)
+        integer :: k, r, threads
+        character(len=16) :: env
+        integer :: nenv, stat
+        threads = 1
+        call get_environment_variable('OMP_NUM_THREADS', env, nenv, stat)
+        if (stat == 0 .and. nenv > 0) read (env, *) threads
+        write (stdout, '(a,i0,a)') "threads: ", threads, " (OMP_NUM_THREADS; FFTW plans use as many)"
+        write (stdout, '(a)') "| N | FFT pair [ms] | solve [s] (median of 3) | iterations | FFT pairs | "// &
+            "time/iteration [ms] | time/iteration / FFT pair | area | mean gap / h_rms |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|"
+        do k = 1, size(sizes)
+            tpair = fft_pair_seconds(sizes(k), threads)
+            write (buf, '(i0)') sizes(k)
+            cfg%path = 'bench'; cfg%text = ''
+            cfg%nx = sizes(k); cfg%ny = sizes(k); cfg%lx_m = 0.01_dp; cfg%ly_m = 0.01_dp
+            cfg%model = 'elastic'; cfg%young_pa = 1.0e7_dp; cfg%poisson = 0.5_dp
+            cfg%tolerance = 1.0e-10_dp
+            cfg%threads = threads
+            cfg%output_file = 'results/bench-solver-'//trim(buf)//'.h5'; cfg%overwrite = .true.
+            allocate (character(len=0) :: cfg%height_file, cfg%height_dataset)
+            do r = 1, size(t)
+                call run_case(cfg, c, error); call check(error)
+                t(r) = c%solve_seconds
+            end do
+            c%solve_seconds = median(t)
+            call prepare_output(cfg%output_file, .true., tmp, error); call check(error)
+            call write_case(tmp, cfg, c, error); call check(error)
+            call commit_output(tmp, cfg%output_file, error); call check(error)
+            write (stdout, '("| ",i0," | ",f8.3," | ",f8.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f8.5," | ",f8.5," |")') &
+                sizes(k), 1e3*tpair, median(t), c%state%iterations, c%state%operator_applications, &
+                1e3*median(t)/c%state%iterations, median(t)/c%state%iterations/tpair, &
+                contact_area_fraction(c%state%p), mean_separation(c%state%g)/sqrt(sum(c%h**2)/size(c%h))
+            deallocate (cfg%height_file, cfg%height_dataset)
+        end do
+    end subroutine bench_solver
+
+    !> Westergaard (h0 cos 2 pi x/l, plane strain, p/p* = 0.3) under refinement, per variant
+    subroutine bench_kernels()
+        real(dp), parameter :: l = 1.0_dp, h0 = 1.0e-3_dp, estar = 1.0e6_dp
+        character(len=17), parameter :: names(4) = [character(len=17) :: 'spectral', 'collocation', &
+                                                     'collocation-alias', 'galerkin']
+        integer, parameter :: variants(4) = [KERNEL_SPECTRAL, KERNEL_COLLOCATION, KERNEL_COLLOCATION_ALIAS, &
+                                             KERNEL_GALERKIN]
+        type(material_t) :: mat
+        type(kernel_t) :: ker
+        type(fft2d_t) :: fft
+        type(solver_options_t) :: opts
+        type(contact_state_t) :: s
+        type(error_t), allocatable :: error
+        real(dp), allocatable :: h(:, :)
+        real(dp) :: pstar, p, psi, w_exact, peak_exact, gap_exact
+        integer :: v, n
+        call new_elastic(mat, estar, 0.0_dp, error); call check(error)
+        pstar = pi*estar*h0/l; p = 0.3_dp*pstar; psi = sqrt(p/pstar)
+        w_exact = 2.0_dp*asin(psi)/pi
+        peak_exact = 2.0_dp*sqrt(p*pstar)
+        gap_exact = h0 + 2.0_dp*p*l/(pi*estar)*(log(psi) - 0.5_dp)
+        opts%tolerance = 1.0e-12_dp
+        write (stdout, '(a)') "| kernel | n | width error [cells] | peak pressure rel. error | mean gap rel. error |"// &
+            " alias zones | alias error estimate |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|"
+        do v = 1, 4
+            n = 64
+            do while (n <= 4096)
+                allocate (h(n, 1))
+                call cosine_surface(n, 1, l, l, h0, l, 0.0_dp, h)
+                call fft%init(n, 1, error, planner='estimate'); call check(error)
+                call build_kernel(ker, n, 1, l, l, mat, [0.0_dp, 0.0_dp], variants(v), error, alias_tol=1.0e-10_dp, &
+                                  alias_max=1024)
+                call check(error)
+                call solve_contact(ker, fft, h, p, opts, s, error); call check(error)
+                write (stdout, '("| ",a," | ",i0," | ",f7.3," | ",es9.2," | ",es9.2," | ",i0," | ",es9.2," |")') &
+                    trim(names(v)), n, (contact_area_fraction(s%p) - w_exact)*n, maxval(s%p)/peak_exact - 1, &
+                    mean_separation(s%g)/gap_exact - 1, ker%alias_zones, ker%alias_error
+                deallocate (h)
+                n = 4*n
+            end do
+        end do
+    end subroutine bench_kernels
+
+end program veslide_bench
