@@ -21,6 +21,7 @@ module veslide_solver
     use veslide_error, only: error_t, fatal_error
     use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: kernel_t
+    use veslide_lapack, only: dgemv, dposv
     implicit none
     private
     public :: solver_options_t, contact_state_t, solve_contact, apply_operator, contact_residuals
@@ -30,6 +31,9 @@ module veslide_solver
         real(dp) :: tolerance = 1.0e-10_dp      !! target of the residual [-]
         integer :: max_iterations = 20000       !! iteration cap
         integer :: refresh_every = 200          !! recompute K p exactly this often (pk)
+        integer :: anderson_memory = 5          !! Anderson mixing depth (dr); 0 switches it off
+        integer :: balance_every = 25           !! step-size balancing interval (dr)
+        real(dp) :: step = 0.0_dp               !! initial dimensionless step (dr); 0: automatic
     end type solver_options_t
 
     type :: contact_state_t
@@ -142,7 +146,7 @@ contains
             call polonsky_keer(fft, mult, hc, p_mean, opts, state)
         case ('dr')
             state%method = 'dr'
-            call fatal_error(error, "veslide:solver:solve_contact: method 'dr' is not available yet"); return
+            call douglas_rachford(fft, kernel%kd, hc, p_mean, opts, state)
         case default
             call fatal_error(error, "veslide:solver:solve_contact: unknown method '"//trim(method)//"'"); return
         end select
@@ -352,5 +356,170 @@ contains
         end subroutine add_correction
 
     end subroutine polonsky_keer
+
+
+    !> Douglas-Rachford splitting with Anderson acceleration and step balancing.
+    !>
+    !> The contact problem is the inclusion 0 in A(p) + B(p), A(p) = K p - h + (normal cone of
+    !> mean(p) = p_mean), B = normal cone of p >= 0. A is monotone because Re K > 0, whether or
+    !> not K is symmetric, so the splitting converges without symmetry. In units p/p_mean,
+    !> h/h_s, with step gamma, one iteration is
+    !>   x = (I + gamma K)^-1 (z + gamma h), mean(x) = 1   (one FFT pair: a Fourier multiplier)
+    !>   y = max(2x - z, 0),  f = y - x,   z <- z + f      (accelerated by Anderson mixing).
+    !> At the fixed point x = y = p and z = p + gamma g. The step is balanced every
+    !> `balance_every` iterations between the pressure residual (x where y = 0) and the gap
+    !> residual (f/gamma where y > 0), by factors of 3, with z remapped to the new step.
+    !> Anderson steps that do not reduce |f| are replaced by the plain step (memory cleared).
+    !> Convergence is confirmed with the common residual on y and a fresh K y.
+    subroutine douglas_rachford(fft, kd, hc, p_mean, opts, state)
+        type(fft2d_t), intent(inout) :: fft
+        complex(dp), intent(in) :: kd(:, :)
+        real(dp), intent(in) :: hc(:, :), p_mean
+        type(solver_options_t), intent(in) :: opts
+        type(contact_state_t), intent(inout) :: state
+        real(dp), allocatable :: z(:, :), x(:, :), y(:, :), zprev(:, :), fprev(:, :), dz(:, :), df(:, :), w(:, :)
+        complex(dp), allocatable :: ks(:, :), hk(:, :), res(:, :)
+        real(dp), allocatable :: gram(:, :), gtmp(:, :), coef(:), dots(:, :)
+        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s
+        integer :: nx, ny, n, mmax, mk, slot, k, info, since_balance, i, j
+        logical :: accelerated, have_prev
+
+        nx = size(hc, 1); ny = size(hc, 2); n = nx*ny
+        hs = state%height_scale_m
+        mmax = max(0, opts%anderson_memory)
+        ks = kd*(p_mean/hs)                     ! dimensionless multiplier
+        fft%x = hc/hs
+        call fft%forward()
+        hk = fft%k
+        gamma = opts%step
+        if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp/exp(sum(log(abs(ks) + tiny(1.0_dp)), mask=abs(ks) > 0.0_dp) &
+                                                     /max(1, count(abs(ks) > 0.0_dp)))
+        call make_resolvent()
+
+        allocate (x(nx, ny), y(nx, ny), zprev(nx, ny), fprev(nx, ny))
+        allocate (dz(n, max(mmax, 1)), df(n, max(mmax, 1)), w(n, 2))
+        allocate (gram(max(mmax, 1), max(mmax, 1)), gtmp(max(mmax, 1), max(mmax, 1)), coef(max(mmax, 1)))
+        allocate (dots(max(mmax, 1), 2))
+        z = state%p/p_mean                      ! a warm start enters with zero gap
+        mk = 0; slot = 0; have_prev = .false.; accelerated = .false.
+        fnorm_prev = huge(1.0_dp); since_balance = 0
+        inner_tol = opts%tolerance
+
+        do
+            ! the map: x = resolvent(z), y = projection, f = y - x
+            fft%x = z
+            call fft%forward()
+            fft%k = res*(fft%k + gamma*hk)
+            fft%k(1, 1) = 1.0_dp
+            call fft%backward_unscaled()
+            state%operator_applications = state%operator_applications + 1
+            rp = 0.0_dp; rg = 0.0_dp; rsq = 0.0_dp
+            !$omp parallel do private(i) reduction(max:rp, rg) reduction(+:rsq)
+            do j = 1, ny
+                do i = 1, nx
+                    x(i, j) = fft%x(i, j)
+                    y(i, j) = max(2.0_dp*x(i, j) - z(i, j), 0.0_dp)
+                    if (y(i, j) > 0.0_dp) then
+                        rg = max(rg, abs(y(i, j) - x(i, j)))
+                    else
+                        rp = max(rp, abs(x(i, j)))
+                    end if
+                    rsq = rsq + (y(i, j) - x(i, j))**2
+                end do
+            end do
+            !$omp end parallel do
+            rg = rg/gamma
+            fnorm = sqrt(rsq)
+
+            ! safeguard: an accelerated step that did not reduce |f| is replaced by the plain step
+            if (accelerated .and. fnorm > fnorm_prev) then
+                z = zprev + fprev
+                mk = 0; accelerated = .false.
+                cycle
+            end if
+
+            if (max(rp, rg) <= inner_tol) then
+                state%p = p_mean*y
+                call apply_operator(fft, kd/real(n, dp), state%p, state%u)
+                state%operator_applications = state%operator_applications + 1
+                call contact_residuals(state, hc, p_mean)
+                if (state%residual <= opts%tolerance) then
+                    state%converged = .true.; exit
+                end if
+                inner_tol = inner_tol/10.0_dp
+                if (inner_tol < 1.0e-15_dp) exit
+            end if
+            if (state%iterations >= opts%max_iterations) then
+                state%p = p_mean*y
+                call apply_operator(fft, kd/real(n, dp), state%p, state%u)
+                call contact_residuals(state, hc, p_mean)
+                exit
+            end if
+            state%iterations = state%iterations + 1
+
+            ! step balancing between pressure and gap residuals
+            since_balance = since_balance + 1
+            if (since_balance >= opts%balance_every .and. max(rp, rg) > 0.0_dp) then
+                since_balance = 0
+                s = 1.0_dp
+                if (rg > 10.0_dp*rp) s = 3.0_dp
+                if (rp > 10.0_dp*rg) s = 1.0_dp/3.0_dp
+                if (s /= 1.0_dp) then
+                    z = y + s*(z - y)           ! z = p + gamma g, remapped to the new gamma
+                    gamma = gamma*s
+                    call make_resolvent()
+                    mk = 0; have_prev = .false.; accelerated = .false.; fnorm_prev = huge(1.0_dp)
+                    cycle
+                end if
+            end if
+
+            ! Anderson mixing (type II) on the fixed-point residual f = y - x
+            if (mmax > 0 .and. have_prev) then
+                slot = modulo(slot, mmax) + 1
+                dz(:, slot) = reshape(z - zprev, [n])
+                df(:, slot) = reshape((y - x) - fprev, [n])
+                mk = min(mk + 1, mmax)
+                ! Gram row of the new column and the right-hand side, in one pass over the memory
+                w(:, 1) = df(:, slot)
+                w(:, 2) = reshape(y - x, [n])
+                call dgemv('T', n, mk, 1.0_dp, df, n, w(:, 1), 1, 0.0_dp, dots(:, 1), 1)
+                call dgemv('T', n, mk, 1.0_dp, df, n, w(:, 2), 1, 0.0_dp, dots(:, 2), 1)
+                gram(1:mk, slot) = dots(1:mk, 1); gram(slot, 1:mk) = dots(1:mk, 1)
+                gtmp(1:mk, 1:mk) = gram(1:mk, 1:mk)
+                do k = 1, mk
+                    gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp) + 1.0e-14_dp*maxval([(gram(i, i), i = 1, mk)])
+                end do
+                coef(1:mk) = dots(1:mk, 2)
+                call dposv('U', mk, 1, gtmp, size(gtmp, 1), coef, size(coef), info)
+                zprev = z; fprev = y - x
+                if (info == 0) then
+                    ! z <- z + f - (dZ + dF) coef
+                    w(:, 1) = reshape(z + (y - x), [n])
+                    call dgemv('N', n, mk, -1.0_dp, dz, n, coef, 1, 1.0_dp, w(:, 1), 1)
+                    call dgemv('N', n, mk, -1.0_dp, df, n, coef, 1, 1.0_dp, w(:, 1), 1)
+                    z = reshape(w(:, 1), [nx, ny])
+                    accelerated = .true.
+                else
+                    mk = 0
+                    z = z + (y - x)
+                    accelerated = .false.
+                end if
+            else
+                zprev = z; fprev = y - x
+                z = z + (y - x)
+                accelerated = .false.
+            end if
+            have_prev = .true.
+            fnorm_prev = fnorm
+        end do
+
+    contains
+
+        !> res = 1/((1 + gamma K) N): the resolvent's multiplier, with FFTW's 1/N folded in
+        subroutine make_resolvent()
+            res = 1.0_dp/((1.0_dp + gamma*ks)*real(n, dp))
+        end subroutine make_resolvent
+
+    end subroutine douglas_rachford
 
 end module veslide_solver

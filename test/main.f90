@@ -6,6 +6,7 @@ program veslide_tests
     use test_veslide_solver, only: collect_solver
     use test_veslide_surface, only: collect_surface
     use test_veslide_config, only: collect_config
+    use test_veslide_visco, only: collect_visco
     implicit none
     type(testsuite_t), allocatable :: suites(:)
     character(len=128) :: want_suite, want_test
@@ -14,7 +15,8 @@ program veslide_tests
     suites = [ &
         new_testsuite("config", collect_config), &
         new_testsuite("surface", collect_surface), &
-        new_testsuite("solver", collect_solver) &
+        new_testsuite("solver", collect_solver), &
+        new_testsuite("visco", collect_visco) &
         ]
     want_suite = ''; want_test = ''
     if (command_argument_count() >= 1) call get_command_argument(1, want_suite)

@@ -26,7 +26,8 @@ contains
             new_unittest("bisinusoid-near-full-contact", test_bisinusoid_near_full), &
             new_unittest("rotation-90-mirror", test_rotation_mirror), &
             new_unittest("linear-scaling", test_linear_scaling), &
-            new_unittest("warm-start", test_warm_start) &
+            new_unittest("warm-start", test_warm_start), &
+            new_unittest("dr-matches-pk-elastic", test_dr_matches_pk) &
             ]
     end subroutine collect_solver
 
@@ -244,5 +245,19 @@ contains
         call solve_case(h, 1.0_dp, 1.0_dp, 100.0_dp, sw, error, p_init=s%p); if (allocated(error)) return
         call check(error, sw%iterations <= 2 .and. s%iterations > 10, "warm start did not help")
     end subroutine test_warm_start
+
+    !> The splitting solver and Polonsky-Keer agree on an elastic rough contact
+    subroutine test_dr_matches_pk(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 64
+        real(dp) :: h(n, n)
+        type(contact_state_t) :: s, sd
+        call rough(n, h, error); if (allocated(error)) return
+        call solve_case(h, 1.0_dp, 1.0_dp, 100.0_dp, s, error, method='pk'); if (allocated(error)) return
+        call solve_case(h, 1.0_dp, 1.0_dp, 100.0_dp, sd, error, method='dr'); if (allocated(error)) return
+        call report("pk iterations", real(s%iterations, dp)); call report("dr iterations", real(sd%iterations, dp))
+        call report("max |dp|/max p", maxval(abs(s%p - sd%p))/maxval(s%p))
+        call check(error, maxval(abs(s%p - sd%p))/maxval(s%p) <= 1.0e-9_dp, "pressures differ")
+    end subroutine test_dr_matches_pk
 
 end module test_veslide_solver

@@ -1,0 +1,34 @@
+!> Explicit interfaces to the few BLAS/LAPACK routines veslide calls
+module veslide_lapack
+    use veslide_kinds, only: dp
+    implicit none
+    private
+    public :: dgemv, dposv, dgesv
+
+    interface
+        !> y = alpha op(A) x + beta y
+        subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+            import :: dp
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: m, n, lda, incx, incy
+            real(dp), intent(in) :: alpha, beta, a(lda, *), x(*)
+            real(dp), intent(inout) :: y(*)
+        end subroutine dgemv
+        !> Solve A X = B for symmetric positive definite A (Cholesky)
+        subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
+            import :: dp
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dposv
+        !> Solve A X = B for a general A (LU with partial pivoting)
+        subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: dp
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine dgesv
+    end interface
+
+end module veslide_lapack
