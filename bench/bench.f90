@@ -16,6 +16,7 @@ program veslide_bench
     use veslide_solver, only: solver_options_t, contact_state_t, solve_contact
     use veslide_surface, only: cosine_surface
     use veslide_analysis, only: contact_area_fraction, mean_separation
+    use veslide_scenes, only: hard_case_count, hard_case
     implicit none
     character(len=64) :: arg
     integer :: k, n
@@ -34,8 +35,14 @@ program veslide_bench
         call bench_solver(sizes)
     case ('kernels')
         call bench_kernels()
+    case ('hard')
+        n = 256
+        if (command_argument_count() >= 2) then
+            call get_command_argument(2, arg); read (arg, *) n
+        end if
+        call bench_hard(n)
     case default
-        write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels"
+        write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | hard [N]"
         error stop 1
     end select
 
@@ -176,5 +183,31 @@ contains
             end do
         end do
     end subroutine bench_kernels
+
+    !> Every hard case at n^2: converged?, iterations, FFT pairs, time, area, friction
+    subroutine bench_hard(n)
+        integer, intent(in) :: n
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        character(len=:), allocatable :: name
+        integer :: k
+        write (stdout, '(a,i0,a)') "hard cases at ", n, "^2 (tolerance 1e-10)"
+        write (stdout, '(a)') "| # | case | method | converged | residual | iterations | FFT pairs | solve [s] |"// &
+            " area | friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|"
+        do k = 1, hard_case_count()
+            call hard_case(k, n, cfg, name)
+            call run_case(cfg, c, error)
+            if (allocated(error)) then
+                write (stdout, '("| ",i0," | ",a," | error: ",a," |")') k, name, error%message
+                deallocate (error); cycle
+            end if
+            write (stdout, '("| ",i0," | ",a," | ",a," | ",l1," | ",es8.1," | ",i0," | ",i0," | ",f8.2," | ",f8.5, &
+                &" | ",es10.3," |")') k, name, c%state%method, c%state%converged, c%state%residual, &
+                c%state%iterations, c%state%operator_applications, c%solve_seconds, &
+                contact_area_fraction(c%state%p), 0.0_dp - c%force_pa(1)/cfg%mean_pressure_pa
+        end do
+    end subroutine bench_hard
 
 end program veslide_bench

@@ -41,6 +41,7 @@ module veslide_config
         character(len=16) :: method = 'auto', kernel = 'spectral', fft_planner = 'measure'
         real(dp) :: tolerance = 1.0e-10_dp, alias_tol = 1.0e-6_dp
         integer :: max_iterations = 20000, alias_max = 64, threads = 1
+        integer :: anderson_memory = 5, balance_every = 25
         ! &output
         character(len=:), allocatable :: output_file
         logical :: write_fields = .true., overwrite = .false.
@@ -94,7 +95,7 @@ contains
         real(dp) :: mean_pressure_pa, speed_m_s
         character(len=16) :: method, kernel, fft_planner
         real(dp) :: tolerance, alias_tol
-        integer :: max_iterations, alias_max, threads
+        integer :: max_iterations, alias_max, threads, anderson_memory, balance_every
         logical :: fields, overwrite
 
         namelist /grid/ nx, ny, lx_m, ly_m
@@ -104,7 +105,8 @@ contains
             relax_e_pa, relax_rho_s
         namelist /load/ mean_pressure_pa
         namelist /motion/ speed_m_s, direction_deg
-        namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads
+        namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &
+            anderson_memory, balance_every
         namelist /output/ file, fields, overwrite
 
         cfg%path = path
@@ -168,11 +170,13 @@ contains
         method = cfg%method; tolerance = cfg%tolerance; max_iterations = cfg%max_iterations
         kernel = cfg%kernel; alias_tol = cfg%alias_tol; alias_max = cfg%alias_max
         fft_planner = cfg%fft_planner; threads = cfg%threads
+        anderson_memory = cfg%anderson_memory; balance_every = cfg%balance_every
         rewind (u); read (u, nml=solver, iostat=stat, iomsg=msg)
         if (bad_read('solver')) return
         cfg%method = method; cfg%tolerance = tolerance; cfg%max_iterations = max_iterations
         cfg%kernel = kernel; cfg%alias_tol = alias_tol; cfg%alias_max = alias_max
         cfg%fft_planner = fft_planner; cfg%threads = threads
+        cfg%anderson_memory = anderson_memory; cfg%balance_every = balance_every
 
         ! &output
         file = 'veslide.h5'; fields = cfg%write_fields; overwrite = cfg%overwrite
@@ -367,6 +371,12 @@ contains
         if (all(cfg%fft_planner /= [character(len=16) :: 'estimate', 'measure', 'patient'])) then
             call fail("&solver fft_planner", "'"//trim(cfg%fft_planner)//"'", "'estimate', 'measure' or 'patient'")
             return
+        end if
+        if (cfg%anderson_memory < 0 .or. cfg%anderson_memory > 50) then
+            call fail("&solver anderson_memory", ival(cfg%anderson_memory), "0 (off) to 50"); return
+        end if
+        if (cfg%balance_every < 1 .or. cfg%balance_every > 100000) then
+            call fail("&solver balance_every", ival(cfg%balance_every), "1 to 100000"); return
         end if
         if (cfg%threads < 1 .or. cfg%threads > 1024) then
             call fail("&solver threads", ival(cfg%threads), "1 to 1024"); return

@@ -186,6 +186,8 @@ contains
         opts%method = cfg%method
         opts%tolerance = cfg%tolerance
         opts%max_iterations = cfg%max_iterations
+        opts%anderson_memory = cfg%anderson_memory
+        opts%balance_every = cfg%balance_every
         t0 = wall_seconds()
         call solve_contact(c%kernel, fft, c%h, cfg%mean_pressure_pa, opts, c%state, error)
         if (allocated(error)) return

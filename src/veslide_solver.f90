@@ -17,11 +17,12 @@
 !!   h_s = rms height (or the displacement scale p_mean*max|K| for a flat surface).
 !! Convergence is always confirmed on a freshly computed K p (no accumulated round-off).
 module veslide_solver
+    use, intrinsic :: iso_c_binding, only: c_f_pointer, c_loc
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
     use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: kernel_t
-    use veslide_lapack, only: dgemv, dposv
+    use veslide_lapack, only: dposv
     implicit none
     private
     public :: solver_options_t, contact_state_t, solve_contact, apply_operator, contact_residuals
@@ -369,19 +370,25 @@ contains
     !> At the fixed point x = y = p and z = p + gamma g. The step is balanced every
     !> `balance_every` iterations between the pressure residual (x where y = 0) and the gap
     !> residual (f/gamma where y > 0), by factors of 3, with z remapped to the new step.
-    !> Anderson steps that do not reduce |f| are replaced by the plain step (memory cleared).
-    !> Convergence is confirmed with the common residual on y and a fresh K y.
+    !> Anderson (type II, memory m) keeps the columns dF = f_k - f_{k-1} and G = dz + dF, so one
+    !> iteration costs one FFT pair, one pass over 2m columns and a few over the grid; the m x m
+    !> least-squares problem is solved from its Gram matrix (LAPACK dposv).
+    !> An accelerated step whose residual grew by more than `aa_growth` is replaced by the plain
+    !> step and the memory cleared. Convergence is confirmed on y with a fresh K y.
     subroutine douglas_rachford(fft, kd, hc, p_mean, opts, state)
         type(fft2d_t), intent(inout) :: fft
         complex(dp), intent(in) :: kd(:, :)
         real(dp), intent(in) :: hc(:, :), p_mean
         type(solver_options_t), intent(in) :: opts
         type(contact_state_t), intent(inout) :: state
-        real(dp), allocatable :: z(:, :), x(:, :), y(:, :), zprev(:, :), fprev(:, :), dz(:, :), df(:, :), w(:, :)
+        real(dp), parameter :: aa_growth = 2.0_dp
+        real(dp), allocatable, target :: zz(:, :)
+        real(dp), pointer :: z(:), xb(:)
+        real(dp), allocatable :: y(:), f(:), zprev(:), fprev(:), dfm(:, :), gm(:, :)
         complex(dp), allocatable :: ks(:, :), hk(:, :), res(:, :)
         real(dp), allocatable :: gram(:, :), gtmp(:, :), coef(:), dots(:, :)
-        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s
-        integer :: nx, ny, n, mmax, mk, slot, k, info, since_balance, i, j
+        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, xv, dfv, zn
+        integer :: nx, ny, n, mmax, mk, slot, k, info, since_balance, i
         logical :: accelerated, have_prev
 
         nx = size(hc, 1); ny = size(hc, 2); n = nx*ny
@@ -396,50 +403,51 @@ contains
                                                      /max(1, count(abs(ks) > 0.0_dp)))
         call make_resolvent()
 
-        allocate (x(nx, ny), y(nx, ny), zprev(nx, ny), fprev(nx, ny))
-        allocate (dz(n, max(mmax, 1)), df(n, max(mmax, 1)), w(n, 2))
+        allocate (zz(nx, ny), y(n), f(n), zprev(n), fprev(n))
+        allocate (dfm(n, max(mmax, 1)), gm(n, max(mmax, 1)))
         allocate (gram(max(mmax, 1), max(mmax, 1)), gtmp(max(mmax, 1), max(mmax, 1)), coef(max(mmax, 1)))
         allocate (dots(max(mmax, 1), 2))
-        z = state%p/p_mean                      ! a warm start enters with zero gap
+        z(1:n) => zz
+        call c_f_pointer(c_loc(fft%x), xb, [n])    ! a flat view of the FFT buffer
+        zz = state%p/p_mean                     ! a warm start enters with zero gap
         mk = 0; slot = 0; have_prev = .false.; accelerated = .false.
         fnorm_prev = huge(1.0_dp); since_balance = 0
         inner_tol = opts%tolerance
 
         do
-            ! the map: x = resolvent(z), y = projection, f = y - x
-            fft%x = z
+            ! the map: x = resolvent(z) (left in the FFT buffer), y = projection, f = y - x
+            fft%x = zz
             call fft%forward()
             fft%k = res*(fft%k + gamma*hk)
             fft%k(1, 1) = 1.0_dp
             call fft%backward_unscaled()
             state%operator_applications = state%operator_applications + 1
             rp = 0.0_dp; rg = 0.0_dp; rsq = 0.0_dp
-            !$omp parallel do private(i) reduction(max:rp, rg) reduction(+:rsq)
-            do j = 1, ny
-                do i = 1, nx
-                    x(i, j) = fft%x(i, j)
-                    y(i, j) = max(2.0_dp*x(i, j) - z(i, j), 0.0_dp)
-                    if (y(i, j) > 0.0_dp) then
-                        rg = max(rg, abs(y(i, j) - x(i, j)))
-                    else
-                        rp = max(rp, abs(x(i, j)))
-                    end if
-                    rsq = rsq + (y(i, j) - x(i, j))**2
-                end do
+            !$omp parallel do private(xv) reduction(max:rp, rg) reduction(+:rsq)
+            do i = 1, n
+                xv = xb(i)
+                y(i) = max(2.0_dp*xv - z(i), 0.0_dp)
+                f(i) = y(i) - xv
+                if (y(i) > 0.0_dp) then
+                    rg = max(rg, abs(f(i)))
+                else
+                    rp = max(rp, abs(xv))
+                end if
+                rsq = rsq + f(i)**2
             end do
             !$omp end parallel do
             rg = rg/gamma
             fnorm = sqrt(rsq)
 
-            ! safeguard: an accelerated step that did not reduce |f| is replaced by the plain step
-            if (accelerated .and. fnorm > fnorm_prev) then
+            ! safeguard: an accelerated step that made |f| grow is replaced by the plain step
+            if (accelerated .and. fnorm > aa_growth*fnorm_prev) then
                 z = zprev + fprev
-                mk = 0; accelerated = .false.
+                mk = 0; accelerated = .false.; have_prev = .false.
                 cycle
             end if
 
             if (max(rp, rg) <= inner_tol) then
-                state%p = p_mean*y
+                state%p = p_mean*reshape(y, [nx, ny])
                 call apply_operator(fft, kd/real(n, dp), state%p, state%u)
                 state%operator_applications = state%operator_applications + 1
                 call contact_residuals(state, hc, p_mean)
@@ -448,9 +456,10 @@ contains
                 end if
                 inner_tol = inner_tol/10.0_dp
                 if (inner_tol < 1.0e-15_dp) exit
+                cycle      ! the buffer no longer holds x: evaluate the map again at z
             end if
             if (state%iterations >= opts%max_iterations) then
-                state%p = p_mean*y
+                state%p = p_mean*reshape(y, [nx, ny])
                 call apply_operator(fft, kd/real(n, dp), state%p, state%u)
                 call contact_residuals(state, hc, p_mean)
                 exit
@@ -473,41 +482,48 @@ contains
                 end if
             end if
 
-            ! Anderson mixing (type II) on the fixed-point residual f = y - x
+            ! Anderson mixing (type II) on the fixed-point residual f, in two fused passes:
+            ! new columns with the Gram row and right-hand side, then the update of z
+            accelerated = .false.
             if (mmax > 0 .and. have_prev) then
                 slot = modulo(slot, mmax) + 1
-                dz(:, slot) = reshape(z - zprev, [n])
-                df(:, slot) = reshape((y - x) - fprev, [n])
                 mk = min(mk + 1, mmax)
-                ! Gram row of the new column and the right-hand side, in one pass over the memory
-                w(:, 1) = df(:, slot)
-                w(:, 2) = reshape(y - x, [n])
-                call dgemv('T', n, mk, 1.0_dp, df, n, w(:, 1), 1, 0.0_dp, dots(:, 1), 1)
-                call dgemv('T', n, mk, 1.0_dp, df, n, w(:, 2), 1, 0.0_dp, dots(:, 2), 1)
+                dots = 0.0_dp
+                !$omp parallel do private(dfv, k) reduction(+:dots)
+                do i = 1, n
+                    dfv = f(i) - fprev(i)
+                    dfm(i, slot) = dfv
+                    gm(i, slot) = (z(i) - zprev(i)) + dfv
+                    do k = 1, mk
+                        dots(k, 1) = dots(k, 1) + dfm(i, k)*dfv
+                        dots(k, 2) = dots(k, 2) + dfm(i, k)*f(i)
+                    end do
+                end do
+                !$omp end parallel do
                 gram(1:mk, slot) = dots(1:mk, 1); gram(slot, 1:mk) = dots(1:mk, 1)
                 gtmp(1:mk, 1:mk) = gram(1:mk, 1:mk)
                 do k = 1, mk
-                    gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp) + 1.0e-14_dp*maxval([(gram(i, i), i = 1, mk)])
+                    gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp)
                 end do
                 coef(1:mk) = dots(1:mk, 2)
                 call dposv('U', mk, 1, gtmp, size(gtmp, 1), coef, size(coef), info)
-                zprev = z; fprev = y - x
-                if (info == 0) then
-                    ! z <- z + f - (dZ + dF) coef
-                    w(:, 1) = reshape(z + (y - x), [n])
-                    call dgemv('N', n, mk, -1.0_dp, dz, n, coef, 1, 1.0_dp, w(:, 1), 1)
-                    call dgemv('N', n, mk, -1.0_dp, df, n, coef, 1, 1.0_dp, w(:, 1), 1)
-                    z = reshape(w(:, 1), [nx, ny])
-                    accelerated = .true.
-                else
-                    mk = 0
-                    z = z + (y - x)
-                    accelerated = .false.
+                if (info /= 0) then
+                    mk = 0; coef = 0.0_dp
                 end if
+                accelerated = info == 0
+                !$omp parallel do private(zn, k)
+                do i = 1, n
+                    zn = z(i) + f(i)
+                    do k = 1, mk
+                        zn = zn - gm(i, k)*coef(k)
+                    end do
+                    zprev(i) = z(i); fprev(i) = f(i)
+                    z(i) = zn
+                end do
+                !$omp end parallel do
             else
-                zprev = z; fprev = y - x
-                z = z + (y - x)
-                accelerated = .false.
+                zprev = z; fprev = f
+                z = z + f
             end if
             have_prev = .true.
             fnorm_prev = fnorm

@@ -7,6 +7,7 @@ program veslide_tests
     use test_veslide_surface, only: collect_surface
     use test_veslide_config, only: collect_config
     use test_veslide_visco, only: collect_visco
+    use test_veslide_hard, only: collect_hard
     implicit none
     type(testsuite_t), allocatable :: suites(:)
     character(len=128) :: want_suite, want_test
@@ -16,7 +17,8 @@ program veslide_tests
         new_testsuite("config", collect_config), &
         new_testsuite("surface", collect_surface), &
         new_testsuite("solver", collect_solver), &
-        new_testsuite("visco", collect_visco) &
+        new_testsuite("visco", collect_visco), &
+        new_testsuite("hard", collect_hard) &
         ]
     want_suite = ''; want_test = ''
     if (command_argument_count() >= 1) call get_command_argument(1, want_suite)
