@@ -40,9 +40,26 @@ program veslide_bench
         if (command_argument_count() >= 2) then
             call get_command_argument(2, arg); read (arg, *) n
         end if
-        call bench_hard(n)
+        block
+            integer :: am, be
+            real(dp) :: br, bf
+            am = -1; be = -1; br = -1; bf = -1
+            if (command_argument_count() >= 3) then
+                call get_command_argument(3, arg); read (arg, *) am
+            end if
+            if (command_argument_count() >= 4) then
+                call get_command_argument(4, arg); read (arg, *) be
+            end if
+            if (command_argument_count() >= 5) then
+                call get_command_argument(5, arg); read (arg, *) br
+            end if
+            if (command_argument_count() >= 6) then
+                call get_command_argument(6, arg); read (arg, *) bf
+            end if
+            call bench_hard(n, am, be, br, bf)
+        end block
     case default
-        write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | hard [N]"
+        write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | hard [N [memory [balance_every [ratio [factor]]]]]"
         error stop 1
     end select
 
@@ -185,8 +202,9 @@ contains
     end subroutine bench_kernels
 
     !> Every hard case at n^2: converged?, iterations, FFT pairs, time, area, friction
-    subroutine bench_hard(n)
-        integer, intent(in) :: n
+    subroutine bench_hard(n, am, be, br, bf)
+        integer, intent(in) :: n, am, be
+        real(dp), intent(in) :: br, bf
         type(config_t) :: cfg
         type(case_t) :: c
         type(error_t), allocatable :: error
@@ -198,6 +216,10 @@ contains
         write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|"
         do k = 1, hard_case_count()
             call hard_case(k, n, cfg, name)
+            if (am >= 0) cfg%anderson_memory = am
+            if (be > 0) cfg%balance_every = be
+            if (br > 0) cfg%balance_ratio = br
+            if (bf > 0) cfg%balance_factor = bf
             call run_case(cfg, c, error)
             if (allocated(error)) then
                 write (stdout, '("| ",i0," | ",a," | error: ",a," |")') k, name, error%message

@@ -41,7 +41,8 @@ module veslide_config
         character(len=16) :: method = 'auto', kernel = 'spectral', fft_planner = 'measure'
         real(dp) :: tolerance = 1.0e-10_dp, alias_tol = 1.0e-6_dp
         integer :: max_iterations = 20000, alias_max = 64, threads = 1
-        integer :: anderson_memory = 5, balance_every = 25
+        integer :: anderson_memory = 5, balance_every = 50
+        real(dp) :: balance_ratio = 10.0_dp, balance_factor = 3.0_dp
         ! &output
         character(len=:), allocatable :: output_file
         logical :: write_fields = .true., overwrite = .false.
@@ -96,6 +97,7 @@ contains
         character(len=16) :: method, kernel, fft_planner
         real(dp) :: tolerance, alias_tol
         integer :: max_iterations, alias_max, threads, anderson_memory, balance_every
+        real(dp) :: balance_ratio, balance_factor
         logical :: fields, overwrite
 
         namelist /grid/ nx, ny, lx_m, ly_m
@@ -106,7 +108,7 @@ contains
         namelist /load/ mean_pressure_pa
         namelist /motion/ speed_m_s, direction_deg
         namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &
-            anderson_memory, balance_every
+            anderson_memory, balance_every, balance_ratio, balance_factor
         namelist /output/ file, fields, overwrite
 
         cfg%path = path
@@ -171,12 +173,14 @@ contains
         kernel = cfg%kernel; alias_tol = cfg%alias_tol; alias_max = cfg%alias_max
         fft_planner = cfg%fft_planner; threads = cfg%threads
         anderson_memory = cfg%anderson_memory; balance_every = cfg%balance_every
+        balance_ratio = cfg%balance_ratio; balance_factor = cfg%balance_factor
         rewind (u); read (u, nml=solver, iostat=stat, iomsg=msg)
         if (bad_read('solver')) return
         cfg%method = method; cfg%tolerance = tolerance; cfg%max_iterations = max_iterations
         cfg%kernel = kernel; cfg%alias_tol = alias_tol; cfg%alias_max = alias_max
         cfg%fft_planner = fft_planner; cfg%threads = threads
         cfg%anderson_memory = anderson_memory; cfg%balance_every = balance_every
+        cfg%balance_ratio = balance_ratio; cfg%balance_factor = balance_factor
 
         ! &output
         file = 'veslide.h5'; fields = cfg%write_fields; overwrite = cfg%overwrite
@@ -377,6 +381,12 @@ contains
         end if
         if (cfg%balance_every < 1 .or. cfg%balance_every > 100000) then
             call fail("&solver balance_every", ival(cfg%balance_every), "1 to 100000"); return
+        end if
+        if (.not. (cfg%balance_ratio >= 1.0_dp .and. cfg%balance_ratio <= 1.0e6_dp)) then
+            call fail("&solver balance_ratio", rval(cfg%balance_ratio), "1 to 1e6"); return
+        end if
+        if (.not. (cfg%balance_factor > 1.0_dp .and. cfg%balance_factor <= 100.0_dp)) then
+            call fail("&solver balance_factor", rval(cfg%balance_factor), "> 1 and <= 100"); return
         end if
         if (cfg%threads < 1 .or. cfg%threads > 1024) then
             call fail("&solver threads", ival(cfg%threads), "1 to 1024"); return

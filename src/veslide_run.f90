@@ -188,6 +188,8 @@ contains
         opts%max_iterations = cfg%max_iterations
         opts%anderson_memory = cfg%anderson_memory
         opts%balance_every = cfg%balance_every
+        opts%balance_ratio = cfg%balance_ratio
+        opts%balance_factor = cfg%balance_factor
         t0 = wall_seconds()
         call solve_contact(c%kernel, fft, c%h, cfg%mean_pressure_pa, opts, c%state, error)
         if (allocated(error)) return

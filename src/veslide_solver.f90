@@ -33,8 +33,10 @@ module veslide_solver
         integer :: max_iterations = 20000       !! iteration cap
         integer :: refresh_every = 200          !! recompute K p exactly this often (pk)
         integer :: anderson_memory = 5          !! Anderson mixing depth (dr); 0 switches it off
-        integer :: balance_every = 25           !! step-size balancing interval (dr)
+        integer :: balance_every = 50           !! step-size balancing interval (dr)
         real(dp) :: step = 0.0_dp               !! initial dimensionless step (dr); 0: automatic
+        real(dp) :: balance_ratio = 10.0_dp     !! imbalance of the residuals that changes the step (dr)
+        real(dp) :: balance_factor = 3.0_dp     !! factor the step changes by (dr)
     end type solver_options_t
 
     type :: contact_state_t
@@ -375,12 +377,14 @@ contains
     !> least-squares problem is solved from its Gram matrix (LAPACK dposv).
     !> An accelerated step whose residual grew by more than `aa_growth` is replaced by the plain
     !> step and the memory cleared. Convergence is confirmed on y with a fresh K y.
-    subroutine douglas_rachford(fft, kd, hc, p_mean, opts, state)
+    subroutine douglas_rachford(fft, kd, hc, p_mean, opts, state, gap0)
         type(fft2d_t), intent(inout) :: fft
         complex(dp), intent(in) :: kd(:, :)
         real(dp), intent(in) :: hc(:, :), p_mean
         type(solver_options_t), intent(in) :: opts
         type(contact_state_t), intent(inout) :: state
+        !> gap of the starting pressure [m] (default: zero gap)
+        real(dp), intent(in), optional :: gap0(:, :)
         real(dp), parameter :: aa_growth = 2.0_dp
         real(dp), allocatable, target :: zz(:, :)
         real(dp), pointer :: z(:), xb(:)
@@ -409,7 +413,8 @@ contains
         allocate (dots(max(mmax, 1), 2))
         z(1:n) => zz
         call c_f_pointer(c_loc(fft%x), xb, [n])    ! a flat view of the FFT buffer
-        zz = state%p/p_mean                     ! a warm start enters with zero gap
+        zz = state%p/p_mean                     ! z = p + gamma g
+        if (present(gap0)) zz = zz + gamma*gap0/hs
         mk = 0; slot = 0; have_prev = .false.; accelerated = .false.
         fnorm_prev = huge(1.0_dp); since_balance = 0
         inner_tol = opts%tolerance
@@ -471,8 +476,8 @@ contains
             if (since_balance >= opts%balance_every .and. max(rp, rg) > 0.0_dp) then
                 since_balance = 0
                 s = 1.0_dp
-                if (rg > 10.0_dp*rp) s = 3.0_dp
-                if (rp > 10.0_dp*rg) s = 1.0_dp/3.0_dp
+                if (rg > opts%balance_ratio*rp) s = opts%balance_factor
+                if (rp > opts%balance_ratio*rg) s = 1.0_dp/opts%balance_factor
                 if (s /= 1.0_dp) then
                     z = y + s*(z - y)           ! z = p + gamma g, remapped to the new gamma
                     gamma = gamma*s
