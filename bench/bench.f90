@@ -35,6 +35,12 @@ program veslide_bench
         call bench_solver(sizes)
     case ('kernels')
         call bench_kernels()
+    case ('accuracy')
+        n = 1024
+        if (command_argument_count() >= 2) then
+            call get_command_argument(2, arg); read (arg, *) n
+        end if
+        call bench_accuracy(n)
     case ('hard')
         n = 256
         if (command_argument_count() >= 2) then
@@ -59,7 +65,8 @@ program veslide_bench
             call bench_hard(n, am, be, br, bf)
         end block
     case default
-        write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | hard [N [memory [balance_every [ratio [factor]]]]]"
+        write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | accuracy [NMAX]", &
+            "                     | hard [N [memory [balance_every [ratio [factor]]]]]"
         error stop 1
     end select
 
@@ -231,5 +238,88 @@ contains
                 contact_area_fraction(c%state%p), 0.0_dp - c%force_pa(1)/cfg%mean_pressure_pa
         end do
     end subroutine bench_hard
+
+    !> A paper-like case (ratio 11, v tau/L0 = 0.13, spectrum q0..32 q0): (1) solver tolerance
+    !> against time and error w.r.t. a 1e-13 solution at 256^2; (2) grid size 128^2 .. NMAX^2
+    !> against time and the change of area, separation and friction, per kernel variant.
+    !> Writes results/bench-accuracy.csv for postproc/plot_benchmarks.py.
+    subroutine bench_accuracy(nmax)
+        integer, intent(in) :: nmax
+        type(config_t) :: cfg
+        type(case_t) :: c, ref
+        type(error_t), allocatable :: error
+        real(dp) :: tols(6), a0, s0, f0, a, s, f, fs, prev(3)
+        character(len=17), parameter :: kernels(4) = [character(len=17) :: 'spectral', 'collocation', &
+                                                      'collocation-alias', 'galerkin']
+        integer :: k, u, n, v
+        tols = [1.0e-3_dp, 1.0e-4_dp, 1.0e-6_dp, 1.0e-8_dp, 1.0e-10_dp, 1.0e-12_dp]
+        open (newunit=u, file='results/bench-accuracy.csv', status='replace', action='write')
+        write (u, '(a)') 'study,kernel,n,tolerance,seconds,fft_pairs,area,separation_m,friction,friction_slope,'// &
+            'd_area,d_separation,d_friction'
+        call paper_like(256, 'spectral', 1.0e-13_dp, cfg)
+        call run_case(cfg, ref, error); call check(error)
+        a0 = contact_area_fraction(ref%state%p); s0 = mean_separation(ref%state%g)
+        f0 = -ref%force_pa(1)/cfg%mean_pressure_pa
+        write (stdout, '(a)') "tolerance study, 256^2, reference tolerance 1e-13"
+        write (stdout, '(a)') "| tolerance | solve [s] | FFT pairs | area rel. error | separation rel. error |"// &
+            " friction rel. error |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|"
+        do k = 1, size(tols)
+            call paper_like(256, 'spectral', tols(k), cfg)
+            call run_case(cfg, c, error); call check(error)
+            call measures(c, cfg, a, s, f, fs)
+            write (stdout, '("| ",es8.1," | ",f7.3," | ",i0," | ",es9.2," | ",es9.2," | ",es9.2," |")') tols(k), &
+                c%solve_seconds, c%state%operator_applications, abs(a/a0 - 1), abs(s/s0 - 1), abs(f/f0 - 1)
+            write (u, '(a,",",a,",",i0,",",es10.3,",",f10.4,",",i0,7(",",es16.9))') 'tolerance', 'spectral', 256, &
+                tols(k), c%solve_seconds, c%state%operator_applications, a, s, f, fs, abs(a/a0 - 1), abs(s/s0 - 1), &
+                abs(f/f0 - 1)
+        end do
+        write (stdout, '(a)') "grid study, tolerance 1e-10: change from the next coarser grid"
+        write (stdout, '(a)') "| kernel | n | solve [s] | kernel build [s] | FFT pairs | area | separation / h_rms |"// &
+            " friction | friction <p grad h> | d area | d separation | d friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|---|"
+        do v = 1, size(kernels)
+            n = 128; prev = 0
+            do while (n <= nmax)
+                call paper_like(n, kernels(v), 1.0e-10_dp, cfg)
+                call run_case(cfg, c, error); call check(error)
+                call measures(c, cfg, a, s, f, fs)
+                write (stdout, '("| ",a," | ",i0," | ",f8.2," | ",f8.2," | ",i0," | ",f9.6," | ",f9.6," | ",es11.4," | ",&
+                    &es11.4," | ",es9.2," | ",es9.2," | ",es9.2," |")') trim(kernels(v)), n, c%solve_seconds, &
+                    c%kernel_seconds, c%state%operator_applications, a, s/sqrt(sum(c%h**2)/size(c%h)), f, fs, &
+                    merge(abs(a/prev(1) - 1), 0.0_dp, n > 128), merge(abs(s/prev(2) - 1), 0.0_dp, n > 128), &
+                    merge(abs(f/prev(3) - 1), 0.0_dp, n > 128)
+                write (u, '(a,",",a,",",i0,",",es10.3,",",f10.4,",",i0,7(",",es16.9))') 'grid', trim(kernels(v)), n, &
+                    1.0e-10_dp, c%solve_seconds, c%state%operator_applications, a, s, f, fs, &
+                    merge(abs(a/prev(1) - 1), 0.0_dp, n > 128), merge(abs(s/prev(2) - 1), 0.0_dp, n > 128), &
+                    merge(abs(f/prev(3) - 1), 0.0_dp, n > 128)
+                prev = [a, s, f]
+                n = 2*n
+            end do
+        end do
+        close (u)
+    end subroutine bench_accuracy
+
+    subroutine measures(c, cfg, a, s, f, fs)
+        type(case_t), intent(in) :: c
+        type(config_t), intent(in) :: cfg
+        real(dp), intent(out) :: a, s, f, fs
+        a = contact_area_fraction(c%state%p); s = mean_separation(c%state%g)
+        f = -c%force_pa(1)/cfg%mean_pressure_pa; fs = -c%slope_force_pa(1)/cfg%mean_pressure_pa
+    end subroutine measures
+
+    subroutine paper_like(n, kernel, tol, cfg)
+        integer, intent(in) :: n
+        character(len=*), intent(in) :: kernel
+        real(dp), intent(in) :: tol
+        type(config_t), intent(out) :: cfg
+        cfg%path = 'bench'; cfg%text = ''
+        cfg%nx = n; cfg%ny = n; cfg%lx_m = 0.01_dp; cfg%ly_m = 0.01_dp; cfg%k_cut = 32.0_dp
+        cfg%model = 'one_term'; cfg%einf_pa = 1.0e8_dp; cfg%ratio = 11.0_dp; cfg%tau_s = 0.01_dp
+        cfg%speed_m_s = 0.13_dp; cfg%tolerance = tol; cfg%kernel = kernel; cfg%alias_tol = 1.0e-6_dp
+        cfg%threads = 1; cfg%write_fields = .false.; cfg%output_file = 'x.h5'
+        allocate (character(len=0) :: cfg%height_file, cfg%height_dataset)
+        allocate (cfg%prony_coef(0), cfg%prony_time_s(0))
+    end subroutine paper_like
 
 end program veslide_bench

@@ -16,4 +16,5 @@ if [ -n "${TAMAAS_PYTHON:-}" ]; then
     done | tee results/bench-tamaas.txt
 fi
 OMP_NUM_THREADS=$threads bench kernels | tee results/bench-kernels.txt
+OMP_NUM_THREADS=$threads bench accuracy 1024 | tee results/bench-accuracy.txt
 OMP_NUM_THREADS=$threads bench hard 512 | tee results/bench-hard-512.txt

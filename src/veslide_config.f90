@@ -38,11 +38,16 @@ module veslide_config
         ! &motion
         real(dp) :: speed_m_s = 0.0_dp, velocity_direction_deg = 0.0_dp
         ! &solver
-        character(len=16) :: method = 'auto', kernel = 'spectral', fft_planner = 'measure'
+        character(len=16) :: method = 'auto', fft_planner = 'measure'
+        character(len=24) :: kernel = 'spectral'
         real(dp) :: tolerance = 1.0e-10_dp, alias_tol = 1.0e-6_dp
         integer :: max_iterations = 20000, alias_max = 64, threads = 1
         integer :: anderson_memory = 5, balance_every = 50
         real(dp) :: balance_ratio = 10.0_dp, balance_factor = 3.0_dp
+        ! &analysis
+        logical :: anisotropy = .false., patches = .false.
+        real(dp) :: zeta1 = 1.0_dp, zeta2 = 0.0_dp, iso_tol = 1.0e-3_dp
+        integer :: n_theta = 72
         ! &output
         character(len=:), allocatable :: output_file
         logical :: write_fields = .true., overwrite = .false.
@@ -94,11 +99,14 @@ contains
         real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
         real(dp) :: creep_c_per_pa(max_prony), creep_tau_s(max_prony), relax_e_pa(max_prony), relax_rho_s(max_prony)
         real(dp) :: mean_pressure_pa, speed_m_s
-        character(len=16) :: method, kernel, fft_planner
+        character(len=16) :: method, fft_planner
+        character(len=24) :: kernel
         real(dp) :: tolerance, alias_tol
         integer :: max_iterations, alias_max, threads, anderson_memory, balance_every
         real(dp) :: balance_ratio, balance_factor
-        logical :: fields, overwrite
+        logical :: fields, overwrite, anisotropy, patches
+        real(dp) :: zeta1, zeta2, iso_tol
+        integer :: n_theta
 
         namelist /grid/ nx, ny, lx_m, ly_m
         namelist /surface/ kind, seed, hurst, eccentricity, alpha_deg, k_low, k_roll, k_cut, rms_slope, &
@@ -110,6 +118,7 @@ contains
         namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &
             anderson_memory, balance_every, balance_ratio, balance_factor
         namelist /output/ file, fields, overwrite
+        namelist /analysis/ anisotropy, zeta1, zeta2, n_theta, iso_tol, patches
 
         cfg%path = path
         call read_text_file(path, cfg%text, error); if (allocated(error)) return
@@ -181,6 +190,14 @@ contains
         cfg%fft_planner = fft_planner; cfg%threads = threads
         cfg%anderson_memory = anderson_memory; cfg%balance_every = balance_every
         cfg%balance_ratio = balance_ratio; cfg%balance_factor = balance_factor
+
+        ! &analysis
+        anisotropy = cfg%anisotropy; zeta1 = cfg%zeta1; zeta2 = cfg%zeta2; n_theta = cfg%n_theta
+        iso_tol = cfg%iso_tol; patches = cfg%patches
+        rewind (u); read (u, nml=analysis, iostat=stat, iomsg=msg)
+        if (bad_read('analysis')) return
+        cfg%anisotropy = anisotropy; cfg%zeta1 = zeta1; cfg%zeta2 = zeta2; cfg%n_theta = n_theta
+        cfg%iso_tol = iso_tol; cfg%patches = patches
 
         ! &output
         file = 'veslide.h5'; fields = cfg%write_fields; overwrite = cfg%overwrite
@@ -390,6 +407,17 @@ contains
         end if
         if (cfg%threads < 1 .or. cfg%threads > 1024) then
             call fail("&solver threads", ival(cfg%threads), "1 to 1024"); return
+        end if
+        if (cfg%zeta2 == 0.0_dp) cfg%zeta2 = max(cfg%k_cut, cfg%zeta1)
+        if (.not. (cfg%zeta1 >= 0.0_dp .and. cfg%zeta1 < cfg%zeta2 .and. cfg%zeta2 < 1.0e6_dp)) then
+            call fail("&analysis zeta1/zeta2", rval(cfg%zeta1)//"/"//rval(cfg%zeta2), &
+                "0 <= zeta1 < zeta2 (band in multiples of 2 pi/lx_m; zeta2 = 0 means k_cut)"); return
+        end if
+        if (cfg%n_theta < 4 .or. cfg%n_theta > 100000) then
+            call fail("&analysis n_theta", ival(cfg%n_theta), "4 to 100000"); return
+        end if
+        if (.not. (cfg%iso_tol >= 0.0_dp .and. cfg%iso_tol < 1.0_dp)) then
+            call fail("&analysis iso_tol", rval(cfg%iso_tol), "0 <= iso_tol < 1"); return
         end if
         if (len(cfg%output_file) == 0) then
             call fail("&output file", "''", "a file path"); return

@@ -13,6 +13,8 @@ module veslide_run
     use veslide_solver, only: solver_options_t, contact_state_t, solve_contact
     use veslide_analysis, only: contact_area_fraction, mean_separation, tangential_force, slope_force
     use veslide_hdf5, only: h5file_t, hdf5_library_version
+    use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta, patch_stats_t, contact_patches, percolates
+    use veslide_surface, only: slope_tensor
     use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
     implicit none
     private
@@ -30,6 +32,16 @@ module veslide_run
         real(dp) :: force_pa(2) = 0.0_dp          !! <p grad w>, solid on rigid surface [Pa]
         real(dp) :: slope_force_pa(2) = 0.0_dp    !! <p grad h> [Pa] (check)
         real(dp) :: kernel_seconds = 0.0_dp, solve_seconds = 0.0_dp, surface_seconds = 0.0_dp
+        ! &analysis anisotropy
+        logical :: have_anisotropy = .false.
+        real(dp) :: band_q(2) = 0.0_dp                    !! [zeta1, zeta2] q0 [1/m]
+        real(dp) :: m_surface(2, 2) = 0.0_dp, m_deformed(2, 2) = 0.0_dp
+        real(dp) :: gamma_s = 0.0_dp, gamma_d = 0.0_dp, theta_s = 0.0_dp, theta_d = 0.0_dp
+        real(dp) :: sigma1 = 0.0_dp, sigma2 = 0.0_dp, phi = 0.0_dp
+        ! &analysis patches
+        logical :: have_patches = .false.
+        type(patch_stats_t) :: patches
+        logical :: percolates_x = .false., percolates_y = .false.
     end type case_t
 
     interface
@@ -197,8 +209,31 @@ contains
 
         call tangential_force(c%kernel, fft, c%state%p, c%force_pa)
         call slope_force(fft, cfg%lx_m, cfg%ly_m, c%state%p, c%h, c%slope_force_pa)
+        if (cfg%anisotropy) call anisotropy_analysis(cfg, fft, c)
+        if (cfg%patches) then
+            call contact_patches(c%state%p > 0.0_dp, cfg%lx_m, cfg%ly_m, c%patches)
+            c%percolates_x = percolates(.not. (c%state%p > 0.0_dp), 1)
+            c%percolates_y = percolates(.not. (c%state%p > 0.0_dp), 2)
+            c%have_patches = .true.
+        end if
         call fft%destroy()
     end subroutine run_case
+
+    !> Slope tensors of h and of the deformed surface w in the band [zeta1, zeta2] q0, and eq. (16)
+    subroutine anisotropy_analysis(cfg, fft, c)
+        type(config_t), intent(in) :: cfg
+        type(fft2d_t), intent(inout) :: fft
+        type(case_t), intent(inout) :: c
+        real(dp) :: l1, l2, q0
+        q0 = 2.0_dp*pi/cfg%lx_m
+        c%band_q = [cfg%zeta1, cfg%zeta2]*q0
+        call slope_tensor(fft, cfg%lx_m, cfg%ly_m, c%h, c%m_surface, band=c%band_q)
+        call slope_tensor(fft, cfg%lx_m, cfg%ly_m, c%state%u, c%m_deformed, band=c%band_q)
+        call tensor_axes(c%m_surface, l1, l2, c%theta_s); c%gamma_s = l2/l1
+        call tensor_axes(c%m_deformed, l1, l2, c%theta_d); c%gamma_d = l2/l1
+        call decompose(c%m_surface, c%m_deformed, cfg%iso_tol, c%sigma1, c%sigma2, c%phi)
+        c%have_anisotropy = .true.
+    end subroutine anisotropy_analysis
 
     !> Check that the result can be written, before any work: refuses an existing file unless
     !> `overwrite`, and creates (then removes) the temporary file it will write to
@@ -315,6 +350,40 @@ contains
         call f%writeattr('/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
         call f%writeattr('/scalars', 'kernel_variant', trim(cfg%kernel), error); if (allocated(error)) return
 
+        if (c%have_anisotropy) then
+            block
+                real(dp) :: theta(cfg%n_theta)
+                integer :: k
+                theta = [(pi*(k - 1)/cfg%n_theta, k = 1, cfg%n_theta)]
+                call scalar('gamma_s', c%gamma_s, '-'); call scalar('gamma_d', c%gamma_d, '-')
+                call scalar('theta_s_rad', c%theta_s, 'rad'); call scalar('theta_d_rad', c%theta_d, 'rad')
+                call scalar('sigma1', c%sigma1, '-'); call scalar('sigma2', c%sigma2, '-')
+                call scalar('phi_rad', c%phi, 'rad')
+                call array('/anisotropy/band_q_per_m', c%band_q, '1/m')
+                call array('/anisotropy/band_zeta', [cfg%zeta1, cfg%zeta2], '-')
+                call array('/anisotropy/surface_tensor', reshape(c%m_surface, [4]), '-')
+                call array('/anisotropy/deformed_tensor', reshape(c%m_deformed, [4]), '-')
+                call array('/anisotropy/theta_rad', theta, 'rad')
+                call array('/anisotropy/m2_surface', m2_of_theta(c%m_surface, theta), '-')
+                call array('/anisotropy/mu2_deformed', m2_of_theta(c%m_deformed, theta), '-')
+                if (allocated(error)) return
+                call f%writeattr('/anisotropy/surface_tensor', 'layout', '[M11, M21, M12, M22]', error)
+                if (allocated(error)) return
+                call f%writeattr('/anisotropy/deformed_tensor', 'layout', '[M11, M21, M12, M22]', error)
+                if (allocated(error)) return
+            end block
+        end if
+        if (c%have_patches) then
+            call iscalar('patch_count', c%patches%count)
+            call scalar('patch_mean_area_fraction', c%patches%mean_area_fraction, '-')
+            call scalar('patch_gamma', c%patches%gamma, '-')
+            call scalar('patch_theta_rad', c%patches%theta, 'rad')
+            call array('/patches/orientation_tensor', reshape(c%patches%orientation, [4]), '-')
+            call iscalar('percolates_x', merge(1, 0, c%percolates_x))
+            call iscalar('percolates_y', merge(1, 0, c%percolates_y))
+            if (allocated(error)) return
+        end if
+
         if (cfg%write_fields) then
             call field('height_m', c%h, 'm')
             call field('pressure_pa', c%state%p, 'Pa')
@@ -340,6 +409,14 @@ contains
             call f%write('/scalars/'//name, value, error); if (allocated(error)) return
             call f%writeattr('/scalars/'//name, 'units', '-', error)
         end subroutine iscalar
+
+        subroutine array(name, value, units)
+            character(len=*), intent(in) :: name, units
+            real(dp), intent(in) :: value(:)
+            if (allocated(error)) return
+            call f%write(name, value, error); if (allocated(error)) return
+            call f%writeattr(name, 'units', units, error)
+        end subroutine array
 
         subroutine field(name, value, units)
             character(len=*), intent(in) :: name, units

@@ -8,6 +8,7 @@ program veslide_tests
     use test_veslide_config, only: collect_config
     use test_veslide_visco, only: collect_visco
     use test_veslide_hard, only: collect_hard
+    use test_veslide_anisotropy, only: collect_anisotropy
     implicit none
     type(testsuite_t), allocatable :: suites(:)
     character(len=128) :: want_suite, want_test
@@ -18,6 +19,7 @@ program veslide_tests
         new_testsuite("surface", collect_surface), &
         new_testsuite("solver", collect_solver), &
         new_testsuite("visco", collect_visco), &
+        new_testsuite("anisotropy", collect_anisotropy), &
         new_testsuite("hard", collect_hard) &
         ]
     want_suite = ''; want_test = ''

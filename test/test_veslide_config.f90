@@ -78,7 +78,9 @@ contains
         call check(error, cfg%ly_m, 0.005_dp, "ly_m defaults to lx_m*ny/nx", rel=1.0e-15_dp); if (allocated(error)) return
         call check(error, size(cfg%prony_coef) == 2 .and. cfg%prony_time_s(2) == 1.0e-2_dp, "Prony terms")
         if (allocated(error)) return
-        call check(error, index(cfg%text, "creep_tau_s") > 0, "input text kept verbatim")
+        call check(error, index(cfg%text, "creep_tau_s") > 0, "input text kept verbatim"); if (allocated(error)) return
+        call read_text('values2', "&solver kernel = 'collocation-alias' /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%kernel == 'collocation-alias', "the longest kernel name survives")
     end subroutine test_values
 
     subroutine test_out_of_range(error)
