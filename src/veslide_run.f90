@@ -19,7 +19,7 @@ module veslide_run
     implicit none
     private
     public :: case_t, build_surface, build_material, run_case, write_case, prepare_output, &
-              commit_output, discard_output
+              commit_output, discard_output, case_scalars, write_provenance, write_case_group
 
     !> Everything one solve produced
     type :: case_t
@@ -279,19 +279,90 @@ contains
         if (stat == 0) close (u, status='delete')
     end subroutine discard_output
 
-    !> Write one case to an HDF5 file (the caller writes to a temporary name, then commits)
-    subroutine write_case(path, cfg, c, error)
-        character(len=*), intent(in) :: path
+    !> The scalar results of a case, in output order: names, units and values (integers included,
+    !> flagged by is_int); the same list feeds /scalars and the sweep's summary table
+    subroutine case_scalars(cfg, c, names, units, values, is_int)
         type(config_t), intent(in) :: cfg
         type(case_t), intent(in) :: c
-        type(error_t), allocatable, intent(out) :: error
-        type(h5file_t) :: f
-        real(dp) :: vhat(2), estar, fn, tang(2)
-        character(len=*), parameter :: layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
-        character(len=32) :: seed_text
+        character(len=32), allocatable, intent(out) :: names(:)
+        character(len=8), allocatable, intent(out) :: units(:)
+        real(dp), allocatable, intent(out) :: values(:)
+        logical, allocatable, intent(out) :: is_int(:)
+        real(dp) :: vhat(2), fn, tang(2), lat(2)
+        integer :: nn
+        allocate (names(64), units(64), values(64), is_int(64))
+        nn = 0
+        fn = cfg%mean_pressure_pa
+        vhat = [cos(cfg%velocity_direction_deg*pi/180.0_dp), sin(cfg%velocity_direction_deg*pi/180.0_dp)]
+        lat = [-vhat(2), vhat(1)]
+        tang = c%force_pa
+        call add('contact_area_fraction', contact_area_fraction(c%state%p), '-')
+        call add('mean_separation_m', mean_separation(c%state%g), 'm')
+        call add('rms_height_m', rms_height(c%h), 'm')
+        call add('max_pressure_pa', maxval(c%state%p), 'Pa')
+        call add('mean_pressure_pa', fn, 'Pa')
+        call add('approach_m', c%state%approach_m, 'm')
+        call add('iterations', real(c%state%iterations, dp), '-', .true.)
+        call add('operator_applications', real(c%state%operator_applications, dp), '-', .true.)
+        call add('converged', merge(1.0_dp, 0.0_dp, c%state%converged), '-', .true.)
+        call add('residual', c%state%residual, '-')
+        call add('penetration', c%state%penetration, '-')
+        call add('complementarity', c%state%complementarity, '-')
+        call add('negative_pressure', c%state%negative_pressure, '-')
+        call add('load_error', c%state%load_error, '-')
+        call add('tolerance', cfg%tolerance, '-')
+        call add('length_x_m', c%lx_m, 'm')
+        call add('length_y_m', c%ly_m, 'm')
+        call add('nx', real(size(c%h, 1), dp), '-', .true.)
+        call add('ny', real(size(c%h, 2), dp), '-', .true.)
+        call add('contact_modulus_pa', c%mat%e0_pa/(1.0_dp - c%mat%poisson**2), 'Pa')
+        call add('speed_m_s', norm2(c%velocity_m_s), 'm/s')
+        call add('velocity_direction_deg', cfg%velocity_direction_deg, 'degree')
+        call add('friction_force_pa', -dot_product(tang, vhat), 'Pa')
+        call add('friction_coefficient', -dot_product(tang, vhat)/fn, '-')
+        call add('lateral_force_pa', dot_product(tang, lat), 'Pa')
+        call add('lateral_force_ratio', dot_product(tang, lat)/fn, '-')
+        call add('force_x_pa', tang(1), 'Pa')
+        call add('force_y_pa', tang(2), 'Pa')
+        call add('friction_coefficient_slope', -dot_product(c%slope_force_pa, vhat)/fn, '-')
+        call add('dissipated_power_w_m2', -dot_product(tang, c%velocity_m_s), 'W/m^2')
+        call add('kernel_alias_error', c%kernel%alias_error, '-')
+        call add('kernel_alias_zones', real(c%kernel%alias_zones, dp), '-', .true.)
+        call add('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
+        call add('surface_seconds', c%surface_seconds, 's')
+        call add('kernel_seconds', c%kernel_seconds, 's')
+        call add('solve_seconds', c%solve_seconds, 's')
+        if (c%have_anisotropy) then
+            call add('gamma_s', c%gamma_s, '-'); call add('gamma_d', c%gamma_d, '-')
+            call add('theta_s_rad', c%theta_s, 'rad'); call add('theta_d_rad', c%theta_d, 'rad')
+            call add('sigma1', c%sigma1, '-'); call add('sigma2', c%sigma2, '-')
+            call add('phi_rad', c%phi, 'rad')
+        end if
+        if (c%have_patches) then
+            call add('patch_count', real(c%patches%count, dp), '-', .true.)
+            call add('patch_mean_area_fraction', c%patches%mean_area_fraction, '-')
+            call add('patch_gamma', c%patches%gamma, '-')
+            call add('patch_theta_rad', c%patches%theta, 'rad')
+            call add('percolates_x', merge(1.0_dp, 0.0_dp, c%percolates_x), '-', .true.)
+            call add('percolates_y', merge(1.0_dp, 0.0_dp, c%percolates_y), '-', .true.)
+        end if
+        names = names(1:nn); units = units(1:nn); values = values(1:nn); is_int = is_int(1:nn)
+    contains
+        subroutine add(name, value, unit, integer_valued)
+            character(len=*), intent(in) :: name, unit
+            real(dp), intent(in) :: value
+            logical, intent(in), optional :: integer_valued
+            nn = nn + 1
+            names(nn) = name; units(nn) = unit; values(nn) = value; is_int(nn) = present(integer_valued)
+        end subroutine add
+    end subroutine case_scalars
 
-        call f%open(path, 'w', error); if (allocated(error)) return
-        ! provenance
+    !> Root attributes of provenance and the input text
+    subroutine write_provenance(f, cfg, error)
+        type(h5file_t), intent(inout) :: f
+        type(config_t), intent(in) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        character(len=32) :: seed_text
         call f%writeattr('/', 'veslide_version', version_string(), error); if (allocated(error)) return
         call f%writeattr('/', 'git_revision', git_revision(), error); if (allocated(error)) return
         call f%writeattr('/', 'compiler', compiler_string(), error); if (allocated(error)) return
@@ -302,63 +373,55 @@ contains
         call f%writeattr('/', 'seed', trim(seed_text), error); if (allocated(error)) return
         call f%writeattr('/', 'input_file', cfg%path, error); if (allocated(error)) return
         call f%write('/input/namelist', cfg%text, error); if (allocated(error)) return
-        call f%writeattr('/input/namelist', 'units', '-', error); if (allocated(error)) return
+        call f%writeattr('/input/namelist', 'units', '-', error)
+    end subroutine write_provenance
 
-        fn = cfg%mean_pressure_pa
-        estar = c%mat%e0_pa/(1.0_dp - c%mat%poisson**2)
-        vhat = [1.0_dp, 0.0_dp]
-        if (norm2(c%velocity_m_s) > 0.0_dp) vhat = c%velocity_m_s/norm2(c%velocity_m_s)
-        tang = c%force_pa
+    !> Write one case to an HDF5 file (the caller writes to a temporary name, then commits)
+    subroutine write_case(path, cfg, c, error)
+        character(len=*), intent(in) :: path
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        type(error_t), allocatable, intent(out) :: error
+        type(h5file_t) :: f
+        call f%open(path, 'w', error); if (allocated(error)) return
+        call write_provenance(f, cfg, error); if (allocated(error)) return
+        call write_case_group(f, '', cfg, c, error); if (allocated(error)) return
+        call f%close()
+    end subroutine write_case
 
-        call scalar('contact_area_fraction', contact_area_fraction(c%state%p), '-')
-        call scalar('mean_separation_m', mean_separation(c%state%g), 'm')
-        call scalar('rms_height_m', rms_height(c%h), 'm')
-        call scalar('max_pressure_pa', maxval(c%state%p), 'Pa')
-        call scalar('mean_pressure_pa', fn, 'Pa')
-        call scalar('approach_m', c%state%approach_m, 'm')
-        call iscalar('iterations', c%state%iterations)
-        call iscalar('operator_applications', c%state%operator_applications)
-        call iscalar('converged', merge(1, 0, c%state%converged))
-        call scalar('residual', c%state%residual, '-')
-        call scalar('penetration', c%state%penetration, '-')
-        call scalar('complementarity', c%state%complementarity, '-')
-        call scalar('negative_pressure', c%state%negative_pressure, '-')
-        call scalar('load_error', c%state%load_error, '-')
-        call scalar('tolerance', cfg%tolerance, '-')
-        call scalar('length_x_m', c%lx_m, 'm')
-        call scalar('length_y_m', c%ly_m, 'm')
-        call iscalar('nx', size(c%h, 1))
-        call iscalar('ny', size(c%h, 2))
-        call scalar('contact_modulus_pa', estar, 'Pa')
-        call scalar('speed_m_s', norm2(c%velocity_m_s), 'm/s')
-        call scalar('velocity_direction_deg', cfg%velocity_direction_deg, 'degree')
-        call scalar('friction_force_pa', -dot_product(tang, vhat), 'Pa')
-        call scalar('friction_coefficient', -dot_product(tang, vhat)/fn, '-')
-        call scalar('lateral_force_pa', dot_product(tang, [-vhat(2), vhat(1)]), 'Pa')
-        call scalar('lateral_force_ratio', dot_product(tang, [-vhat(2), vhat(1)])/fn, '-')
-        call scalar('force_x_pa', tang(1), 'Pa')
-        call scalar('force_y_pa', tang(2), 'Pa')
-        call scalar('friction_coefficient_slope', -dot_product(c%slope_force_pa, vhat)/fn, '-')
-        call scalar('dissipated_power_w_m2', -dot_product(tang, c%velocity_m_s), 'W/m^2')
-        call scalar('kernel_alias_error', c%kernel%alias_error, '-')
-        call iscalar('kernel_alias_zones', c%kernel%alias_zones)
-        call scalar('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
-        call scalar('surface_seconds', c%surface_seconds, 's')
-        call scalar('kernel_seconds', c%kernel_seconds, 's')
-        call scalar('solve_seconds', c%solve_seconds, 's')
-        if (allocated(error)) return
-        call f%writeattr('/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
-        call f%writeattr('/scalars', 'kernel_variant', trim(cfg%kernel), error); if (allocated(error)) return
+    !> Scalars, anisotropy, patches and fields of a case under `prefix` ('' for the root)
+    subroutine write_case_group(f, prefix, cfg, c, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: prefix
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), parameter :: layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
+        character(len=32), allocatable :: names(:)
+        character(len=8), allocatable :: units(:)
+        real(dp), allocatable :: values(:)
+        logical, allocatable :: is_int(:)
+        integer :: k
+
+        call case_scalars(cfg, c, names, units, values, is_int)
+        do k = 1, size(names)
+            if (is_int(k)) then
+                call f%write(prefix//'/scalars/'//trim(names(k)), nint(values(k)), error)
+            else
+                call f%write(prefix//'/scalars/'//trim(names(k)), values(k), error)
+            end if
+            if (allocated(error)) return
+            call f%writeattr(prefix//'/scalars/'//trim(names(k)), 'units', trim(units(k)), error)
+            if (allocated(error)) return
+        end do
+        call f%writeattr(prefix//'/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
+        call f%writeattr(prefix//'/scalars', 'kernel_variant', trim(cfg%kernel), error); if (allocated(error)) return
 
         if (c%have_anisotropy) then
             block
                 real(dp) :: theta(cfg%n_theta)
-                integer :: k
-                theta = [(pi*(k - 1)/cfg%n_theta, k = 1, cfg%n_theta)]
-                call scalar('gamma_s', c%gamma_s, '-'); call scalar('gamma_d', c%gamma_d, '-')
-                call scalar('theta_s_rad', c%theta_s, 'rad'); call scalar('theta_d_rad', c%theta_d, 'rad')
-                call scalar('sigma1', c%sigma1, '-'); call scalar('sigma2', c%sigma2, '-')
-                call scalar('phi_rad', c%phi, 'rad')
+                integer :: j
+                theta = [(pi*(j - 1)/cfg%n_theta, j = 1, cfg%n_theta)]
                 call array('/anisotropy/band_q_per_m', c%band_q, '1/m')
                 call array('/anisotropy/band_zeta', [cfg%zeta1, cfg%zeta2], '-')
                 call array('/anisotropy/surface_tensor', reshape(c%m_surface, [4]), '-')
@@ -367,66 +430,42 @@ contains
                 call array('/anisotropy/m2_surface', m2_of_theta(c%m_surface, theta), '-')
                 call array('/anisotropy/mu2_deformed', m2_of_theta(c%m_deformed, theta), '-')
                 if (allocated(error)) return
-                call f%writeattr('/anisotropy/surface_tensor', 'layout', '[M11, M21, M12, M22]', error)
+                call f%writeattr(prefix//'/anisotropy/surface_tensor', 'layout', '[M11, M21, M12, M22]', error)
                 if (allocated(error)) return
-                call f%writeattr('/anisotropy/deformed_tensor', 'layout', '[M11, M21, M12, M22]', error)
+                call f%writeattr(prefix//'/anisotropy/deformed_tensor', 'layout', '[M11, M21, M12, M22]', error)
                 if (allocated(error)) return
             end block
         end if
         if (c%have_patches) then
-            call iscalar('patch_count', c%patches%count)
-            call scalar('patch_mean_area_fraction', c%patches%mean_area_fraction, '-')
-            call scalar('patch_gamma', c%patches%gamma, '-')
-            call scalar('patch_theta_rad', c%patches%theta, 'rad')
             call array('/patches/orientation_tensor', reshape(c%patches%orientation, [4]), '-')
-            call iscalar('percolates_x', merge(1, 0, c%percolates_x))
-            call iscalar('percolates_y', merge(1, 0, c%percolates_y))
             if (allocated(error)) return
         end if
-
         if (cfg%write_fields) then
             call field('height_m', c%h, 'm')
             call field('pressure_pa', c%state%p, 'Pa')
             call field('displacement_m', c%state%u, 'm')
             call field('gap_m', c%state%g, 'm')
         end if
-        call f%close()
 
     contains
 
-        subroutine scalar(name, value, units)
-            character(len=*), intent(in) :: name, units
-            real(dp), intent(in) :: value
-            if (allocated(error)) return
-            call f%write('/scalars/'//name, value, error); if (allocated(error)) return
-            call f%writeattr('/scalars/'//name, 'units', units, error)
-        end subroutine scalar
-
-        subroutine iscalar(name, value)
-            character(len=*), intent(in) :: name
-            integer, intent(in) :: value
-            if (allocated(error)) return
-            call f%write('/scalars/'//name, value, error); if (allocated(error)) return
-            call f%writeattr('/scalars/'//name, 'units', '-', error)
-        end subroutine iscalar
-
-        subroutine array(name, value, units)
-            character(len=*), intent(in) :: name, units
+        subroutine array(name, value, unit)
+            character(len=*), intent(in) :: name, unit
             real(dp), intent(in) :: value(:)
             if (allocated(error)) return
-            call f%write(name, value, error); if (allocated(error)) return
-            call f%writeattr(name, 'units', units, error)
+            call f%write(prefix//name, value, error); if (allocated(error)) return
+            call f%writeattr(prefix//name, 'units', unit, error)
         end subroutine array
 
-        subroutine field(name, value, units)
-            character(len=*), intent(in) :: name, units
+        subroutine field(name, value, unit)
+            character(len=*), intent(in) :: name, unit
             real(dp), intent(in) :: value(:, :)
             if (allocated(error)) return
-            call f%write('/fields/'//name, value, error); if (allocated(error)) return
-            call f%writeattr('/fields/'//name, 'units', units, error); if (allocated(error)) return
-            call f%writeattr('/fields/'//name, 'layout', layout, error)
+            call f%write(prefix//'/fields/'//name, value, error); if (allocated(error)) return
+            call f%writeattr(prefix//'/fields/'//name, 'units', unit, error); if (allocated(error)) return
+            call f%writeattr(prefix//'/fields/'//name, 'layout', layout, error)
         end subroutine field
 
-    end subroutine write_case
+    end subroutine write_case_group
 
 end module veslide_run
