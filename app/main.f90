@@ -9,6 +9,7 @@ program veslide_main
     use veslide_analysis, only: contact_area_fraction, mean_separation
     use veslide_surface, only: rms_height
     use veslide_version, only: version_string
+    use veslide_sweep, only: run_sweep
     implicit none
     type(config_t) :: cfg
     type(case_t) :: c
@@ -53,6 +54,24 @@ program veslide_main
     call prepare_output(cfg%output_file, cfg%overwrite, tmp, error)
     if (allocated(error)) call die(error%message)
 
+    if (cfg%is_sweep) then
+        block
+            integer :: nfail
+            call run_sweep(cfg, tmp, nfail, error, quiet=quiet)
+            if (allocated(error)) then
+                call discard_output(tmp); call die(error%message)
+            end if
+            call commit_output(tmp, cfg%output_file, error)
+            if (allocated(error)) call die(error%message)
+            if (.not. quiet) write (stdout, '(a)') "veslide: study written to "//cfg%output_file
+            if (nfail > 0) then
+                write (stderr, '(a,i0,a)') "veslide: NOT CONVERGED in ", nfail, &
+                    " case(s) (see /summary converged)"
+                error stop 2
+            end if
+            stop
+        end block
+    end if
     call run_case(cfg, c, error)
     if (allocated(error)) call die(error%message)
     call write_case(tmp, cfg, c, error)

@@ -48,6 +48,10 @@ module veslide_config
         logical :: anisotropy = .false., patches = .false.
         real(dp) :: zeta1 = 1.0_dp, zeta2 = 0.0_dp, iso_tol = 1.0e-3_dp
         integer :: n_theta = 72
+        ! &sweep (lists; an empty list keeps the single value of its group)
+        logical :: is_sweep = .false.
+        real(dp), allocatable :: sweep_speeds(:), sweep_alphas(:), sweep_eccs(:), sweep_pressures(:)
+        integer(i8), allocatable :: sweep_seeds(:)
         ! &output
         character(len=:), allocatable :: output_file
         logical :: write_fields = .true., overwrite = .false.
@@ -83,7 +87,7 @@ contains
         character(len=*), intent(in) :: path
         type(config_t), intent(out) :: cfg
         type(error_t), allocatable, intent(out) :: error
-        integer :: u, stat
+        integer :: u, stat, k
         character(len=512) :: msg
 
         ! namelist variables (local copies carrying the defaults)
@@ -107,6 +111,10 @@ contains
         logical :: fields, overwrite, anisotropy, patches
         real(dp) :: zeta1, zeta2, iso_tol
         integer :: n_theta
+        real(dp) :: speeds_m_s(max_prony), alphas_deg(max_prony), eccentricities(max_prony), pressures_pa(max_prony)
+        real(dp) :: speed_min_m_s, speed_max_m_s
+        integer :: n_speeds, n_seeds
+        integer(i8) :: seeds(max_prony)
 
         namelist /grid/ nx, ny, lx_m, ly_m
         namelist /surface/ kind, seed, hurst, eccentricity, alpha_deg, k_low, k_roll, k_cut, rms_slope, &
@@ -119,6 +127,8 @@ contains
             anderson_memory, balance_every, balance_ratio, balance_factor
         namelist /output/ file, fields, overwrite
         namelist /analysis/ anisotropy, zeta1, zeta2, n_theta, iso_tol, patches
+        namelist /sweep/ speeds_m_s, speed_min_m_s, speed_max_m_s, n_speeds, alphas_deg, eccentricities, &
+            pressures_pa, seeds, n_seeds
 
         cfg%path = path
         call read_text_file(path, cfg%text, error); if (allocated(error)) return
@@ -198,6 +208,38 @@ contains
         if (bad_read('analysis')) return
         cfg%anisotropy = anisotropy; cfg%zeta1 = zeta1; cfg%zeta2 = zeta2; cfg%n_theta = n_theta
         cfg%iso_tol = iso_tol; cfg%patches = patches
+
+        ! &sweep
+        speeds_m_s = unset; alphas_deg = unset; eccentricities = unset; pressures_pa = unset
+        seeds = -huge(1_i8); speed_min_m_s = 0; speed_max_m_s = 0; n_speeds = 0; n_seeds = 0
+        rewind (u); read (u, nml=sweep, iostat=stat, iomsg=msg)
+        if (bad_read('sweep')) return
+        cfg%sweep_speeds = pack(speeds_m_s, speeds_m_s /= unset)
+        cfg%sweep_alphas = pack(alphas_deg, alphas_deg /= unset)
+        cfg%sweep_eccs = pack(eccentricities, eccentricities /= unset)
+        cfg%sweep_pressures = pack(pressures_pa, pressures_pa /= unset)
+        cfg%sweep_seeds = pack(seeds, seeds /= -huge(1_i8))
+        if (n_speeds /= 0) then
+            if (size(cfg%sweep_speeds) > 0 .or. n_speeds < 2 .or. n_speeds > 1000 .or. &
+                .not. (speed_min_m_s > 0.0_dp .and. speed_max_m_s > speed_min_m_s)) then
+                close (u)
+                call fatal_error(error, "veslide: "//path//": &sweep n_speeds, speed_min_m_s, speed_max_m_s"// &
+                    " are out of range (allowed: 2 <= n_speeds <= 1000, 0 < speed_min_m_s < speed_max_m_s,"// &
+                    " and no speeds_m_s list)"); return
+            end if
+            cfg%sweep_speeds = [(speed_min_m_s*(speed_max_m_s/speed_min_m_s)**(real(k, dp)/(n_speeds - 1)), &
+                                 k = 0, n_speeds - 1)]
+        end if
+        if (n_seeds /= 0) then
+            if (size(cfg%sweep_seeds) > 0 .or. n_seeds < 1 .or. n_seeds > 100000) then
+                close (u)
+                call fatal_error(error, "veslide: "//path//": &sweep n_seeds = "//ival(n_seeds)// &
+                    " is out of range (allowed: 1 to 100000, and no seeds list); seeds are seed, seed+1, ..."); return
+            end if
+            cfg%sweep_seeds = [(cfg%seed + k, k = 0, n_seeds - 1)]
+        end if
+        cfg%is_sweep = size(cfg%sweep_speeds) + size(cfg%sweep_alphas) + size(cfg%sweep_eccs) + &
+                       size(cfg%sweep_pressures) + size(cfg%sweep_seeds) > 0
 
         ! &output
         file = 'veslide.h5'; fields = cfg%write_fields; overwrite = cfg%overwrite
@@ -418,6 +460,21 @@ contains
         end if
         if (.not. (cfg%iso_tol >= 0.0_dp .and. cfg%iso_tol < 1.0_dp)) then
             call fail("&analysis iso_tol", rval(cfg%iso_tol), "0 <= iso_tol < 1"); return
+        end if
+        if (any(.not. (cfg%sweep_speeds >= 0.0_dp .and. cfg%sweep_speeds < big))) then
+            call fail("&sweep speeds_m_s", "", "every speed >= 0 [m/s]"); return
+        end if
+        if (any(.not. (abs(cfg%sweep_alphas) <= 360.0_dp))) then
+            call fail("&sweep alphas_deg", "", "every angle -360 to 360 [degrees]"); return
+        end if
+        if (any(.not. (cfg%sweep_eccs > 0.0_dp .and. cfg%sweep_eccs <= 1.0_dp))) then
+            call fail("&sweep eccentricities", "", "every value 0 < eccentricity <= 1"); return
+        end if
+        if (any(.not. (cfg%sweep_pressures > 0.0_dp .and. cfg%sweep_pressures < big))) then
+            call fail("&sweep pressures_pa", "", "every pressure > 0 [Pa]"); return
+        end if
+        if ((size(cfg%sweep_alphas) > 0 .or. size(cfg%sweep_eccs) > 0) .and. cfg%surface_kind /= 'self_affine') then
+            call fail("&sweep alphas_deg/eccentricities", "", "only with &surface kind = 'self_affine'"); return
         end if
         if (len(cfg%output_file) == 0) then
             call fail("&output file", "''", "a file path"); return

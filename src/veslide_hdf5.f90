@@ -22,6 +22,8 @@ module veslide_hdf5
         procedure, private :: write_r0, write_i0, write_r1, write_r2, write_i1, write_text
         generic :: writeattr => attr_text, attr_r0, attr_i0
         procedure, private :: attr_text, attr_r0, attr_i0
+        procedure :: write_table => h5_write_table
+        procedure :: flush => h5_flush
         procedure :: read_r2 => h5_read_r2
         procedure :: read_r0 => h5_read_r0
         procedure :: shape_of => h5_shape_of
@@ -307,6 +309,39 @@ contains
         if (ierr /= 0) call fatal_error(error, "veslide:hdf5:writeattr: "//obj//"@"//name//" in "//self%path)
         call h5aclose_f(aid, ierr); call h5sclose_f(sid, ierr); call h5oclose_f(oid, ierr)
     end subroutine attr_i0
+
+    !> A table as a 1-D compound dataset of float64 columns (pandas.DataFrame(f[name][()]) reads it
+    !> in one call); `data(ncol, nrow)`. An existing dataset of that name is replaced.
+    subroutine h5_write_table(self, name, columns, data, error)
+        use, intrinsic :: iso_c_binding, only: c_loc
+        class(h5file_t), intent(inout) :: self
+        character(len=*), intent(in) :: name, columns(:)
+        real(dp), intent(in), target :: data(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        integer(hid_t) :: tid, did, sid, lcpl
+        integer(hsize_t) :: dims(1)
+        integer :: ierr, k
+        if (self%exists(name)) call h5ldelete_f(self%fid, name, ierr)
+        call h5tcreate_f(H5T_COMPOUND_F, int(8*size(columns), size_t), tid, ierr)
+        do k = 1, size(columns)
+            call h5tinsert_f(tid, trim(columns(k)), int(8*(k - 1), size_t), H5T_NATIVE_DOUBLE, ierr)
+        end do
+        dims = [int(size(data, 2), hsize_t)]
+        call h5screate_simple_f(1, dims, sid, ierr)
+        call h5pcreate_f(H5P_LINK_CREATE_F, lcpl, ierr)
+        call h5pset_create_inter_group_f(lcpl, 1, ierr)
+        call h5dcreate_f(self%fid, name, tid, sid, did, ierr, lcpl_id=lcpl)
+        if (ierr == 0 .and. size(data) > 0) call h5dwrite_f(did, tid, c_loc(data), ierr)
+        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:write_table: cannot write "//name//" in "//self%path)
+        call h5dclose_f(did, k); call h5pclose_f(lcpl, k); call h5sclose_f(sid, k); call h5tclose_f(tid, k)
+    end subroutine h5_write_table
+
+    !> Push what was written to disk (a reader of an unfinished sweep sees every finished case)
+    subroutine h5_flush(self)
+        class(h5file_t), intent(inout) :: self
+        integer :: ierr
+        if (self%is_open()) call h5fflush_f(self%fid, H5F_SCOPE_GLOBAL_F, ierr)
+    end subroutine h5_flush
 
     !> Shape of dataset `name` (rank 0..7); `rank` = -1 when absent
     subroutine h5_shape_of(self, name, dims, rank, is_double)

@@ -19,7 +19,8 @@ module veslide_run
     implicit none
     private
     public :: case_t, build_surface, build_material, run_case, write_case, prepare_output, &
-              commit_output, discard_output, case_scalars, write_provenance, write_case_group
+              commit_output, discard_output, case_scalars, write_provenance, write_case_group, &
+              build_case_kernel, solve_prepared, wall_seconds
 
     !> Everything one solve produced
     type :: case_t
@@ -167,8 +168,7 @@ contains
         type(case_t), intent(out) :: c
         type(error_t), allocatable, intent(out) :: error
         type(fft2d_t) :: fft
-        type(solver_options_t) :: opts
-        real(dp) :: t0, th
+        real(dp) :: t0
 
         t0 = wall_seconds()
         if (cfg%surface_kind == 'file') then
@@ -180,21 +180,42 @@ contains
             if (allocated(error)) return
             call build_surface(cfg, fft, c%h, error); if (allocated(error)) return
         end if
-        c%lx_m = cfg%lx_m; c%ly_m = cfg%ly_m
         c%surface_seconds = wall_seconds() - t0
-
         call build_material(cfg, c%mat, error); if (allocated(error)) return
-        th = cfg%velocity_direction_deg*pi/180.0_dp
-        c%velocity_m_s = cfg%speed_m_s*[cos(th), sin(th)]
-        t0 = wall_seconds()
-        call build_kernel(c%kernel, cfg%nx, cfg%ny, cfg%lx_m, cfg%ly_m, c%mat, c%velocity_m_s, &
-                          kernel_variant_id(cfg%kernel), error, alias_tol=cfg%alias_tol, alias_max=cfg%alias_max)
-        if (allocated(error)) then
-            error%message = "veslide: "//cfg%path//": &solver kernel = '"//trim(cfg%kernel)//"': "//error%message
-            return
-        end if
-        c%kernel_seconds = wall_seconds() - t0
+        call build_case_kernel(cfg, c%mat, c%kernel, c%kernel_seconds, error); if (allocated(error)) return
+        call solve_prepared(cfg, fft, c, error)
+        call fft%destroy()
+    end subroutine run_case
 
+    !> The kernel of the configuration's grid, material and velocity
+    subroutine build_case_kernel(cfg, mat, kernel, seconds, error)
+        type(config_t), intent(in) :: cfg
+        type(material_t), intent(in) :: mat
+        type(kernel_t), intent(out) :: kernel
+        real(dp), intent(out) :: seconds
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: t0, th
+        t0 = wall_seconds()
+        th = cfg%velocity_direction_deg*pi/180.0_dp
+        call build_kernel(kernel, cfg%nx, cfg%ny, cfg%lx_m, cfg%ly_m, mat, cfg%speed_m_s*[cos(th), sin(th)], &
+                          kernel_variant_id(cfg%kernel), error, alias_tol=cfg%alias_tol, alias_max=cfg%alias_max)
+        if (allocated(error)) error%message = "veslide: "//cfg%path//": &solver kernel = '"//trim(cfg%kernel)// &
+                                              "': "//error%message
+        seconds = wall_seconds() - t0
+    end subroutine build_case_kernel
+
+    !> Solve a case whose heights, material and kernel are set, then derive its quantities;
+    !> `p_init` warm-starts the solver (a speed sweep passes the previous speed's pressure)
+    subroutine solve_prepared(cfg, fft, c, error, p_init)
+        type(config_t), intent(in) :: cfg
+        type(fft2d_t), intent(inout) :: fft
+        type(case_t), intent(inout) :: c
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: p_init(:, :)
+        type(solver_options_t) :: opts
+        real(dp) :: t0
+        c%lx_m = cfg%lx_m; c%ly_m = cfg%ly_m
+        c%velocity_m_s = c%kernel%velocity_m_s
         opts%method = cfg%method
         opts%tolerance = cfg%tolerance
         opts%max_iterations = cfg%max_iterations
@@ -203,12 +224,12 @@ contains
         opts%balance_ratio = cfg%balance_ratio
         opts%balance_factor = cfg%balance_factor
         t0 = wall_seconds()
-        call solve_contact(c%kernel, fft, c%h, cfg%mean_pressure_pa, opts, c%state, error)
+        call solve_contact(c%kernel, fft, c%h, cfg%mean_pressure_pa, opts, c%state, error, p_init=p_init)
         if (allocated(error)) return
         c%solve_seconds = wall_seconds() - t0
-
         call tangential_force(c%kernel, fft, c%state%p, c%force_pa)
         call slope_force(fft, cfg%lx_m, cfg%ly_m, c%state%p, c%h, c%slope_force_pa)
+        c%have_anisotropy = .false.; c%have_patches = .false.
         if (cfg%anisotropy) call anisotropy_analysis(cfg, fft, c)
         if (cfg%patches) then
             call contact_patches(c%state%p > 0.0_dp, cfg%lx_m, cfg%ly_m, c%patches)
@@ -216,8 +237,7 @@ contains
             c%percolates_y = percolates(.not. (c%state%p > 0.0_dp), 2)
             c%have_patches = .true.
         end if
-        call fft%destroy()
-    end subroutine run_case
+    end subroutine solve_prepared
 
     !> Slope tensors of h and of the deformed surface w in the band [zeta1, zeta2] q0, and eq. (16)
     subroutine anisotropy_analysis(cfg, fft, c)

@@ -8,7 +8,8 @@ module test_veslide_config
     use veslide_hdf5, only: h5file_t
     use veslide_run, only: case_t, build_surface, run_case, write_case, prepare_output, commit_output
     use veslide_version, only: veslide_version_number
-    use testsuite, only: error_t, unittest_t, new_unittest, check
+    use veslide_sweep, only: run_sweep
+    use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: unique_name, write_text
     implicit none
     private
@@ -32,7 +33,8 @@ contains
             new_unittest("output-exists-not-overwritten", test_output_exists), &
             new_unittest("output-unwritable", test_output_unwritable), &
             new_unittest("hdf5-contract", test_hdf5_contract), &
-            new_unittest("version-matches-fpm-toml", test_version) &
+            new_unittest("version-matches-fpm-toml", test_version), &
+            new_unittest("sweep-cases-equal-single-runs", test_sweep) &
             ]
     end subroutine collect_config
 
@@ -302,5 +304,60 @@ contains
         call check(error, index(line, '"'//veslide_version_number//'"') > 0, &
                    "fpm.toml says "//trim(line)//", the code says "//veslide_version_number)
     end subroutine test_version
+
+    !> A study of 2 seeds x 2 angles x 3 speeds: every case (kernel reused, warm-started along
+    !> speed) equals the single run of its parameters to the solver tolerance
+    subroutine test_sweep(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg, one
+        type(case_t) :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out, base
+        real(dp) :: fric, area, par(6), worst
+        integer :: nfail, k, u
+        integer(8) :: dims(7)
+        integer :: rank
+        logical :: is_double
+        character(len=16) :: tag
+        out = unique_name('sweep.h5')
+        base = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5 / &solver fft_planner='estimate'"// &
+               ", tolerance = 1e-12 / &material model='one_term' / &motion speed_m_s = 0.1 /"
+        call read_text('sweep', base//" &sweep speeds_m_s = 0.01, 0.1, 1.0, alphas_deg = 0, 30, n_seeds = 2 /"// &
+                       " &output fields = .false. /", cfg, error)
+        if (allocated(error)) return
+        call run_sweep(cfg, out, nfail, error, quiet=.true.); if (allocated(error)) return
+        call check(error, nfail, 0, "cases not converged"); if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        call f%shape_of('/summary', dims, rank, is_double)
+        call check(error, rank == 1 .and. dims(1) == 12, "summary rows"); if (allocated(error)) return
+        call check(error, f%exists('/ensemble'), "ensemble table"); if (allocated(error)) return
+        worst = 0
+        do k = 1, 12, 5
+            write (tag, '("/cases/",i6.6)') k
+            call f%read_r0(trim(tag)//'/scalars/friction_coefficient', fric, error); if (allocated(error)) return
+            call f%read_r0(trim(tag)//'/scalars/contact_area_fraction', area, error); if (allocated(error)) return
+            call read_params(f, trim(tag)//'/parameters', par, error); if (allocated(error)) return
+            call read_text('sweep-one', base, one, error); if (allocated(error)) return
+            one%seed = nint(par(2), 8); one%alpha_deg = par(4); one%speed_m_s = par(6)
+            call run_case(one, c, error); if (allocated(error)) return
+            worst = max(worst, abs(fric + c%force_pa(1)/one%mean_pressure_pa)/abs(fric))
+            call check(error, area, real(count(c%state%p > 0), dp)/1024, "area of case "//tag, rel=0.0_dp)
+            if (allocated(error)) return
+        end do
+        call report("max rel. friction difference", worst)
+        call check(error, worst <= 1.0e-8_dp, "sweep case differs from its single run")
+        call f%close()
+        open (newunit=u, file=out); close (u, status='delete')
+    end subroutine test_sweep
+
+    subroutine read_params(f, name, par, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: name
+        real(dp), intent(out) :: par(6)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: buf(6, 1)
+        call f%read_r2(name, buf, error)
+        par = buf(:, 1)
+    end subroutine read_params
 
 end module test_veslide_config

@@ -1,0 +1,196 @@
+!> Parameter studies: every combination of the &sweep lists (seeds x eccentricities x angles x
+!> pressures x speeds) in one run. Each surface is generated once, each speed's kernel built once
+!> and reused, and the solver is warm-started along the speed axis (speeds are visited in the
+!> order given). Every finished case is written at once under /cases/NNNNNN with its parameters,
+!> and /summary (one row per case, every scalar) is rewritten and flushed; with several seeds,
+!> /ensemble holds the mean and standard error over seeds of every scalar.
+module veslide_sweep
+    use, intrinsic :: iso_fortran_env, only: stdout => output_unit
+    use veslide_kinds, only: dp, i8
+    use veslide_error, only: error_t
+    use veslide_config, only: config_t
+    use veslide_fftw, only: fft2d_t
+    use veslide_kernel, only: kernel_t
+    use veslide_material, only: material_t
+    use veslide_hdf5, only: h5file_t
+    use veslide_run, only: case_t, build_surface, build_material, build_case_kernel, solve_prepared, &
+                           case_scalars, write_provenance, write_case_group, wall_seconds
+    implicit none
+    private
+    public :: run_sweep
+
+    integer, parameter :: nparam = 6
+    character(len=32), parameter :: param_names(nparam) = [character(len=32) :: 'case', 'seed', 'eccentricity', &
+                                                           'alpha_deg', 'pressure_pa', 'speed_m_s']
+
+contains
+
+    !> Run the study of `cfg` into the (temporary) HDF5 file `path`; `nfail` counts cases that
+    !> did not converge
+    subroutine run_sweep(cfg, path, nfail, error, quiet)
+        type(config_t), intent(inout) :: cfg
+        character(len=*), intent(in) :: path
+        integer, intent(out) :: nfail
+        type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: quiet
+        real(dp), allocatable :: speeds(:), alphas(:), eccs(:), pressures(:), table(:, :), values(:), p_prev(:, :)
+        integer(i8), allocatable :: seeds(:)
+        character(len=32), allocatable :: names(:), columns(:)
+        character(len=8), allocatable :: units(:)
+        logical, allocatable :: is_int(:)
+        type(kernel_t), allocatable :: kernels(:)
+        real(dp), allocatable :: kernel_seconds(:)
+        type(material_t) :: mat
+        type(fft2d_t) :: fft
+        type(h5file_t) :: f
+        type(case_t) :: c
+        real(dp), allocatable :: h(:, :)
+        real(dp) :: t_start, t_case
+        integer :: is, ie, ia, ip, iv, ncase, k, ncol
+        character(len=16) :: tag
+        logical :: quiet_
+
+        quiet_ = .false.; if (present(quiet)) quiet_ = quiet
+        nfail = 0
+        speeds = list_or(cfg%sweep_speeds, cfg%speed_m_s)
+        alphas = list_or(cfg%sweep_alphas, cfg%alpha_deg)
+        eccs = list_or(cfg%sweep_eccs, cfg%eccentricity)
+        pressures = list_or(cfg%sweep_pressures, cfg%mean_pressure_pa)
+        if (size(cfg%sweep_seeds) > 0) then
+            seeds = cfg%sweep_seeds
+        else
+            seeds = [cfg%seed]
+        end if
+        ncase = size(speeds)*size(alphas)*size(eccs)*size(pressures)*size(seeds)
+
+        call build_material(cfg, mat, error); if (allocated(error)) return
+        allocate (kernels(size(speeds)), kernel_seconds(size(speeds)))
+        do iv = 1, size(speeds)
+            cfg%speed_m_s = speeds(iv)
+            call build_case_kernel(cfg, mat, kernels(iv), kernel_seconds(iv), error); if (allocated(error)) return
+        end do
+        call f%open(path, 'w', error); if (allocated(error)) return
+        call write_provenance(f, cfg, error); if (allocated(error)) return
+        call fft%init(cfg%nx, cfg%ny, error, planner=cfg%fft_planner, nthreads=cfg%threads)
+        if (allocated(error)) return
+
+        t_start = wall_seconds()
+        k = 0
+        do is = 1, size(seeds)
+            do ie = 1, size(eccs)
+                do ia = 1, size(alphas)
+                    cfg%seed = seeds(is); cfg%eccentricity = eccs(ie); cfg%alpha_deg = alphas(ia)
+                    call build_surface(cfg, fft, h, error); if (allocated(error)) return
+                    do ip = 1, size(pressures)
+                        cfg%mean_pressure_pa = pressures(ip)
+                        do iv = 1, size(speeds)
+                            k = k + 1
+                            cfg%speed_m_s = speeds(iv)
+                            c%h = h; c%mat = mat; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
+                            t_case = wall_seconds()
+                            if (iv > 1) then
+                                call solve_prepared(cfg, fft, c, error, p_init=p_prev)
+                            else
+                                call solve_prepared(cfg, fft, c, error)
+                            end if
+                            if (allocated(error)) return
+                            p_prev = c%state%p
+                            if (.not. c%state%converged) nfail = nfail + 1
+                            write (tag, '("/cases/",i6.6)') k
+                            call write_case_group(f, trim(tag), cfg, c, error); if (allocated(error)) return
+                            call f%write(trim(tag)//'/parameters', [real(k, dp), real(seeds(is), dp), eccs(ie), &
+                                                                    alphas(ia), pressures(ip), speeds(iv)], error)
+                            if (allocated(error)) return
+                            call f%writeattr(trim(tag)//'/parameters', 'columns', &
+                                             'case, seed, eccentricity, alpha_deg, pressure_pa, speed_m_s', error)
+                            if (allocated(error)) return
+                            call case_scalars(cfg, c, names, units, values, is_int)
+                            if (.not. allocated(table)) then
+                                ncol = nparam + size(names)
+                                allocate (table(ncol, ncase), columns(ncol))
+                                columns(1:nparam) = param_names; columns(nparam + 1:) = names
+                                table = 0.0_dp
+                            end if
+                            table(1:nparam, k) = [real(k, dp), real(seeds(is), dp), eccs(ie), alphas(ia), &
+                                                  pressures(ip), speeds(iv)]
+                            table(nparam + 1:, k) = values(1:ncol - nparam)
+                            call f%write_table('/summary', columns, table(:, 1:k), error); if (allocated(error)) return
+                            call f%flush()
+                            if (.not. quiet_) call progress(k, ncase, t_start, wall_seconds() - t_case, &
+                                                            seeds(is), eccs(ie), alphas(ia), pressures(ip), speeds(iv), c)
+                        end do
+                    end do
+                end do
+            end do
+        end do
+        if (size(seeds) > 1) call write_ensemble(f, columns, table, size(seeds), error)
+        if (allocated(error)) return
+        call f%close()
+        call fft%destroy()
+
+    contains
+
+        function list_or(list, single) result(v)
+            real(dp), intent(in) :: list(:), single
+            real(dp), allocatable :: v(:)
+            if (size(list) > 0) then
+                v = list
+            else
+                v = [single]
+            end if
+        end function list_or
+
+    end subroutine run_sweep
+
+    subroutine progress(k, n, t_start, t_case, seed, ecc, alpha, p, v, c)
+        integer, intent(in) :: k, n
+        real(dp), intent(in) :: t_start, t_case, ecc, alpha, p, v
+        integer(i8), intent(in) :: seed
+        type(case_t), intent(in) :: c
+        real(dp) :: elapsed
+        elapsed = wall_seconds() - t_start
+        write (stdout, '("case ",i0,"/",i0,": seed ",i0,", eps ",f5.3,", alpha ",f6.1," deg, p ",es9.3, &
+            &" Pa, v ",es9.3," m/s: area ",f8.5,", f ",es10.3,", ",i0," FFT pairs",a,", ",f7.2," s; elapsed ",f8.1, &
+            &" s, left ~",f8.1," s")') k, n, seed, ecc, alpha, p, v, count(c%state%p > 0.0_dp)/real(size(c%state%p), dp), &
+            -dot_product(c%force_pa, unit_or_x(c%velocity_m_s))/p, c%state%operator_applications, &
+            trim(merge('               ', ', NOT CONVERGED', c%state%converged)), t_case, elapsed, elapsed/k*(n - k)
+        flush (stdout)
+    end subroutine progress
+
+    pure function unit_or_x(v) result(u)
+        real(dp), intent(in) :: v(2)
+        real(dp) :: u(2)
+        u = [1.0_dp, 0.0_dp]
+        if (norm2(v) > 0.0_dp) u = v/norm2(v)
+    end function unit_or_x
+
+    !> Mean and standard error over seeds of every scalar, one row per parameter combination.
+    !> Rows of the summary are ordered seed-major, so row r of seed s is r + (s - 1) m.
+    subroutine write_ensemble(f, columns, table, nseed, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=32), intent(in) :: columns(:)
+        real(dp), intent(in) :: table(:, :)
+        integer, intent(in) :: nseed
+        type(error_t), allocatable, intent(out) :: error
+        character(len=32), allocatable :: ecols(:)
+        real(dp), allocatable :: e(:, :), x(:)
+        integer :: m, r, j, ncol, nv, kk
+        ncol = size(columns); m = size(table, 2)/nseed; nv = ncol - nparam
+        allocate (ecols(4 + 2*nv), e(4 + 2*nv, m))
+        ecols(1:4) = param_names(3:6)
+        do j = 1, nv
+            ecols(4 + j) = 'mean_'//trim(columns(nparam + j))
+            ecols(4 + nv + j) = 'sem_'//trim(columns(nparam + j))
+        end do
+        do r = 1, m
+            e(1:4, r) = table(3:6, r)
+            do j = 1, nv
+                x = table(nparam + j, [(r + (kk - 1)*m, kk = 1, nseed)])
+                e(4 + j, r) = sum(x)/nseed
+                e(4 + nv + j, r) = sqrt(sum((x - e(4 + j, r))**2)/max(1, nseed - 1))/sqrt(real(nseed, dp))
+            end do
+        end do
+        call f%write_table('/ensemble', ecols, e, error)
+    end subroutine write_ensemble
+
+end module veslide_sweep
