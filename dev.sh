@@ -14,6 +14,8 @@ if [ "$rev" != unknown ] && [ -n "$(git status --porcelain --untracked-files=no 
 fi
 export VESLIDE_GIT_REVISION="$rev"
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
+export VESLIDE_PYTHON="$root/.venv/bin/python"   # the figure scripts, run by the postproc test
+export MPLBACKEND=Agg
 profile=(--profile release)
 cmd="${1:-run}"; shift || true
 case "$cmd" in

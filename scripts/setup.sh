@@ -5,7 +5,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
-apt_pkgs=(gfortran pkg-config make libfftw3-dev liblapack-dev libblas-dev libhdf5-dev hdf5-tools
+apt_pkgs=(gfortran pkg-config make bc libfftw3-dev liblapack-dev libblas-dev libhdf5-dev hdf5-tools
           libopenmpi-dev openmpi-bin python3-venv)
 missing=()
 for p in "${apt_pkgs[@]}"; do

@@ -9,6 +9,7 @@ program veslide_tests
     use test_veslide_visco, only: collect_visco
     use test_veslide_hard, only: collect_hard
     use test_veslide_anisotropy, only: collect_anisotropy
+    use test_veslide_postproc, only: collect_postproc
     implicit none
     type(testsuite_t), allocatable :: suites(:)
     character(len=128) :: want_suite, want_test
@@ -20,7 +21,8 @@ program veslide_tests
         new_testsuite("solver", collect_solver), &
         new_testsuite("visco", collect_visco), &
         new_testsuite("anisotropy", collect_anisotropy), &
-        new_testsuite("hard", collect_hard) &
+        new_testsuite("hard", collect_hard), &
+        new_testsuite("postproc", collect_postproc) &
         ]
     want_suite = ''; want_test = ''
     if (command_argument_count() >= 1) call get_command_argument(1, want_suite)
