@@ -36,6 +36,7 @@ contains
         dif = sqrt((m(1, 1) - m(2, 2))**2 + 4.0_dp*m(1, 2)**2)
         l1 = 0.5_dp*(tr + dif); l2 = 0.5_dp*(tr - dif)
         theta = modulo(0.5_dp*atan2(2.0_dp*m(1, 2), m(1, 1) - m(2, 2)), pi)
+        if (theta > pi*(1.0_dp - 1.0e-12_dp)) theta = 0.0_dp   ! -0 from atan2 is the axis 0, not pi
     end subroutine tensor_axes
 
     !> m2(theta) = e(theta).M.e(theta) at the given angles
