@@ -9,7 +9,7 @@ program veslide_bench
     use veslide_error, only: error_t
     use veslide_config, only: config_t
     use veslide_fftw, only: fft2d_t
-    use veslide_run, only: case_t, run_case, write_case, prepare_output, commit_output
+    use veslide_run, only: case_t, run_case, write_case, prepare_output, commit_output, now => wall_seconds
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, build_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION, &
                               KERNEL_COLLOCATION_ALIAS, KERNEL_GALERKIN
@@ -71,12 +71,6 @@ program veslide_bench
     end select
 
 contains
-
-    real(dp) function now() result(t)
-        integer(i8) :: c, r
-        call system_clock(c, r)
-        t = real(c, dp)/real(r, dp)
-    end function now
 
     real(dp) function median(x) result(m)
         real(dp), intent(in) :: x(:)

@@ -88,6 +88,25 @@ contains
         md = matmul(r, matmul(matmul(sd, m), transpose(r)))
     end function compose
 
+    !> Neighbour k (1..4: +x, -x, +y, -y) of cell (ci, cj) on the periodic grid, and the unwrapped
+    !> cell offsets (ox, oy) carried across the boundary
+    pure subroutine periodic_step(ci, cj, k, nx, ny, ox, oy, ni, nj, dx, dy)
+        integer, intent(in) :: ci, cj, k, nx, ny, ox, oy
+        integer, intent(out) :: ni, nj, dx, dy
+        integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
+        ni = ci + di(k); nj = cj + dj(k); dx = ox; dy = oy
+        if (ni < 1) then
+            ni = nx; dx = dx - 1
+        else if (ni > nx) then
+            ni = 1; dx = dx + 1
+        end if
+        if (nj < 1) then
+            nj = ny; dy = dy - 1
+        else if (nj > ny) then
+            nj = 1; dy = dy + 1
+        end if
+    end subroutine periodic_step
+
     !> Connected patches of `mask` (4-neighbour, periodic): labels, and their statistics
     subroutine contact_patches(mask, lx, ly, stats, labels)
         logical, intent(in) :: mask(:, :)
@@ -96,7 +115,6 @@ contains
         integer, allocatable, intent(out), optional :: labels(:, :)
         integer, allocatable :: lab(:, :), qi(:), qj(:), ox(:, :), oy(:, :)
         integer :: nx, ny, i, j, head, tail, ci, cj, k, ni, nj, dx, dy, npatch, cnt
-        integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
         real(dp) :: sx, sy, sxx, syy, sxy, x, y, g(2, 2), a, l1, l2, wsum
         nx = size(mask, 1); ny = size(mask, 2)
         allocate (lab(nx, ny), qi(nx*ny), qj(nx*ny), ox(nx, ny), oy(nx, ny))
@@ -116,17 +134,7 @@ contains
                     y = real(cj - 1 + oy(ci, cj)*ny, dp)*ly/ny
                     cnt = cnt + 1; sx = sx + x; sy = sy + y; sxx = sxx + x*x; syy = syy + y*y; sxy = sxy + x*y
                     do k = 1, 4
-                        ni = ci + di(k); nj = cj + dj(k); dx = ox(ci, cj); dy = oy(ci, cj)
-                        if (ni < 1) then
-                            ni = nx; dx = dx - 1
-                        else if (ni > nx) then
-                            ni = 1; dx = dx + 1
-                        end if
-                        if (nj < 1) then
-                            nj = ny; dy = dy - 1
-                        else if (nj > ny) then
-                            nj = 1; dy = dy + 1
-                        end if
+                        call periodic_step(ci, cj, k, nx, ny, ox(ci, cj), oy(ci, cj), ni, nj, dx, dy)
                         if (.not. mask(ni, nj) .or. lab(ni, nj) /= 0) cycle
                         lab(ni, nj) = npatch; ox(ni, nj) = dx; oy(ni, nj) = dy
                         tail = tail + 1; qi(tail) = ni; qj(tail) = nj
@@ -157,7 +165,6 @@ contains
         integer, intent(in) :: dir
         integer, allocatable :: lab(:, :), qi(:), qj(:), ox(:, :), oy(:, :)
         integer :: nx, ny, i, j, head, tail, ci, cj, k, ni, nj, dx, dy, ncomp
-        integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
         nx = size(mask, 1); ny = size(mask, 2)
         allocate (lab(nx, ny), qi(nx*ny), qj(nx*ny), ox(nx, ny), oy(nx, ny))
         lab = 0; ox = 0; oy = 0; ncomp = 0; yes = .false.
@@ -170,17 +177,7 @@ contains
                 do while (head <= tail)
                     ci = qi(head); cj = qj(head); head = head + 1
                     do k = 1, 4
-                        ni = ci + di(k); nj = cj + dj(k); dx = ox(ci, cj); dy = oy(ci, cj)
-                        if (ni < 1) then
-                            ni = nx; dx = dx - 1
-                        else if (ni > nx) then
-                            ni = 1; dx = dx + 1
-                        end if
-                        if (nj < 1) then
-                            nj = ny; dy = dy - 1
-                        else if (nj > ny) then
-                            nj = 1; dy = dy + 1
-                        end if
+                        call periodic_step(ci, cj, k, nx, ny, ox(ci, cj), oy(ci, cj), ni, nj, dx, dy)
                         if (.not. mask(ni, nj)) cycle
                         if (lab(ni, nj) /= 0) then
                             if ((dir == 1 .and. dx /= ox(ni, nj)) .or. (dir == 2 .and. dy /= oy(ni, nj))) then
