@@ -23,6 +23,7 @@ module veslide_hdf5
         generic :: writeattr => attr_text, attr_r0, attr_i0
         procedure, private :: attr_text, attr_r0, attr_i0
         procedure :: write_table => h5_write_table
+        procedure :: append_row => h5_append_row
         procedure :: flush => h5_flush
         procedure :: read_r2 => h5_read_r2
         procedure :: read_r0 => h5_read_r0
@@ -335,6 +336,51 @@ contains
         if (ierr /= 0) call fatal_error(error, "veslide:hdf5:write_table: cannot write "//name//" in "//self%path)
         call h5dclose_f(did, k); call h5pclose_f(lcpl, k); call h5sclose_f(sid, k); call h5tclose_f(tid, k)
     end subroutine h5_write_table
+
+    !> Append one row to a table of float64 columns (a 1-D compound dataset, extendible, created
+    !> on the first row); each row costs its own size, so a long study does not rewrite its table
+    subroutine h5_append_row(self, name, columns, row, error)
+        use, intrinsic :: iso_c_binding, only: c_loc
+        class(h5file_t), intent(inout) :: self
+        character(len=*), intent(in) :: name, columns(:)
+        real(dp), intent(in), target :: row(:)
+        type(error_t), allocatable, intent(out) :: error
+        integer(hid_t) :: tid, did, sid, msid, lcpl, dcpl
+        integer(hsize_t) :: dims(1), maxdims(1), start(1), cnt(1)
+        integer :: ierr, k, ie
+        call h5tcreate_f(H5T_COMPOUND_F, int(8*size(columns), size_t), tid, ierr)
+        do k = 1, size(columns)
+            call h5tinsert_f(tid, trim(columns(k)), int(8*(k - 1), size_t), H5T_NATIVE_DOUBLE, ierr)
+        end do
+        if (.not. self%exists(name)) then
+            dims = [0_hsize_t]; maxdims = [H5S_UNLIMITED_F]
+            call h5screate_simple_f(1, dims, sid, ierr, maxdims)
+            call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl, ierr)
+            call h5pset_chunk_f(dcpl, 1, [64_hsize_t], ierr)
+            call h5pcreate_f(H5P_LINK_CREATE_F, lcpl, ierr)
+            call h5pset_create_inter_group_f(lcpl, 1, ierr)
+            call h5dcreate_f(self%fid, name, tid, sid, did, ierr, dcpl_id=dcpl, lcpl_id=lcpl)
+            call h5pclose_f(dcpl, ie); call h5pclose_f(lcpl, ie); call h5sclose_f(sid, ie)
+        else
+            call h5dopen_f(self%fid, name, did, ierr)
+        end if
+        if (ierr /= 0) then
+            call h5tclose_f(tid, ie)
+            call fatal_error(error, "veslide:hdf5:append_row: cannot open "//name//" in "//self%path); return
+        end if
+        call h5dget_space_f(did, sid, ierr)
+        call h5sget_simple_extent_dims_f(sid, dims, maxdims, ierr)
+        call h5sclose_f(sid, ie)
+        start = dims; cnt = [1_hsize_t]
+        dims = dims + 1
+        call h5dset_extent_f(did, dims, ierr)
+        call h5dget_space_f(did, sid, ierr)
+        call h5sselect_hyperslab_f(sid, H5S_SELECT_SET_F, start, cnt, ierr)
+        call h5screate_simple_f(1, cnt, msid, ierr)
+        call h5dwrite_f(did, tid, c_loc(row), ierr, mem_space_id=msid, file_space_id=sid)
+        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:append_row: cannot write a row of "//name)
+        call h5sclose_f(msid, ie); call h5sclose_f(sid, ie); call h5dclose_f(did, ie); call h5tclose_f(tid, ie)
+    end subroutine h5_append_row
 
     !> Push what was written to disk (a reader of an unfinished sweep sees every finished case)
     subroutine h5_flush(self)

@@ -365,6 +365,19 @@ contains
             call add('patch_theta_rad', c%patches%theta, 'rad')
             call add('percolates_x', merge(1.0_dp, 0.0_dp, c%percolates_x), '-', .true.)
             call add('percolates_y', merge(1.0_dp, 0.0_dp, c%percolates_y), '-', .true.)
+            ! along and across v when v lies on a grid axis; -1 (undefined) otherwise
+            block
+                real(dp) :: along, across, d
+                d = modulo(cfg%velocity_direction_deg, 180.0_dp)
+                along = -1.0_dp; across = -1.0_dp
+                if (d < 1.0e-9_dp .or. d > 180.0_dp - 1.0e-9_dp) then
+                    along = merge(1.0_dp, 0.0_dp, c%percolates_x); across = merge(1.0_dp, 0.0_dp, c%percolates_y)
+                else if (abs(d - 90.0_dp) < 1.0e-9_dp) then
+                    along = merge(1.0_dp, 0.0_dp, c%percolates_y); across = merge(1.0_dp, 0.0_dp, c%percolates_x)
+                end if
+                call add('percolates_along_v', along, '-', .true.)
+                call add('percolates_across_v', across, '-', .true.)
+            end block
         end if
         names = names(1:nn); units = units(1:nn); values = values(1:nn); is_int = is_int(1:nn)
     contains

@@ -2,7 +2,7 @@
 !> pressures x speeds) in one run. Each surface is generated once, each speed's kernel built once
 !> and reused, and the solver is warm-started along the speed axis (speeds are visited in the
 !> order given). Every finished case is written at once under /cases/NNNNNN with its parameters,
-!> and /summary (one row per case, every scalar) is rewritten and flushed; with several seeds,
+!> and appended as a row of /summary (every parameter and scalar), then flushed; with several seeds,
 !> /ensemble holds the mean and standard error over seeds of every scalar.
 module veslide_sweep
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit
@@ -114,7 +114,7 @@ contains
                             table(1:nparam, k) = [real(k, dp), real(seeds(is), dp), eccs(ie), alphas(ia), &
                                                   pressures(ip), speeds(iv)]
                             table(nparam + 1:, k) = values(1:ncol - nparam)
-                            call f%write_table('/summary', columns, table(:, 1:k), error); if (allocated(error)) return
+                            call f%append_row('/summary', columns, table(:, k), error); if (allocated(error)) return
                             call f%flush()
                             if (.not. quiet_) call progress(k, ncase, t_start, wall_seconds() - t_case, &
                                                             seeds(is), eccs(ie), alphas(ia), pressures(ip), speeds(iv), c)
