@@ -445,10 +445,12 @@ contains
             fnorm = sqrt(rsq)
 
             ! safeguard: an accelerated step that made |f| grow is replaced by the plain step
-            if (accelerated .and. fnorm > aa_growth*fnorm_prev) then
-                z = zprev + fprev
-                mk = 0; accelerated = .false.; have_prev = .false.
-                cycle
+            if (accelerated) then          ! (nested: fnorm_prev may still be huge() otherwise)
+                if (fnorm > aa_growth*fnorm_prev) then
+                    z = zprev + fprev
+                    mk = 0; accelerated = .false.; have_prev = .false.
+                    cycle
+                end if
             end if
 
             if (max(rp, rg) <= inner_tol) then
