@@ -14,7 +14,7 @@
 !> max|K_d|, and report the estimate. One code path serves elastic and viscoelastic kernels.
 !> The q = 0 mode is set to zero: the mean displacement is the rigid-body approach of the solver.
 module veslide_kernel
-    use veslide_kinds, only: dp, two_pi, pi
+    use veslide_kinds, only: dp, two_pi
     use veslide_error, only: error_t, fatal_error
     use veslide_material, only: material_t
     implicit none
@@ -35,8 +35,6 @@ module veslide_kernel
         integer :: alias_zones = 0                   !! M of the last shell summed (0: none)
         real(dp) :: alias_error = 0.0_dp             !! estimated relative error of the alias sum
         real(dp) :: min_re = 0.0_dp                  !! min Re K_d over q /= 0 [m/Pa]
-    contains
-        procedure :: apply => kernel_apply_spectrum
     end type kernel_t
 
 contains
@@ -237,12 +235,5 @@ contains
 
     end subroutine build_kernel
 
-    !> Multiply a half-spectrum in place by the multiplier times `scale`
-    subroutine kernel_apply_spectrum(self, spec, scale)
-        class(kernel_t), intent(in) :: self
-        complex(dp), intent(inout) :: spec(:, :)
-        real(dp), intent(in) :: scale
-        spec = spec*(self%kd*scale)
-    end subroutine kernel_apply_spectrum
 
 end module veslide_kernel

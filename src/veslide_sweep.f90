@@ -27,12 +27,15 @@ contains
 
     !> Run the study of `cfg` into the (temporary) HDF5 file `path`; `nfail` counts cases that
     !> did not converge
-    subroutine run_sweep(cfg, path, nfail, error, quiet)
+    subroutine run_sweep(cfg, path, nfail, error, quiet, part)
         type(config_t), intent(inout) :: cfg
         character(len=*), intent(in) :: path
         integer, intent(out) :: nfail
         type(error_t), allocatable, intent(out) :: error
         logical, intent(in), optional :: quiet
+        !> [rank, nranks]: run only the speed chains (seed, eccentricity, angle, pressure) whose
+        !> index is rank modulo nranks; case numbers stay global (the batch driver uses it)
+        integer, intent(in), optional :: part(2)
         real(dp), allocatable :: speeds(:), alphas(:), eccs(:), pressures(:), table(:, :), values(:), p_prev(:, :)
         integer(i8), allocatable :: seeds(:)
         character(len=32), allocatable :: names(:), columns(:)
@@ -46,9 +49,9 @@ contains
         type(case_t) :: c
         real(dp), allocatable :: h(:, :)
         real(dp) :: t_start, t_case
-        integer :: is, ie, ia, ip, iv, ncase, k, ncol
+        integer :: is, ie, ia, ip, iv, ncase, k, ncol, chain, rank, nranks, ndone, nmine
         character(len=16) :: tag
-        logical :: quiet_
+        logical :: quiet_, have_surface
 
         quiet_ = .false.; if (present(quiet)) quiet_ = quiet
         nfail = 0
@@ -62,6 +65,14 @@ contains
             seeds = [cfg%seed]
         end if
         ncase = size(speeds)*size(alphas)*size(eccs)*size(pressures)*size(seeds)
+        rank = 0; nranks = 1
+        if (present(part)) then
+            rank = part(1); nranks = max(1, part(2))
+        end if
+        nmine = 0
+        do chain = 1, ncase/size(speeds)
+            if (modulo(chain - 1, nranks) == rank) nmine = nmine + size(speeds)
+        end do
 
         call build_material(cfg, mat, error); if (allocated(error)) return
         allocate (kernels(size(speeds)), kernel_seconds(size(speeds)))
@@ -75,16 +86,24 @@ contains
         if (allocated(error)) return
 
         t_start = wall_seconds()
-        k = 0
+        k = 0; chain = 0; ndone = 0
         do is = 1, size(seeds)
             do ie = 1, size(eccs)
                 do ia = 1, size(alphas)
                     cfg%seed = seeds(is); cfg%eccentricity = eccs(ie); cfg%alpha_deg = alphas(ia)
-                    call build_surface(cfg, fft, h, error); if (allocated(error)) return
+                    have_surface = .false.
                     do ip = 1, size(pressures)
                         cfg%mean_pressure_pa = pressures(ip)
+                        chain = chain + 1
+                        if (modulo(chain - 1, nranks) /= rank) then
+                            k = k + size(speeds); cycle
+                        end if
+                        if (.not. have_surface) then
+                            call build_surface(cfg, fft, h, error); if (allocated(error)) return
+                            have_surface = .true.
+                        end if
                         do iv = 1, size(speeds)
-                            k = k + 1
+                            k = k + 1; ndone = ndone + 1
                             cfg%speed_m_s = speeds(iv)
                             c%h = h; c%mat = mat; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
                             t_case = wall_seconds()
@@ -116,14 +135,14 @@ contains
                             table(nparam + 1:, k) = values(1:ncol - nparam)
                             call f%append_row('/summary', columns, table(:, k), error); if (allocated(error)) return
                             call f%flush()
-                            if (.not. quiet_) call progress(k, ncase, t_start, wall_seconds() - t_case, &
+                            if (.not. quiet_) call progress(ndone, nmine, t_start, wall_seconds() - t_case, &
                                                             seeds(is), eccs(ie), alphas(ia), pressures(ip), speeds(iv), c)
                         end do
                     end do
                 end do
             end do
         end do
-        if (size(seeds) > 1) call write_ensemble(f, columns, table, size(seeds), error)
+        if (size(seeds) > 1 .and. nranks == 1) call write_ensemble(f, columns, table, size(seeds), error)
         if (allocated(error)) return
         call f%close()
         call fft%destroy()
