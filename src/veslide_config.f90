@@ -50,6 +50,7 @@ module veslide_config
         integer :: n_theta = 72
         ! &sweep (lists; an empty list keeps the single value of its group)
         logical :: is_sweep = .false.
+        logical :: sweep_warm_start = .true.
         real(dp), allocatable :: sweep_speeds(:), sweep_alphas(:), sweep_eccs(:), sweep_pressures(:)
         integer(i8), allocatable :: sweep_seeds(:)
         ! &output
@@ -115,6 +116,7 @@ contains
         real(dp) :: speed_min_m_s, speed_max_m_s
         integer :: n_speeds, n_seeds
         integer(i8) :: seeds(max_prony)
+        logical :: warm_start
 
         namelist /grid/ nx, ny, lx_m, ly_m
         namelist /surface/ kind, seed, hurst, eccentricity, alpha_deg, k_low, k_roll, k_cut, rms_slope, &
@@ -128,7 +130,7 @@ contains
         namelist /output/ file, fields, overwrite
         namelist /analysis/ anisotropy, zeta1, zeta2, n_theta, iso_tol, patches
         namelist /sweep/ speeds_m_s, speed_min_m_s, speed_max_m_s, n_speeds, alphas_deg, eccentricities, &
-            pressures_pa, seeds, n_seeds
+            pressures_pa, seeds, n_seeds, warm_start
 
         cfg%path = path
         call read_text_file(path, cfg%text, error); if (allocated(error)) return
@@ -212,8 +214,10 @@ contains
         ! &sweep
         speeds_m_s = unset; alphas_deg = unset; eccentricities = unset; pressures_pa = unset
         seeds = -huge(1_i8); speed_min_m_s = 0; speed_max_m_s = 0; n_speeds = 0; n_seeds = 0
+        warm_start = cfg%sweep_warm_start
         rewind (u); read (u, nml=sweep, iostat=stat, iomsg=msg)
         if (bad_read('sweep')) return
+        cfg%sweep_warm_start = warm_start
         cfg%sweep_speeds = pack(speeds_m_s, speeds_m_s /= unset)
         cfg%sweep_alphas = pack(alphas_deg, alphas_deg /= unset)
         cfg%sweep_eccs = pack(eccentricities, eccentricities /= unset)

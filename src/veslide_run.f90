@@ -206,12 +206,12 @@ contains
 
     !> Solve a case whose heights, material and kernel are set, then derive its quantities;
     !> `p_init` warm-starts the solver (a speed sweep passes the previous speed's pressure)
-    subroutine solve_prepared(cfg, fft, c, error, p_init)
+    subroutine solve_prepared(cfg, fft, c, error, p_init, g_init)
         type(config_t), intent(in) :: cfg
         type(fft2d_t), intent(inout) :: fft
         type(case_t), intent(inout) :: c
         type(error_t), allocatable, intent(out) :: error
-        real(dp), intent(in), optional :: p_init(:, :)
+        real(dp), intent(in), optional :: p_init(:, :), g_init(:, :)
         type(solver_options_t) :: opts
         real(dp) :: t0
         c%lx_m = cfg%lx_m; c%ly_m = cfg%ly_m
@@ -224,7 +224,8 @@ contains
         opts%balance_ratio = cfg%balance_ratio
         opts%balance_factor = cfg%balance_factor
         t0 = wall_seconds()
-        call solve_contact(c%kernel, fft, c%h, cfg%mean_pressure_pa, opts, c%state, error, p_init=p_init)
+        call solve_contact(c%kernel, fft, c%h, cfg%mean_pressure_pa, opts, c%state, error, p_init=p_init, &
+                           g_init=g_init)
         if (allocated(error)) return
         c%solve_seconds = wall_seconds() - t0
         call tangential_force(c%kernel, fft, c%state%p, c%force_pa)

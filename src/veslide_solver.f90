@@ -93,7 +93,7 @@ contains
     end subroutine contact_residuals
 
     !> Solve the contact problem; `p_init` warm-starts from a previous pressure
-    subroutine solve_contact(kernel, fft, h, p_mean, opts, state, error, p_init)
+    subroutine solve_contact(kernel, fft, h, p_mean, opts, state, error, p_init, g_init)
         type(kernel_t), intent(in) :: kernel
         type(fft2d_t), intent(inout) :: fft
         !> rigid heights [m] (any mean)
@@ -104,6 +104,8 @@ contains
         type(contact_state_t), intent(out) :: state
         type(error_t), allocatable, intent(out) :: error
         real(dp), intent(in), optional :: p_init(:, :)
+        !> gap that goes with p_init [m] (the splitting method starts from both)
+        real(dp), intent(in), optional :: g_init(:, :)
         real(dp), allocatable :: hc(:, :)
         complex(dp), allocatable :: mult(:, :)
         integer :: nx, ny
@@ -149,7 +151,11 @@ contains
             call polonsky_keer(fft, mult, hc, p_mean, opts, state)
         case ('dr')
             state%method = 'dr'
-            call douglas_rachford(fft, kernel%kd, hc, p_mean, opts, state)
+            if (present(p_init) .and. present(g_init)) then
+                call douglas_rachford(fft, kernel%kd, hc, p_mean, opts, state, gap0=g_init)
+            else
+                call douglas_rachford(fft, kernel%kd, hc, p_mean, opts, state)
+            end if
         case default
             call fatal_error(error, "veslide:solver:solve_contact: unknown method '"//trim(method)//"'"); return
         end select

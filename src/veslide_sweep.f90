@@ -37,6 +37,7 @@ contains
         !> index is rank modulo nranks; case numbers stay global (the batch driver uses it)
         integer, intent(in), optional :: part(2)
         real(dp), allocatable :: speeds(:), alphas(:), eccs(:), pressures(:), table(:, :), values(:), p_prev(:, :)
+        real(dp), allocatable :: g_prev(:, :)
         integer(i8), allocatable :: seeds(:)
         character(len=32), allocatable :: names(:), columns(:)
         character(len=8), allocatable :: units(:)
@@ -107,13 +108,13 @@ contains
                             cfg%speed_m_s = speeds(iv)
                             c%h = h; c%mat = mat; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
                             t_case = wall_seconds()
-                            if (iv > 1) then
-                                call solve_prepared(cfg, fft, c, error, p_init=p_prev)
+                            if (iv > 1 .and. cfg%sweep_warm_start) then
+                                call solve_prepared(cfg, fft, c, error, p_init=p_prev, g_init=g_prev)
                             else
                                 call solve_prepared(cfg, fft, c, error)
                             end if
                             if (allocated(error)) return
-                            p_prev = c%state%p
+                            p_prev = c%state%p; g_prev = c%state%g
                             if (.not. c%state%converged) nfail = nfail + 1
                             write (tag, '("/cases/",i6.6)') k
                             call write_case_group(f, trim(tag), cfg, c, error); if (allocated(error)) return
