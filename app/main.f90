@@ -67,7 +67,7 @@ program veslide_main
             if (nfail > 0) then
                 write (stderr, '(a,i0,a)') "veslide: NOT CONVERGED in ", nfail, &
                     " case(s) (see /summary converged)"
-                error stop 2
+                stop 2, quiet=.true.   ! a controlled exit: the message is printed above
             end if
             stop
         end block
@@ -88,7 +88,7 @@ program veslide_main
         write (stderr, '(a,es9.2,a,es9.2,a,i0,a)') "veslide: NOT CONVERGED: residual ", c%state%residual, &
             " > tolerance ", cfg%tolerance, " after ", c%state%iterations, &
             " iterations (result written with /scalars/converged = 0)"
-        error stop 2
+        stop 2, quiet=.true.   ! a controlled exit: the message is printed above
     end if
 
 contains
@@ -104,7 +104,7 @@ contains
     subroutine die(message)
         character(len=*), intent(in) :: message
         write (stderr, '(a)') message
-        error stop 1
+        stop 1, quiet=.true.
     end subroutine die
 
     subroutine usage()

@@ -134,6 +134,7 @@ contains
 
         cfg%path = path
         call read_text_file(path, cfg%text, error); if (allocated(error)) return
+        call check_group_names(path, cfg%text, error); if (allocated(error)) return
         open (newunit=u, file=path, status='old', action='read', iostat=stat, iomsg=msg)
         if (stat /= 0) then
             call fatal_error(error, "veslide: cannot open '"//path//"': "//trim(msg)); return
@@ -284,6 +285,58 @@ contains
         end subroutine take_series
 
     end subroutine read_config
+
+    !> Every '&name' that opens a group must be one veslide reads (a misspelt group would be
+    !> skipped silently by the namelist reads); comments and quoted strings are ignored
+    subroutine check_group_names(path, text, error)
+        character(len=*), intent(in) :: path, text
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), parameter :: known(9) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
+                                                   'motion', 'solver', 'analysis', 'sweep', 'output']
+        character(len=1) :: quote
+        integer :: i, j
+        logical :: comment
+        quote = ' '; comment = .false.
+        i = 1
+        do while (i <= len(text))
+            if (text(i:i) == new_line('a')) then
+                comment = .false.
+            else if (comment) then
+                continue
+            else if (quote /= ' ') then
+                if (text(i:i) == quote) quote = ' '
+            else if (text(i:i) == '"' .or. text(i:i) == "'") then
+                quote = text(i:i)
+            else if (text(i:i) == '!') then
+                comment = .true.
+            else if (text(i:i) == '&') then
+                j = i + 1
+                do while (j <= len(text))
+                    if (index('abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_', text(j:j)) == 0) exit
+                    j = j + 1
+                end do
+                if (j > i + 1) then
+                    if (all(lower(text(i + 1:j - 1)) /= known) .and. lower(text(i + 1:j - 1)) /= 'end') then
+                        call fatal_error(error, "veslide: "//path//": unknown namelist group &"//text(i + 1:j - 1)// &
+                            " (known: &grid, &surface, &material, &load, &motion, &solver, &analysis, &sweep,"// &
+                            " &output)"); return
+                    end if
+                end if
+                i = j - 1
+            end if
+            i = i + 1
+        end do
+    contains
+        pure function lower(s) result(t)
+            character(len=*), intent(in) :: s
+            character(len=len(s)) :: t
+            integer :: k
+            t = s
+            do k = 1, len(s)
+                if (s(k:k) >= 'A' .and. s(k:k) <= 'Z') t(k:k) = achar(iachar(s(k:k)) + 32)
+            end do
+        end function lower
+    end subroutine check_group_names
 
     !> Range checks; messages name group, variable and allowed range
     subroutine check_config(cfg, error)

@@ -23,6 +23,7 @@ contains
             new_unittest("defaults-and-values", test_values), &
             new_unittest("out-of-range-names-group-variable-range", test_out_of_range), &
             new_unittest("unknown-variable", test_unknown_variable), &
+            new_unittest("misspelt-group", test_misspelt_group), &
             new_unittest("missing-input-file", test_missing_file), &
             new_unittest("bad-enumeration", test_bad_enum), &
             new_unittest("non-periodic-wave", test_nonperiodic_wave), &
@@ -115,6 +116,17 @@ contains
         type(error_t), allocatable, intent(out) :: error
         call expect_message('unknown', "&grid nx = 32, nz = 4 /", [character(len=16) :: "&grid", "nz"], error)
     end subroutine test_unknown_variable
+
+    subroutine test_misspelt_group(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        call expect_message('group', "&grid nx = 32 / &surfce kind = 'flat' /", &
+                            [character(len=24) :: "unknown namelist group", "&surfce"], error)
+        if (allocated(error)) return
+        ! an ampersand inside a comment or a string is not a group
+        call read_text('group2', "&grid nx = 32, ny = 32 / &surface k_cut = 8 / ! see &notes"//new_line('a')// &
+                       "&output file = 'a&b.h5' /", cfg, error)
+    end subroutine test_misspelt_group
 
     subroutine test_missing_file(error)
         type(error_t), allocatable, intent(out) :: error

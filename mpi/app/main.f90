@@ -54,7 +54,7 @@ program veslide_batch
         ".rank*.h5 written; join them with postproc/merge_ranks.py"
     if (rank == 0 .and. total > 0) write (stderr, '(a,i0,a)') "veslide-batch: NOT CONVERGED in ", total, " case(s)"
     call MPI_Finalize()
-    if (total > 0 .and. rank == 0) error stop 2
+    if (total > 0 .and. rank == 0) stop 2, quiet=.true.   ! a controlled exit: the message is printed above
 
 contains
 
@@ -62,7 +62,7 @@ contains
         character(len=*), intent(in) :: message
         write (stderr, '(a)') message
         call MPI_Abort(MPI_COMM_WORLD, 1)
-        error stop 1
+        stop 1, quiet=.true.
     end subroutine die
 
 end program veslide_batch
