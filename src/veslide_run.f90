@@ -77,7 +77,8 @@ contains
             q0 = 2.0_dp*pi/cfg%lx_m
             psd = psd_t(hurst=cfg%hurst, eccentricity=cfg%eccentricity, alpha_rad=cfg%alpha_deg*pi/180.0_dp, &
                         q_low=cfg%k_low*q0, q_roll=cfg%k_roll*q0, q_cut=cfg%k_cut*q0)
-            call random_surface(fft, cfg%lx_m, cfg%ly_m, psd, cfg%seed, cfg%rms_slope, cfg%rms_height_m, h, error, &
+            call random_surface(cfg%nx, cfg%ny, cfg%lx_m, cfg%ly_m, psd, cfg%seed, cfg%rms_slope, cfg%rms_height_m, &
+                                h, error, &
                                 realised=cfg%scale_to == 'realised')
             if (allocated(error)) error%message = "veslide: "//cfg%path//": &surface: "//error%message
         case ('cosine')

@@ -13,7 +13,7 @@ module veslide_surface
     use veslide_fftw, only: fft2d_t
     implicit none
     private
-    public :: psd_t, psd_value, random_surface, slope_tensor, rms_height, expected_slope_tensor
+    public :: psd_t, psd_value, random_surface, random_coefficients, slope_tensor, rms_height, expected_slope_tensor
     public :: cosine_surface, bisinusoid_surface, paraboloid_surface, cylinder_surface
 
     !> Elliptical self-affine power spectral density (appendix B, eq. B.6)
@@ -51,34 +51,22 @@ contains
         c = (tqq/s)**(-(psd%hurst + 1.0_dp))
     end function psd_value
 
-    !> Random surface with spectrum `psd`, scaled to rms slope (sqrt of the slope-tensor trace)
-    !> `rms_slope`, or to `rms_height` when rms_slope <= 0. `realised` (default .true.) scales
-    !> the realisation itself to the target; otherwise C0 is set from the expectation.
-    subroutine random_surface(fft, lx, ly, psd, seed, rms_slope, rms_height_target, h, error, realised)
-        type(fft2d_t), intent(inout) :: fft
+    !> Fourier coefficients a_q of a random surface with spectrum `psd` and unit C0 on the r2c
+    !> half-spectrum (nx/2+1, ny), so that h(x) = sum_q a_q exp(i q.x) over the full plane.
+    !> Each pair {q, -q} is drawn once, from (seed, signed wavenumber of the representative with
+    !> ki > 0, or ki = 0 and kj > 0); the ki = 0 column holds both members, conjugate. The q = 0
+    !> mode and Nyquist lines are zero. Also returns the expected variance and slope-tensor trace.
+    pure subroutine random_coefficients(nx, ny, lx, ly, psd, seed, ak, var_sum, slope_sum)
+        integer, intent(in) :: nx, ny
         real(dp), intent(in) :: lx, ly
         type(psd_t), intent(in) :: psd
         integer(i8), intent(in) :: seed
-        real(dp), intent(in) :: rms_slope, rms_height_target
-        real(dp), intent(out) :: h(:, :)
-        type(error_t), allocatable, intent(out) :: error
-        logical, intent(in), optional :: realised
-        integer :: nx, ny, i, j, ki, kj
-        real(dp) :: qx, qy, c, sig, z1, z2, var_sum, slope_sum, scale
-        logical :: realised_, nyq
-        complex(dp) :: aq
-
-        realised_ = .true.; if (present(realised)) realised_ = realised
-        nx = fft%nx; ny = fft%ny
-        if (.not. (psd%hurst > 0.0_dp .and. psd%hurst < 1.0_dp)) then
-            call fatal_error(error, "hurst must be in (0, 1)"); return
-        end if
-        if (.not. (psd%eccentricity > 0.0_dp .and. psd%eccentricity <= 1.0_dp)) then
-            call fatal_error(error, "eccentricity must be in (0, 1]"); return
-        end if
-        if (.not. (psd%q_low > 0.0_dp .and. psd%q_low <= psd%q_roll .and. psd%q_roll <= psd%q_cut)) then
-            call fatal_error(error, "wavevectors must satisfy 0 < q_low <= q_roll <= q_cut"); return
-        end if
+        complex(dp), intent(out) :: ak(:, :)
+        !> expected <h^2> and <|grad h|^2> of the spectrum on this grid
+        real(dp), intent(out) :: var_sum, slope_sum
+        integer :: i, j, ki, kj
+        real(dp) :: qx, qy, c, sig, z1, z2, wt
+        logical :: nyq
         var_sum = 0.0_dp; slope_sum = 0.0_dp
         do j = 1, ny
             kj = j - 1; if (kj > ny/2) kj = kj - ny
@@ -89,25 +77,55 @@ contains
                 qx = two_pi*ki/lx; qy = two_pi*kj/ly
                 c = psd_value(psd, qx, qy)
                 if (nyq .or. (ki == 0 .and. kj == 0) .or. c == 0.0_dp) then
-                    fft%k(i, j) = (0.0_dp, 0.0_dp); cycle
+                    ak(i, j) = (0.0_dp, 0.0_dp); cycle
                 end if
-                ! one draw per mode pair {q, -q}, keyed by the representative with ki > 0, or
-                ! ki == 0 and kj > 0; the other member is its conjugate
                 sig = sqrt(0.5_dp*two_pi**2/(lx*ly)*c)
                 if (ki > 0 .or. kj > 0) then
                     call normal_pair_at(seed, ki, kj, z1, z2)
-                    aq = sig*cmplx(z1, z2, dp)
+                    ak(i, j) = sig*cmplx(z1, z2, dp)
                 else
                     call normal_pair_at(seed, -ki, -kj, z1, z2)
-                    aq = sig*cmplx(z1, -z2, dp)
+                    ak(i, j) = sig*cmplx(z1, -z2, dp)
                 end if
-                fft%k(i, j) = aq
                 ! expected contributions, counting the conjugate partner of every stored
                 ! entry except the ki = 0 column (whose partner is stored itself)
-                var_sum = var_sum + merge(1.0_dp, 2.0_dp, ki == 0)*2.0_dp*sig**2
-                slope_sum = slope_sum + merge(1.0_dp, 2.0_dp, ki == 0)*2.0_dp*sig**2*(qx*qx + qy*qy)
+                wt = merge(1.0_dp, 2.0_dp, ki == 0)*2.0_dp*sig**2
+                var_sum = var_sum + wt
+                slope_sum = slope_sum + wt*(qx*qx + qy*qy)
             end do
         end do
+    end subroutine random_coefficients
+
+    !> Random surface with spectrum `psd`, scaled to rms slope (sqrt of the slope-tensor trace)
+    !> `rms_slope`, or to `rms_height` when rms_slope <= 0. `realised` (default .true.) scales
+    !> the realisation itself to the target; otherwise C0 is set from the expectation.
+    !> The one transform uses its own FFTW_ESTIMATE plan on one thread, so the heights are
+    !> bitwise the same on every run, whatever planner and thread count the solver uses.
+    subroutine random_surface(nx, ny, lx, ly, psd, seed, rms_slope, rms_height_target, h, error, realised)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: lx, ly
+        type(psd_t), intent(in) :: psd
+        integer(i8), intent(in) :: seed
+        real(dp), intent(in) :: rms_slope, rms_height_target
+        real(dp), intent(out) :: h(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: realised
+        type(fft2d_t) :: fft
+        real(dp) :: var_sum, slope_sum, scale, m(2, 2)
+        logical :: realised_
+
+        realised_ = .true.; if (present(realised)) realised_ = realised
+        if (.not. (psd%hurst > 0.0_dp .and. psd%hurst < 1.0_dp)) then
+            call fatal_error(error, "hurst must be in (0, 1)"); return
+        end if
+        if (.not. (psd%eccentricity > 0.0_dp .and. psd%eccentricity <= 1.0_dp)) then
+            call fatal_error(error, "eccentricity must be in (0, 1]"); return
+        end if
+        if (.not. (psd%q_low > 0.0_dp .and. psd%q_low <= psd%q_roll .and. psd%q_roll <= psd%q_cut)) then
+            call fatal_error(error, "wavevectors must satisfy 0 < q_low <= q_roll <= q_cut"); return
+        end if
+        call fft%init(nx, ny, error, planner='estimate', nthreads=1); if (allocated(error)) return
+        call random_coefficients(nx, ny, lx, ly, psd, seed, fft%k, var_sum, slope_sum)
         if (var_sum <= 0.0_dp) then
             call fatal_error(error, "the spectrum has no mode on this grid (check q_low, q_cut, nx, ny)"); return
         end if
@@ -117,11 +135,8 @@ contains
         h = h - sum(h)/size(h)
         if (realised_) then
             if (rms_slope > 0.0_dp) then
-                block
-                    real(dp) :: m(2, 2)
-                    call slope_tensor(fft, lx, ly, h, m)
-                    scale = rms_slope/sqrt(m(1, 1) + m(2, 2))
-                end block
+                call slope_tensor(fft, lx, ly, h, m)
+                scale = rms_slope/sqrt(m(1, 1) + m(2, 2))
             else
                 scale = rms_height_target/rms_height(h)
             end if
@@ -133,6 +148,7 @@ contains
             end if
         end if
         h = h*scale
+        call fft%destroy()
     end subroutine random_surface
 
     !> Expected slope tensor of the spectrum on this grid, for unit C0 (sum over modes of q q C)

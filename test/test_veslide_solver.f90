@@ -180,7 +180,7 @@ contains
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         psd = psd_t(hurst=0.8_dp, eccentricity=0.5_dp, alpha_rad=0.4_dp, q_low=two_pi, q_roll=two_pi, &
                     q_cut=two_pi*n/4)
-        call random_surface(fft, 1.0_dp, 1.0_dp, psd, seed_, 0.0_dp, 1.0e-3_dp, h, error)
+        call random_surface(size(h, 1), size(h, 2), 1.0_dp, 1.0_dp, psd, seed_, 0.0_dp, 1.0e-3_dp, h, error)
     end subroutine rough
 
     !> Rotating the surface by 90 degrees, or mirroring it, rotates/mirrors the solution

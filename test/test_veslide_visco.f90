@@ -68,7 +68,7 @@ contains
         psd = psd_t(hurst=0.8_dp, q_low=q0, q_roll=q0, q_cut=q0*n/4)
         if (present(eps)) psd%eccentricity = eps
         if (present(alpha)) psd%alpha_rad = alpha
-        call random_surface(fft, lcell, lcell, psd, 5_i8, 0.025_dp, 0.0_dp, h, error)
+        call random_surface(size(h, 1), size(h, 2), lcell, lcell, psd, 5_i8, 0.025_dp, 0.0_dp, h, error)
     end subroutine rough
 
     subroutine test_compliance(error)
