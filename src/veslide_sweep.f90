@@ -76,6 +76,10 @@ contains
         end do
 
         call build_material(cfg, mat, error); if (allocated(error)) return
+        ! a measured topography fixes the grid and the cell size, which the kernels need
+        if (cfg%surface_kind == 'file') then
+            call build_surface(cfg, fft, h, error); if (allocated(error)) return
+        end if
         allocate (kernels(size(speeds)), kernel_seconds(size(speeds)))
         do iv = 1, size(speeds)
             cfg%speed_m_s = speeds(iv)
@@ -99,7 +103,7 @@ contains
                         if (modulo(chain - 1, nranks) /= rank) then
                             k = k + size(speeds); cycle
                         end if
-                        if (.not. have_surface) then
+                        if (.not. have_surface .and. cfg%surface_kind /= 'file') then
                             call build_surface(cfg, fft, h, error); if (allocated(error)) return
                             have_surface = .true.
                         end if

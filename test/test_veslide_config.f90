@@ -35,7 +35,8 @@ contains
             new_unittest("output-unwritable", test_output_unwritable), &
             new_unittest("hdf5-contract", test_hdf5_contract), &
             new_unittest("version-matches-fpm-toml", test_version), &
-            new_unittest("sweep-cases-equal-single-runs", test_sweep) &
+            new_unittest("sweep-cases-equal-single-runs", test_sweep), &
+            new_unittest("sweep-over-height-file", test_sweep_file) &
             ]
     end subroutine collect_config
 
@@ -363,6 +364,44 @@ contains
         call f%close()
         open (newunit=u, file=out); close (u, status='delete')
     end subroutine test_sweep
+
+    !> A speed sweep over a measured topography takes its grid and cell size from the file
+    !> (&grid left unset), and its cases equal the single run of the same file
+    subroutine test_sweep_file(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg, one
+        type(case_t) :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out, h5, base
+        real(dp) :: h(16, 16), fric
+        integer :: nfail, u, i, j, rank
+        integer(8) :: dims(7)
+        logical :: is_double
+        out = unique_name('sweepfile.h5'); h5 = unique_name('sweepfile-heights.h5')
+        do j = 1, 16
+            do i = 1, 16
+                h(i, j) = 1.0e-6_dp*(cos(6.283185307179586_dp*i/16)*sin(6.283185307179586_dp*2*j/16) + &
+                                     0.5_dp*cos(6.283185307179586_dp*(3*i + j)/16))
+            end do
+        end do
+        call write_heights(h5, h, 4.0e-3_dp, error); if (allocated(error)) return
+        base = "&surface kind='file', file='"//h5//"' / &material model='one_term' / &solver fft_planner='estimate'"// &
+               ", tolerance = 1e-12 / &load mean_pressure_pa = 1e5 / &output fields = .false. /"
+        call read_text('sweepfile', base//" &sweep speeds_m_s = 0.001, 0.01 /", cfg, error); if (allocated(error)) return
+        call run_sweep(cfg, out, nfail, error, quiet=.true.); if (allocated(error)) return
+        call check(error, nfail, 0, "cases not converged"); if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        call f%shape_of('/summary', dims, rank, is_double)
+        call check(error, rank == 1 .and. dims(1) == 2, "summary rows"); if (allocated(error)) return
+        call f%read_r0('/cases/000002/scalars/friction_coefficient', fric, error); if (allocated(error)) return
+        call f%close()
+        call read_text('sweepfile-one', base//" &motion speed_m_s = 0.01 /", one, error); if (allocated(error)) return
+        call run_case(one, c, error); if (allocated(error)) return
+        call report("friction", fric)
+        call check(error, fric, -c%force_pa(1)/one%mean_pressure_pa, "sweep case vs single run", rel=1.0e-8_dp)
+        open (newunit=u, file=out); close (u, status='delete')
+        open (newunit=u, file=h5); close (u, status='delete')
+    end subroutine test_sweep_file
 
     subroutine read_params(f, name, par, error)
         type(h5file_t), intent(inout) :: f
