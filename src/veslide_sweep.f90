@@ -6,7 +6,7 @@
 !> /ensemble holds the mean and standard error over seeds of every scalar.
 module veslide_sweep
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit
-    use veslide_kinds, only: dp, i8
+    use veslide_kinds, only: dp, i8, pi
     use veslide_error, only: error_t
     use veslide_config, only: config_t
     use veslide_fftw, only: fft2d_t
@@ -17,7 +17,7 @@ module veslide_sweep
                            case_scalars, write_provenance, write_case_group, wall_seconds
     implicit none
     private
-    public :: run_sweep
+    public :: run_sweep, seed_statistics
 
     integer, parameter :: nparam = 6
     character(len=32), parameter :: param_names(nparam) = [character(len=32) :: 'case', 'seed', 'eccentricity', &
@@ -210,11 +210,42 @@ contains
             e(1:4, r) = table(3:6, r)
             do j = 1, nv
                 x = table(nparam + j, [(r + (kk - 1)*m, kk = 1, nseed)])
-                e(4 + j, r) = sum(x)/nseed
-                e(4 + nv + j, r) = sqrt(sum((x - e(4 + j, r))**2)/max(1, nseed - 1))/sqrt(real(nseed, dp))
+                call seed_statistics(x, axial_kind(columns(nparam + j)), e(4 + j, r), e(4 + nv + j, r))
             end do
         end do
         call f%write_table('/ensemble', ecols, e, error)
     end subroutine write_ensemble
+
+    !> Directions of axes, defined modulo pi: 1 for angles in [0, pi) (theta of a tensor, patch
+    !> axes), 2 for angles in (-pi/2, pi/2] (phi of eq. 16), 0 for ordinary quantities
+    pure integer function axial_kind(name) result(kind)
+        character(len=*), intent(in) :: name
+        kind = 0
+        if (any(trim(name) == [character(len=16) :: 'theta_s_rad', 'theta_d_rad', 'patch_theta_rad'])) kind = 1
+        if (trim(name) == 'phi_rad') kind = 2
+    end function axial_kind
+
+    !> Mean and standard error of the mean over seeds. Axial data (angles modulo pi, `axial` 1 or
+    !> 2 as in axial_kind) use the circular mean of the doubled angle, atan2(<sin 2x>, <cos 2x>)/2,
+    !> in the range of the quantity, and deviations wrapped into (-pi/2, pi/2]: an axis scattering
+    !> about 0 = pi averages to 0, not to pi/2.
+    pure subroutine seed_statistics(x, axial, mean, sem)
+        real(dp), intent(in) :: x(:)
+        integer, intent(in) :: axial
+        real(dp), intent(out) :: mean, sem
+        real(dp) :: d(size(x))
+        integer :: n
+        n = size(x)
+        if (axial > 0) then
+            mean = 0.5_dp*atan2(sum(sin(2*x)), sum(cos(2*x)))      ! in (-pi/2, pi/2]
+            if (axial == 1) mean = modulo(mean, pi)
+            d = x - mean
+            d = d - pi*anint(d/pi)
+        else
+            mean = sum(x)/n
+            d = x - mean
+        end if
+        sem = sqrt(sum(d**2)/max(1, n - 1))/sqrt(real(n, dp))
+    end subroutine seed_statistics
 
 end module veslide_sweep

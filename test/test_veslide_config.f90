@@ -8,7 +8,7 @@ module test_veslide_config
     use veslide_hdf5, only: h5file_t
     use veslide_run, only: case_t, build_surface, run_case, write_case, prepare_output, commit_output
     use veslide_version, only: veslide_version_number
-    use veslide_sweep, only: run_sweep
+    use veslide_sweep, only: run_sweep, seed_statistics
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: unique_name, write_text
     implicit none
@@ -36,7 +36,8 @@ contains
             new_unittest("hdf5-contract", test_hdf5_contract), &
             new_unittest("version-matches-fpm-toml", test_version), &
             new_unittest("sweep-cases-equal-single-runs", test_sweep), &
-            new_unittest("sweep-over-height-file", test_sweep_file) &
+            new_unittest("sweep-over-height-file", test_sweep_file), &
+            new_unittest("seed-statistics-axial", test_seed_statistics) &
             ]
     end subroutine collect_config
 
@@ -402,6 +403,28 @@ contains
         open (newunit=u, file=out); close (u, status='delete')
         open (newunit=u, file=h5); close (u, status='delete')
     end subroutine test_sweep_file
+
+    !> Ensemble statistics: arithmetic for ordinary quantities, circular (modulo pi) for axes
+    subroutine test_seed_statistics(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: pi = acos(-1.0_dp)
+        real(dp) :: m, s
+        call seed_statistics([1.0_dp, 2.0_dp, 3.0_dp, 6.0_dp], 0, m, s)
+        call check(error, m, 3.0_dp, "mean", rel=1.0e-15_dp); if (allocated(error)) return
+        call check(error, s, sqrt(14.0_dp/3.0_dp)/2.0_dp, "standard error", rel=1.0e-15_dp); if (allocated(error)) return
+        ! theta in [0, pi): samples at 0.02, pi - 0.04, 0.05 average to an axis near 0.01, not pi/2
+        call seed_statistics([0.02_dp, pi - 0.04_dp, 0.05_dp], 1, m, s)
+        call check(error, m, 0.01_dp, "axial mean across 0 = pi", abs=1.0e-4_dp); if (allocated(error)) return
+        call check(error, s, sqrt((0.01_dp**2 + 0.05_dp**2 + 0.04_dp**2)/2)/sqrt(3.0_dp), "axial standard error", &
+                   rel=1.0e-3_dp)
+        if (allocated(error)) return
+        ! an axis across 0 from below: the mean stays in [0, pi)
+        call seed_statistics([pi - 0.02_dp, pi - 0.04_dp, 0.0_dp], 1, m, s)
+        call check(error, m, pi - 0.02_dp, "axial mean in [0, pi)", abs=1.0e-4_dp); if (allocated(error)) return
+        ! phi in (-pi/2, pi/2]: samples about pi/2 = -pi/2
+        call seed_statistics([pi/2 - 0.01_dp, -pi/2 + 0.03_dp], 2, m, s)
+        call check(error, abs(abs(m) - (pi/2 - 0.01_dp)) < 1.0e-4_dp .and. s < 0.03_dp, "phi across +-pi/2")
+    end subroutine test_seed_statistics
 
     subroutine read_params(f, name, par, error)
         type(h5file_t), intent(inout) :: f
