@@ -1,15 +1,15 @@
 !> veslide FILE.nml [--output PATH] [--overwrite] [--quiet]
-!> Runs the case a namelist describes and writes its HDF5 result; see README.md.
+!> Runs the case or the study a namelist describes and writes its HDF5 result; see README.md.
 program veslide_main
     use, intrinsic :: iso_fortran_env, only: stderr => error_unit, stdout => output_unit
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_config, only: config_t, read_config
-    use veslide_run, only: case_t, run_case, write_case, prepare_output, commit_output, discard_output
-    use veslide_analysis, only: contact_area_fraction, mean_separation
-    use veslide_surface, only: rms_height
+    use veslide_output, only: prepare_output, commit_output, discard_output
+    use veslide_quantities, only: results_t
+    use veslide_case, only: case_t, run_case, write_case, case_results
+    use veslide_study, only: run_study, study_progress_t
     use veslide_version, only: version_string
-    use veslide_sweep, only: run_sweep
     implicit none
     type(config_t) :: cfg
     type(case_t) :: c
@@ -49,21 +49,25 @@ program veslide_main
 
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
-    if (len(output) > 0) cfg%output_file = output
-    if (overwrite) cfg%overwrite = .true.
-    call prepare_output(cfg%output_file, cfg%overwrite, tmp, error)
+    if (len(output) > 0) cfg%output%file = output
+    if (overwrite) cfg%output%overwrite = .true.
+    call prepare_output(cfg%output%file, cfg%output%overwrite, tmp, error)
     if (allocated(error)) call die(error%message)
 
-    if (cfg%is_sweep) then
+    if (cfg%sweep%is_study()) then
         block
             integer :: nfail
-            call run_sweep(cfg, tmp, nfail, error, quiet=quiet)
+            if (quiet) then
+                call run_study(cfg, tmp, nfail, error)
+            else
+                call run_study(cfg, tmp, nfail, error, progress=print_progress)
+            end if
             if (allocated(error)) then
                 call discard_output(tmp); call die(error%message)
             end if
-            call commit_output(tmp, cfg%output_file, error)
+            call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
             if (allocated(error)) call die(error%message)
-            if (.not. quiet) write (stdout, '(a)') "veslide: study written to "//cfg%output_file
+            if (.not. quiet) write (stdout, '(a)') "veslide: study written to "//cfg%output%file
             if (nfail > 0) then
                 write (stderr, '(a,i0,a)') "veslide: NOT CONVERGED in ", nfail, &
                     " case(s) (see /summary converged)"
@@ -73,12 +77,14 @@ program veslide_main
         end block
     end if
     call run_case(cfg, c, error)
-    if (allocated(error)) call die(error%message)
+    if (allocated(error)) then
+        call discard_output(tmp); call die(error%message)
+    end if
     call write_case(tmp, cfg, c, error)
     if (allocated(error)) then
         call discard_output(tmp); call die(error%message)
     end if
-    call commit_output(tmp, cfg%output_file, error)
+    call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
     if (allocated(error)) then
         call discard_output(tmp); call die(error%message)
     end if
@@ -86,7 +92,7 @@ program veslide_main
     if (.not. quiet) call summary()
     if (.not. c%state%converged) then
         write (stderr, '(a,es9.2,a,es9.2,a,i0,a)') "veslide: NOT CONVERGED: residual ", c%state%residual, &
-            " > tolerance ", cfg%tolerance, " after ", c%state%iterations, &
+            " > tolerance ", cfg%solver%tolerance, " after ", c%state%iterations, &
             " iterations (result written with /scalars/converged = 0)"
         stop 2, quiet=.true.   ! a controlled exit: the message is printed above
     end if
@@ -109,30 +115,47 @@ contains
 
     subroutine usage()
         write (stdout, '(a)') "usage: veslide FILE.nml [--output PATH] [--overwrite] [--quiet]", &
-            "  Solves the steady sliding contact the namelist describes and writes an HDF5 file", &
-            "  (default &output file). Exit status: 0 converged, 1 bad input or I/O error,", &
+            "  Solves the steady sliding contact (or the &sweep study) the namelist describes and writes", &
+            "  an HDF5 file (default &output file). Exit status: 0 converged, 1 bad input or I/O error,", &
             "  2 solved but not converged (the file is written, /scalars/converged = 0)."
     end subroutine usage
 
+    !> One line per finished case of a study, with the time left at the mean pace so far
+    subroutine print_progress(info)
+        type(study_progress_t), intent(in) :: info
+        write (stdout, '("case ",i0,"/",i0,": seed ",i0,", eps ",f5.3,", alpha ",f6.1," deg, p ",es9.3, &
+            &" Pa, v ",es9.3," m/s: area ",f8.5,", f ",es10.3,", ",i0," FFT pairs",a,", ",f7.2," s; elapsed ",f8.1, &
+            &" s, left ~",f8.1," s")') info%done, info%total, info%seed, info%eccentricity, info%alpha_deg, &
+            info%pressure_pa, info%speed_m_s, info%contact_area_fraction, info%friction_coefficient, &
+            info%operator_applications, trim(merge('               ', ', NOT CONVERGED', info%converged)), &
+            info%case_s, info%elapsed_s, info%elapsed_s/info%done*(info%total - info%done)
+        flush (stdout)
+    end subroutine print_progress
+
+    !> The run summary, read from the case's results list
     subroutine summary()
-        write (stdout, '(a)') "veslide "//version_string()//": "//cfg%path//" -> "//cfg%output_file
-        write (stdout, '(a,i0,a,i0,a,a,a,a,a,a)') "  grid ", size(c%h, 1), " x ", size(c%h, 2), &
-            ", surface ", trim(cfg%surface_kind), ", material ", trim(cfg%model), ", kernel ", trim(cfg%kernel)
-        write (stdout, '(a,es12.5,a)') "  rms height            ", rms_height(c%h), " m"
-        write (stdout, '(a,es12.5,a)') "  nominal pressure      ", cfg%mean_pressure_pa, " Pa"
-        write (stdout, '(a,f12.8)') "  contact area fraction ", contact_area_fraction(c%state%p)
-        write (stdout, '(a,es12.5,a,f9.5,a)') "  mean separation       ", mean_separation(c%state%g), " m (", &
-            mean_separation(c%state%g)/max(rms_height(c%h), tiny(1.0_dp)), " h_rms)"
-        write (stdout, '(a,es12.5,a)') "  max pressure          ", maxval(c%state%p), " Pa"
-        if (norm2(c%velocity_m_s) > 0.0_dp .and. .not. c%kernel%symmetric) then
-            write (stdout, '(a,es12.5)') "  friction coefficient  ", &
-                -dot_product(c%force_pa, c%velocity_m_s)/norm2(c%velocity_m_s)/cfg%mean_pressure_pa
+        type(results_t) :: r
+        real(dp) :: hrms
+        call case_results(cfg, c, r)
+        hrms = r%get('rms_height_m')
+        write (stdout, '(a)') "veslide "//version_string()//": "//cfg%path//" -> "//cfg%output%file
+        write (stdout, '(a,i0,a,i0,a,a,a,a,a,a)') "  grid ", c%grid%nx, " x ", c%grid%ny, &
+            ", surface ", cfg%surface%kind, ", material ", cfg%material%model, ", kernel ", cfg%solver%kernel
+        write (stdout, '(a,es12.5,a)') "  rms height            ", hrms, " m"
+        write (stdout, '(a,es12.5,a)') "  nominal pressure      ", r%get('mean_pressure_pa'), " Pa"
+        write (stdout, '(a,f12.8)') "  contact area fraction ", r%get('contact_area_fraction')
+        write (stdout, '(a,es12.5,a,f9.5,a)') "  mean separation       ", r%get('mean_separation_m'), " m (", &
+            r%get('mean_separation_m')/max(hrms, tiny(1.0_dp)), " h_rms)"
+        write (stdout, '(a,es12.5,a)') "  max pressure          ", r%get('max_pressure_pa'), " Pa"
+        if (.not. c%kernel%symmetric) then
+            write (stdout, '(a,es12.5)') "  friction coefficient  ", r%get('friction_coefficient')
+            write (stdout, '(a,es12.5)') "  lateral force ratio   ", r%get('lateral_force_ratio')
         end if
         write (stdout, '(a,a,a,i0,a,i0,a,es9.2,a,l1)') "  solver ", c%state%method, ": ", c%state%iterations, &
             " iterations, ", c%state%operator_applications, " FFT pairs, residual ", c%state%residual, &
             ", converged ", c%state%converged
-        write (stdout, '(a,f8.3,a,f8.3,a,f8.3,a)') "  time: surface ", c%surface_seconds, " s, kernel ", &
-            c%kernel_seconds, " s, solve ", c%solve_seconds, " s"
+        write (stdout, '(a,f8.3,a,f8.3,a,f8.3,a)') "  time: surface ", r%get('surface_seconds'), " s, kernel ", &
+            r%get('kernel_seconds'), " s, solve ", r%get('solve_seconds'), " s"
     end subroutine summary
 
 end program veslide_main

@@ -5,15 +5,20 @@
 !>   veslide-bench kernels          Westergaard errors of every kernel variant under refinement
 program veslide_bench
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit
-    use veslide_kinds, only: dp, i8, pi
+    use veslide_kinds, only: dp, pi
     use veslide_error, only: error_t
-    use veslide_config, only: config_t
+    use veslide_config, only: config_t, default_config, complete_config
+    use veslide_clock, only: now => wall_seconds
+    use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
-    use veslide_run, only: case_t, run_case, write_case, prepare_output, commit_output, now => wall_seconds
+    use veslide_case, only: case_t, run_case, write_case
+    use veslide_output, only: prepare_output, commit_output
     use veslide_material, only: material_t, new_elastic
-    use veslide_kernel, only: kernel_t, build_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION, &
+    use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION, &
                               KERNEL_COLLOCATION_ALIAS, KERNEL_GALERKIN
-    use veslide_solver, only: solver_options_t, contact_state_t, solve_contact
+    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
+    use veslide_solver_options, only: solver_options_t
+    use veslide_solver, only: solve_contact
     use veslide_surface, only: cosine_surface
     use veslide_analysis, only: contact_area_fraction, mean_separation
     use veslide_scenes, only: hard_case_count, hard_case
@@ -135,26 +140,25 @@ contains
         do k = 1, size(sizes)
             tpair = fft_pair_seconds(sizes(k), threads)
             write (buf, '(i0)') sizes(k)
-            cfg%path = 'bench'; cfg%text = ''
-            cfg%nx = sizes(k); cfg%ny = sizes(k); cfg%lx_m = 0.01_dp; cfg%ly_m = 0.01_dp
-            cfg%model = 'elastic'; cfg%young_pa = 1.0e7_dp; cfg%poisson = 0.5_dp
-            cfg%tolerance = 1.0e-10_dp
-            cfg%threads = threads
-            cfg%output_file = 'results/bench-solver-'//trim(buf)//'.h5'; cfg%overwrite = .true.
-            allocate (character(len=0) :: cfg%height_file, cfg%height_dataset)
+            call default_config(cfg, 'bench')
+            cfg%grid%nx = sizes(k); cfg%grid%ny = sizes(k); cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp
+            cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e7_dp; cfg%material%poisson = 0.5_dp
+            cfg%solver%tolerance = 1.0e-10_dp
+            cfg%solver%threads = threads
+            cfg%output%file = 'results/bench-solver-'//trim(buf)//'.h5'; cfg%output%overwrite = .true.
+            call complete_config(cfg, error); call check(error)
             do r = 1, size(t)
                 call run_case(cfg, c, error); call check(error)
                 t(r) = c%solve_seconds
             end do
             c%solve_seconds = median(t)
-            call prepare_output(cfg%output_file, .true., tmp, error); call check(error)
+            call prepare_output(cfg%output%file, .true., tmp, error); call check(error)
             call write_case(tmp, cfg, c, error); call check(error)
-            call commit_output(tmp, cfg%output_file, error); call check(error)
+            call commit_output(tmp, cfg%output%file, .true., error); call check(error)
             write (stdout, '("| ",i0," | ",f8.3," | ",f8.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f8.5," | ",f8.5," |")') &
                 sizes(k), 1e3*tpair, median(t), c%state%iterations, c%state%operator_applications, &
                 1e3*median(t)/c%state%iterations, median(t)/c%state%iterations/tpair, &
                 contact_area_fraction(c%state%p), mean_separation(c%state%g)/sqrt(sum(c%h**2)/size(c%h))
-            deallocate (cfg%height_file, cfg%height_dataset)
         end do
     end subroutine bench_solver
 
@@ -167,8 +171,10 @@ contains
                                              KERNEL_GALERKIN]
         type(material_t) :: mat
         type(kernel_t) :: ker
+        type(grid_t) :: grid
         type(fft2d_t) :: fft
         type(solver_options_t) :: opts
+        type(contact_problem_t) :: problem
         type(contact_state_t) :: s
         type(error_t), allocatable :: error
         real(dp), allocatable :: h(:, :)
@@ -187,12 +193,14 @@ contains
             n = 64
             do while (n <= 4096)
                 allocate (h(n, 1))
-                call cosine_surface(n, 1, l, l, h0, l, 0.0_dp, h)
+                call new_grid(grid, n, 1, l, l, error); call check(error)
+                call cosine_surface(grid, h0, l, 0.0_dp, h)
                 call fft%init(n, 1, error, planner='estimate'); call check(error)
-                call build_kernel(ker, n, 1, l, l, mat, [0.0_dp, 0.0_dp], variants(v), error, alias_tol=1.0e-10_dp, &
-                                  alias_max=1024)
+                call new_kernel(ker, grid, mat, [0.0_dp, 0.0_dp], variants(v), error, alias_tol=1.0e-10_dp, &
+                                alias_max=1024)
                 call check(error)
-                call solve_contact(ker, fft, h, p, opts, s, error); call check(error)
+                call new_contact_problem(problem, ker, h, p, error); call check(error)
+                call solve_contact(problem, fft, opts, s, error); call check(error)
                 write (stdout, '("| ",a," | ",i0," | ",f7.3," | ",es9.2," | ",es9.2," | ",i0," | ",es9.2," |")') &
                     trim(names(v)), n, (contact_area_fraction(s%p) - w_exact)*n, maxval(s%p)/peak_exact - 1, &
                     mean_separation(s%g)/gap_exact - 1, ker%alias_zones, ker%alias_error
@@ -216,11 +224,11 @@ contains
             " area | friction |"
         write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|"
         do k = 1, hard_case_count()
-            call hard_case(k, n, cfg, name)
-            if (am >= 0) cfg%anderson_memory = am
-            if (be > 0) cfg%balance_every = be
-            if (br > 0) cfg%balance_ratio = br
-            if (bf > 0) cfg%balance_factor = bf
+            call hard_case(k, n, cfg, name, error); call check(error)
+            if (am >= 0) cfg%solver%anderson_memory = am
+            if (be > 0) cfg%solver%balance_every = be
+            if (br > 0) cfg%solver%balance_ratio = br
+            if (bf > 0) cfg%solver%balance_factor = bf
             call run_case(cfg, c, error)
             if (allocated(error)) then
                 write (stdout, '("| ",i0," | ",a," | error: ",a," |")') k, name, error%message
@@ -229,7 +237,7 @@ contains
             write (stdout, '("| ",i0," | ",a," | ",a," | ",l1," | ",es8.1," | ",i0," | ",i0," | ",f8.2," | ",f8.5, &
                 &" | ",es10.3," |")') k, name, c%state%method, c%state%converged, c%state%residual, &
                 c%state%iterations, c%state%operator_applications, c%solve_seconds, &
-                contact_area_fraction(c%state%p), 0.0_dp - c%force_pa(1)/cfg%mean_pressure_pa
+                contact_area_fraction(c%state%p), 0.0_dp - c%force_pa(1)/cfg%load%mean_pressure_pa
         end do
     end subroutine bench_hard
 
@@ -253,7 +261,7 @@ contains
         call paper_like(256, 'spectral', 1.0e-13_dp, cfg)
         call run_case(cfg, ref, error); call check(error)
         a0 = contact_area_fraction(ref%state%p); s0 = mean_separation(ref%state%g)
-        f0 = -ref%force_pa(1)/cfg%mean_pressure_pa
+        f0 = -ref%force_pa(1)/cfg%load%mean_pressure_pa
         write (stdout, '(a)') "tolerance study, 256^2, reference tolerance 1e-13"
         write (stdout, '(a)') "| tolerance | solve [s] | FFT pairs | area rel. error | separation rel. error |"// &
             " friction rel. error |"
@@ -299,7 +307,7 @@ contains
         type(config_t), intent(in) :: cfg
         real(dp), intent(out) :: a, s, f, fs
         a = contact_area_fraction(c%state%p); s = mean_separation(c%state%g)
-        f = -c%force_pa(1)/cfg%mean_pressure_pa; fs = -c%slope_force_pa(1)/cfg%mean_pressure_pa
+        f = -c%force_pa(1)/cfg%load%mean_pressure_pa; fs = -c%slope_force_pa(1)/cfg%load%mean_pressure_pa
     end subroutine measures
 
     subroutine paper_like(n, kernel, tol, cfg)
@@ -307,13 +315,15 @@ contains
         character(len=*), intent(in) :: kernel
         real(dp), intent(in) :: tol
         type(config_t), intent(out) :: cfg
-        cfg%path = 'bench'; cfg%text = ''
-        cfg%nx = n; cfg%ny = n; cfg%lx_m = 0.01_dp; cfg%ly_m = 0.01_dp; cfg%k_cut = 32.0_dp
-        cfg%model = 'one_term'; cfg%einf_pa = 1.0e8_dp; cfg%ratio = 11.0_dp; cfg%tau_s = 0.01_dp
-        cfg%speed_m_s = 0.13_dp; cfg%tolerance = tol; cfg%kernel = kernel; cfg%alias_tol = 1.0e-6_dp
-        cfg%threads = 1; cfg%write_fields = .false.; cfg%output_file = 'x.h5'
-        allocate (character(len=0) :: cfg%height_file, cfg%height_dataset)
-        allocate (cfg%prony_coef(0), cfg%prony_time_s(0))
+        type(error_t), allocatable :: error
+        call default_config(cfg, 'bench')
+        cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp; cfg%surface%k_cut = 32.0_dp
+        cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+        cfg%material%tau_s = 0.01_dp
+        cfg%motion%speed_m_s = 0.13_dp; cfg%solver%tolerance = tol; cfg%solver%kernel = kernel
+        cfg%solver%alias_tol = 1.0e-6_dp
+        cfg%solver%threads = 1; cfg%output%fields = .false.; cfg%output%file = 'x.h5'
+        call complete_config(cfg, error); call check(error)
     end subroutine paper_like
 
 end program veslide_bench

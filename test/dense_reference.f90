@@ -11,6 +11,7 @@ module dense_reference
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
     use veslide_fftw, only: fft2d_t
+    use veslide_kernel, only: kernel_t
     use veslide_lapack, only: dgesv
     implicit none
     private
@@ -19,23 +20,21 @@ module dense_reference
 contains
 
     !> Column j of A is K applied to a unit pressure in cell j (column-major cell order)
-    subroutine influence_matrix(kd, nx, ny, a, error)
-        complex(dp), intent(in) :: kd(:, :)
-        integer, intent(in) :: nx, ny
+    subroutine influence_matrix(kernel, a, error)
+        type(kernel_t), intent(in) :: kernel
         real(dp), allocatable, intent(out) :: a(:, :)
         type(error_t), allocatable, intent(out) :: error
         type(fft2d_t) :: fft
-        integer :: j, n
-        n = nx*ny
+        real(dp), allocatable :: e(:, :), col(:, :)
+        integer :: j, n, nx, ny
+        nx = kernel%grid%nx; ny = kernel%grid%ny; n = nx*ny
         call fft%init(nx, ny, error, planner='estimate'); if (allocated(error)) return
-        allocate (a(n, n))
+        allocate (a(n, n), e(nx, ny), col(nx, ny))
         do j = 1, n
-            fft%x = 0.0_dp
-            fft%x(mod(j - 1, nx) + 1, (j - 1)/nx + 1) = 1.0_dp
-            call fft%forward()
-            fft%k = fft%k*kd
-            call fft%backward()
-            a(:, j) = reshape(fft%x, [n])
+            e = 0.0_dp
+            e(mod(j - 1, nx) + 1, (j - 1)/nx + 1) = 1.0_dp
+            call kernel%apply(fft, e, col)
+            a(:, j) = reshape(col, [n])
         end do
     end subroutine influence_matrix
 

@@ -1,14 +1,29 @@
 !> Runs all test suites, or one suite, or one test: `fpm test -- [suite [test]]`.
 !> Ends with the line "N passed, N failed"; exits non-zero when anything failed.
+!> One suite per library module (config groups included), in the order of the layers.
 program veslide_tests
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit, stderr => error_unit
     use testsuite, only: testsuite_t, new_testsuite, run_testsuite
-    use test_veslide_solver, only: collect_solver
+    use test_veslide_rng, only: collect_rng
+    use test_veslide_grid, only: collect_grid, collect_fftw
+    use test_veslide_material, only: collect_material
+    use test_veslide_kernel, only: collect_kernel
     use test_veslide_surface, only: collect_surface
-    use test_veslide_config, only: collect_config
-    use test_veslide_visco, only: collect_visco
-    use test_veslide_hard, only: collect_hard
+    use test_veslide_contact, only: collect_contact, collect_quantities, collect_analysis
+    use test_veslide_anderson, only: collect_anderson
+    use test_veslide_solver_pk, only: collect_solver_pk
+    use test_veslide_solver_dr, only: collect_solver_dr
     use test_veslide_anisotropy, only: collect_anisotropy
+    use test_veslide_hdf5, only: collect_hdf5
+    use test_veslide_config, only: collect_config, collect_config_grid, collect_config_surface, &
+                                   collect_config_material, collect_config_load, collect_config_motion, &
+                                   collect_config_solver, collect_config_analysis, collect_config_sweep, &
+                                   collect_config_output
+    use test_veslide_topography, only: collect_topography
+    use test_veslide_output, only: collect_output
+    use test_veslide_case, only: collect_case
+    use test_veslide_study, only: collect_study
+    use test_veslide_hard, only: collect_hard
     use test_veslide_postproc, only: collect_postproc
     implicit none
     type(testsuite_t), allocatable :: suites(:)
@@ -16,11 +31,34 @@ program veslide_tests
     integer :: i, npass, nfail, nrun
 
     suites = [ &
-        new_testsuite("config", collect_config), &
+        new_testsuite("rng", collect_rng), &
+        new_testsuite("grid", collect_grid), &
+        new_testsuite("fftw", collect_fftw), &
+        new_testsuite("material", collect_material), &
+        new_testsuite("kernel", collect_kernel), &
         new_testsuite("surface", collect_surface), &
-        new_testsuite("solver", collect_solver), &
-        new_testsuite("visco", collect_visco), &
+        new_testsuite("contact", collect_contact), &
+        new_testsuite("anderson", collect_anderson), &
+        new_testsuite("solver-pk", collect_solver_pk), &
+        new_testsuite("solver-dr", collect_solver_dr), &
+        new_testsuite("analysis", collect_analysis), &
         new_testsuite("anisotropy", collect_anisotropy), &
+        new_testsuite("quantities", collect_quantities), &
+        new_testsuite("hdf5", collect_hdf5), &
+        new_testsuite("config", collect_config), &
+        new_testsuite("config-grid", collect_config_grid), &
+        new_testsuite("config-surface", collect_config_surface), &
+        new_testsuite("config-material", collect_config_material), &
+        new_testsuite("config-load", collect_config_load), &
+        new_testsuite("config-motion", collect_config_motion), &
+        new_testsuite("config-solver", collect_config_solver), &
+        new_testsuite("config-analysis", collect_config_analysis), &
+        new_testsuite("config-sweep", collect_config_sweep), &
+        new_testsuite("config-output", collect_config_output), &
+        new_testsuite("topography", collect_topography), &
+        new_testsuite("output", collect_output), &
+        new_testsuite("case", collect_case), &
+        new_testsuite("study", collect_study), &
         new_testsuite("hard", collect_hard), &
         new_testsuite("postproc", collect_postproc) &
         ]

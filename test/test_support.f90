@@ -1,16 +1,28 @@
-!> Shared set-up for the tests: an elastic solve in a few lines
+!> Shared set-up for the tests: a solve in a few lines, unique file names, text files
 module test_support
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
+    use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_material, only: material_t, new_elastic
-    use veslide_kernel, only: kernel_t, build_kernel, KERNEL_SPECTRAL
-    use veslide_solver, only: solver_options_t, contact_state_t, solve_contact
+    use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
+    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
+    use veslide_solver_options, only: solver_options_t, solver_method_id
+    use veslide_solver, only: solve_contact
+    use veslide_output, only: process_id
     implicit none
     private
-    public :: solve_case, unique_name, write_text
+    public :: solve_case, unique_name, write_text, square_grid
 
 contains
+
+    !> The grid of an (lx, ly) cell sampled like h
+    function square_grid(h, lx, ly) result(grid)
+        real(dp), intent(in) :: h(:, :), lx, ly
+        type(grid_t) :: grid
+        type(error_t), allocatable :: error
+        call new_grid(grid, size(h, 1), size(h, 2), lx, ly, error)
+    end function square_grid
 
     !> Solve h on an (lx, ly) cell against material `mat` (default: elastic with E* = estar, nu = 0)
     subroutine solve_case(h, lx, ly, p_mean, state, error, estar, mat, velocity, variant, tol, method, p_init, kernel)
@@ -25,6 +37,7 @@ contains
         type(material_t) :: m
         type(kernel_t) :: k
         type(fft2d_t) :: fft
+        type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
         real(dp) :: v(2)
         integer :: var
@@ -37,10 +50,11 @@ contains
         v = 0.0_dp; if (present(velocity)) v = velocity
         var = KERNEL_SPECTRAL; if (present(variant)) var = variant
         call fft%init(size(h, 1), size(h, 2), error, planner='estimate'); if (allocated(error)) return
-        call build_kernel(k, size(h, 1), size(h, 2), lx, ly, m, v, var, error); if (allocated(error)) return
+        call new_kernel(k, square_grid(h, lx, ly), m, v, var, error); if (allocated(error)) return
         opts%tolerance = 1.0e-12_dp; if (present(tol)) opts%tolerance = tol
-        if (present(method)) opts%method = method
-        call solve_contact(k, fft, h, p_mean, opts, state, error, p_init=p_init)
+        if (present(method)) opts%method = solver_method_id(method)
+        call new_contact_problem(problem, k, h, p_mean, error); if (allocated(error)) return
+        call solve_contact(problem, fft, opts, state, error, p_init=p_init)
         if (allocated(error)) return
         if (.not. state%converged) call fatal_error(error, "solver did not converge")
         if (present(kernel)) kernel = k
@@ -51,7 +65,7 @@ contains
         character(len=*), intent(in) :: tag
         character(len=:), allocatable :: name
         character(len=16) :: pid
-        write (pid, '(i0)') getpid()
+        write (pid, '(i0)') process_id()
         name = '/tmp/veslide-test-'//trim(pid)//'-'//tag
     end function unique_name
 

@@ -1,11 +1,13 @@
 !> Anisotropy tensors, the stretch-and-rotation decomposition, patches and percolation
 module test_veslide_anisotropy
-    use veslide_kinds, only: dp, pi, two_pi
+    use veslide_kinds, only: dp, pi
+    use veslide_error, only: error_t
+    use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
-    use veslide_surface, only: slope_tensor
+    use veslide_spectrum, only: slope_tensor
     use veslide_anisotropy, only: tensor_axes, decompose, compose, m2_of_theta, patch_stats_t, contact_patches, &
                                   percolates
-    use testsuite, only: error_t, unittest_t, new_unittest, check, report
+    use testsuite, only: unittest_t, new_unittest, check, report
     implicit none
     private
     public :: collect_anisotropy
@@ -32,12 +34,14 @@ contains
         type(fft2d_t) :: fft
         real(dp) :: h(n, n), m0(2, 2), mb(2, 2), r(2, 2), beta, worst
         integer :: k
+        type(grid_t) :: grid
+        call new_grid(grid, n, n, 1.0_dp, 1.0_dp, error); if (allocated(error)) return
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        call bump(0.0_dp, h); call slope_tensor(fft, 1.0_dp, 1.0_dp, h, m0)
+        call bump(0.0_dp, h); call slope_tensor(grid, fft, h, m0)
         worst = 0
         do k = 1, 5
             beta = k*pi/7
-            call bump(beta, h); call slope_tensor(fft, 1.0_dp, 1.0_dp, h, mb)
+            call bump(beta, h); call slope_tensor(grid, fft, h, mb)
             r = reshape([cos(beta), sin(beta), -sin(beta), cos(beta)], [2, 2])
             worst = max(worst, maxval(abs(mb - matmul(r, matmul(m0, transpose(r)))))/maxval(abs(m0)))
         end do

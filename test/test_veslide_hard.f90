@@ -3,7 +3,7 @@
 module test_veslide_hard
     use veslide_kinds, only: dp
     use veslide_config, only: config_t
-    use veslide_run, only: case_t, run_case
+    use veslide_case, only: case_t, run_case
     use veslide_scenes, only: hard_case
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     implicit none
@@ -37,15 +37,15 @@ contains
         integer :: k, its
         its = 0
         do k = first, last
-            call hard_case(k, n, cfg, name)
+            call hard_case(k, n, cfg, name, error); if (allocated(error)) return
             call run_case(cfg, c, error)
             if (allocated(error)) then
                 error%message = name//": "//error%message; return
             end if
-            call check(error, c%state%converged .and. c%state%residual <= cfg%tolerance, name//": not converged")
+            call check(error, c%state%converged .and. c%state%residual <= cfg%solver%tolerance, name//": not converged")
             if (allocated(error)) return
-            fric = -c%force_pa(1)/cfg%mean_pressure_pa
-            if (cfg%speed_m_s == 0.0_dp) then
+            fric = -c%force_pa(1)/cfg%load%mean_pressure_pa
+            if (cfg%motion%speed_m_s == 0.0_dp) then
                 call check(error, fric == 0.0_dp, name//": friction at rest")
             else
                 call check(error, fric > 0.0_dp, name//": friction must resist the motion")

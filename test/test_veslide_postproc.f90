@@ -1,10 +1,9 @@
 !> The figure scripts of postproc/ run (headless) on small studies made here, and draw every figure
 module test_veslide_postproc
-    use veslide_kinds, only: dp
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t, read_config
-    use veslide_run, only: case_t, run_case, write_case
-    use veslide_sweep, only: run_sweep
+    use veslide_case, only: case_t, run_case, write_case
+    use veslide_study, only: run_study
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name, write_text
     implicit none
@@ -63,7 +62,7 @@ contains
             type(case_t) :: c
             call write_text(dir//'/'//name//'.nml', text)
             call read_config(dir//'/'//name//'.nml', cfg, error); if (allocated(error)) return
-            cfg%write_fields = fields
+            cfg%output%fields = fields
             call run_case(cfg, c, error); if (allocated(error)) return
             call write_case(dir//'/'//name//'.h5', cfg, c, error)
         end subroutine single
@@ -75,8 +74,8 @@ contains
             integer :: nfail
             call write_text(dir//'/'//name//'.nml', text)
             call read_config(dir//'/'//name//'.nml', cfg, error); if (allocated(error)) return
-            cfg%write_fields = .false.
-            call run_sweep(cfg, dir//'/'//name//'.h5', nfail, error, quiet=.true.)
+            cfg%output%fields = .false.
+            call run_study(cfg, dir//'/'//name//'.h5', nfail, error)
         end subroutine study
 
     end subroutine test_figures

@@ -1,25 +1,33 @@
 !> Surface generator: statistics against the spectrum, Parseval, reproducibility, grid invariance
 module test_veslide_surface
     use veslide_kinds, only: dp, i8, pi, two_pi
+    use veslide_error, only: error_t
+    use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
-    use veslide_surface, only: psd_t, psd_value, random_surface, random_coefficients, slope_tensor, rms_height, &
+    use veslide_spectrum, only: slope_tensor
+    use veslide_surface, only: psd_t, psd_value, random_surface, random_coefficients, rms_height, &
                                expected_slope_tensor
-    use veslide_rng, only: rng_t, normal_pair_at, philox4x32
     use veslide_material, only: material_t, new_one_term
-    use veslide_kernel, only: kernel_t, build_kernel, wavevector, KERNEL_SPECTRAL
-    use testsuite, only: error_t, unittest_t, new_unittest, check, report
+    use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
+    use reference_oracles, only: full_contact_force
+    use testsuite, only: unittest_t, new_unittest, check, report
     implicit none
     private
     public :: collect_surface
 
 contains
 
+    function grid_of(nx, ny, lx, ly) result(grid)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: lx, ly
+        type(grid_t) :: grid
+        type(error_t), allocatable :: error
+        call new_grid(grid, nx, ny, lx, ly, error)
+    end function grid_of
+
     subroutine collect_surface(tests)
         type(unittest_t), allocatable, intent(out) :: tests(:)
         tests = [ &
-            new_unittest("rng-reproducible", test_rng), &
-            new_unittest("rng-normal-moments", test_rng_moments), &
-            new_unittest("philox-known-answers", test_philox_kat), &
             new_unittest("normalised-power-exponential", test_power_exponential), &
             new_unittest("neighbouring-coefficients-independent", test_neighbours), &
             new_unittest("coefficients-are-the-surface", test_coefficients_surface), &
@@ -29,64 +37,12 @@ contains
             new_unittest("parseval-and-targets", test_parseval), &
             new_unittest("slope-tensor-statistics", test_slope_statistics), &
             new_unittest("same-surface-finer-grid", test_grid_invariance), &
-            new_unittest("bad-hurst", test_bad_hurst, should_fail=.true.) &
+            new_unittest("bad-hurst", test_bad_hurst, should_fail=.true., expect="hurst must be in (0, 1)") &
             ]
     end subroutine collect_surface
 
-    subroutine test_rng(error)
-        type(error_t), allocatable, intent(out) :: error
-        type(rng_t) :: a, b, c
-        integer :: k
-        real(dp) :: z1, z2, y1, y2
-        call a%seed(42_i8); call b%seed(42_i8); call c%seed(43_i8)
-        do k = 1, 1000
-            if (a%uniform() /= b%uniform()) then
-                call check(error, .false., "same seed, different stream"); return
-            end if
-        end do
-        call check(error, a%uniform() /= c%uniform(), "different seeds, same number"); if (allocated(error)) return
-        call normal_pair_at(5_i8, 3, -2, z1, z2)
-        call normal_pair_at(6_i8, 7, 1, y1, y2)       ! an unrelated call in between changes nothing
-        call normal_pair_at(5_i8, 3, -2, y1, y2)
-        call check(error, z1 == y1 .and. z2 == y2, "counter-based draw not reproducible")
-    end subroutine test_rng
 
-    !> Mean, variance and kurtosis of 2e5 counter-based normals within 5 standard errors
-    subroutine test_rng_moments(error)
-        type(error_t), allocatable, intent(out) :: error
-        integer, parameter :: n = 100000
-        real(dp) :: s1, s2, s4, z1, z2
-        integer :: k
-        s1 = 0; s2 = 0; s4 = 0
-        do k = 1, n
-            call normal_pair_at(11_i8, k, -k, z1, z2)
-            s1 = s1 + z1 + z2; s2 = s2 + z1**2 + z2**2; s4 = s4 + z1**4 + z2**4
-        end do
-        s1 = s1/(2*n); s2 = s2/(2*n); s4 = s4/(2*n)
-        call report("mean", s1); call report("var-1", s2 - 1); call report("m4-3", s4 - 3)
-        ! standard errors: mean 1/sqrt(N), variance sqrt(2/N), 4th moment sqrt(96/N)
-        call check(error, abs(s1) < 5/sqrt(2.0_dp*n), "mean"); if (allocated(error)) return
-        call check(error, abs(s2 - 1) < 5*sqrt(2.0_dp/(2*n)), "variance"); if (allocated(error)) return
-        call check(error, abs(s4 - 3) < 5*sqrt(96.0_dp/(2*n)), "fourth moment")
-    end subroutine test_rng_moments
 
-    !> Philox4x32-10 against the known-answer vectors of the Random123 distribution
-    subroutine test_philox_kat(error)
-        type(error_t), allocatable, intent(out) :: error
-        integer(i8) :: x(4)
-        x = philox4x32([0_i8, 0_i8, 0_i8, 0_i8], [0_i8, 0_i8])
-        call check(error, all(x == [int(z'6627e8d5', i8), int(z'e169c58d', i8), int(z'bc57ac4c', i8), &
-                                    int(z'9b00dbd8', i8)]), "Philox KAT, zero counter and key")
-        if (allocated(error)) return
-        x = philox4x32([4294967295_i8, 4294967295_i8, 4294967295_i8, 4294967295_i8], [4294967295_i8, 4294967295_i8])
-        call check(error, all(x == [int(z'408f276d', i8), int(z'41c83b0e', i8), int(z'a20bc7c6', i8), &
-                                    int(z'6d5451fd', i8)]), "Philox KAT, all ones")
-        if (allocated(error)) return
-        x = philox4x32([int(z'243f6a88', i8), int(z'85a308d3', i8), int(z'13198a2e', i8), int(z'03707344', i8)], &
-                       [int(z'a4093822', i8), int(z'299f31d0', i8)])
-        call check(error, all(x == [int(z'd16cfe09', i8), int(z'94fdcceb', i8), int(z'5001e420', i8), &
-                                    int(z'24126ea1', i8)]), "Philox KAT, digits of pi")
-    end subroutine test_philox_kat
 
     !> Normalised power r = |a_q|^2/<|a_q|^2> of every drawn mode in the band (the ki > 0 half:
     !> one independent draw each), for an isotropic 256^2 surface with k_cut = 64
@@ -102,7 +58,7 @@ contains
         real(dp) :: v, sl, sig2
         integer :: i, j, m
         psd = psd_t(hurst=0.8_dp, q_low=two_pi, q_roll=two_pi, q_cut=64*two_pi)
-        call random_coefficients(n, n, 1.0_dp, 1.0_dp, psd, seed, ak, v, sl)
+        call random_coefficients(grid_of(n, n, 1.0_dp, 1.0_dp), psd, seed, ak, v, sl)
         allocate (r(n*n), kx(n*n), ky(n*n), z(n*n))
         m = 0
         do j = 1, n
@@ -251,8 +207,8 @@ contains
         complex(dp) :: ak(n/2 + 1, n)
         real(dp) :: h(n, n), v, sl, scale
         psd = psd_t(hurst=0.6_dp, eccentricity=0.5_dp, alpha_rad=0.4_dp, q_low=two_pi, q_roll=two_pi, q_cut=20*two_pi)
-        call random_coefficients(n, n, 1.0_dp, 1.0_dp, psd, 21_i8, ak, v, sl)
-        call random_surface(n, n, 1.0_dp, 1.0_dp, psd, 21_i8, 0.0_dp, 1.0_dp, h, error, realised=.false.)
+        call random_coefficients(grid_of(n, n, 1.0_dp, 1.0_dp), psd, 21_i8, ak, v, sl)
+        call random_surface(grid_of(n, n, 1.0_dp, 1.0_dp), psd, 21_i8, 0.0_dp, 1.0_dp, h, error, realised=.false.)
         if (allocated(error)) return
         scale = 1.0_dp/sqrt(v)
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
@@ -272,7 +228,7 @@ contains
         real(dp) :: m2, m3, m4, skew, kurt, neff
         allocate (h(n, n))
         psd = psd_t(hurst=0.8_dp, q_low=two_pi, q_roll=128*two_pi, q_cut=128*two_pi)   ! flat: C constant
-        call random_surface(n, n, 1.0_dp, 1.0_dp, psd, 4_i8, 0.0_dp, 1.0_dp, h, error); if (allocated(error)) return
+        call random_surface(grid_of(n, n, 1.0_dp, 1.0_dp), psd, 4_i8, 0.0_dp, 1.0_dp, h, error); if (allocated(error)) return
         m2 = sum(h**2)/size(h); m3 = sum(h**3)/size(h); m4 = sum(h**4)/size(h)
         skew = m3/m2**1.5_dp; kurt = m4/m2**2 - 3
         ! independent samples: about one per (n/(2*128))^2 cells, i.e. (2*128)^2 over the cell
@@ -310,21 +266,23 @@ contains
         complex(dp) :: ak(n/2 + 1, n)
         real(dp) :: h(n, n), m(2, 2), x(nseed), v, sl, q(2), mu, c, var_e, k4, s4
         integer :: s, i, j
+        type(grid_t) :: g
+        g = grid_of(n, n, 1.0_dp, 1.0_dp)
         psd = psd_t(hurst=0.8_dp, q_low=two_pi, q_roll=two_pi, q_cut=12*two_pi)
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         do s = 1, nseed
-            call random_surface(n, n, 1.0_dp, 1.0_dp, psd, int(s, i8), 0.0_dp, 1.0_dp, h, error, realised=.false.)
+            call random_surface(grid_of(n, n, 1.0_dp, 1.0_dp), psd, int(s, i8), 0.0_dp, 1.0_dp, h, error, realised=.false.)
             if (allocated(error)) return
-            call slope_tensor(fft, 1.0_dp, 1.0_dp, h, m)
+            call slope_tensor(grid_of(n, n, 1.0_dp, 1.0_dp), fft, h, m)
             x(s) = m(1, 2)
         end do
         ! m11 = s^2 sum_{ki > 0} 2 qx qy |a_q|^2, s = 1/sqrt(var): |a_q|^2 exponential of mean 2 sig^2
-        call random_coefficients(n, n, 1.0_dp, 1.0_dp, psd, 1_i8, ak, v, sl)
+        call random_coefficients(grid_of(n, n, 1.0_dp, 1.0_dp), psd, 1_i8, ak, v, sl)
         s4 = 1.0_dp/v**2
         var_e = 0; k4 = 0
         do j = 1, n
             do i = 2, n/2
-                q = wavevector(i, j, n, n, 1.0_dp, 1.0_dp)
+                q = g%wavevector(i, j)
                 if (j == n/2 + 1) cycle
                 mu = two_pi**2*psd_value(psd, q(1), q(2))
                 c = 2*q(1)*q(2)
@@ -346,39 +304,28 @@ contains
         type(material_t) :: mat
         type(kernel_t) :: k
         complex(dp) :: ak(n/2 + 1, n)
-        real(dp) :: h(n, n), x(nseed), v, sl, q(2), mu, c, var_e, k4, s4, w
+        real(dp) :: h(n, n), x(nseed), v, sl, q(2), mu, c, var_e, k4, s4, fxy(2)
         integer :: s, i, j
         psd = psd_t(hurst=0.8_dp, eccentricity=0.5_dp, q_low=two_pi/l, q_roll=two_pi/l, q_cut=12*two_pi/l)
         call new_one_term(mat, 1.0e8_dp, 11.0_dp, 0.01_dp, 0.5_dp, error); if (allocated(error)) return
-        call build_kernel(k, n, n, l, l, mat, [0.05_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
+        call new_kernel(k, grid_of(n, n, l, l), mat, [0.05_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         do s = 1, nseed
-            call random_surface(n, n, l, l, psd, int(s, i8), 0.0_dp, 1.0e-5_dp, h, error, realised=.false.)
+            call random_surface(grid_of(n, n, l, l), psd, int(s, i8), 0.0_dp, 1.0e-5_dp, h, error, realised=.false.)
             if (allocated(error)) return
-            fft%x = h; call fft%forward()
-            x(s) = 0
-            do j = 1, n
-                do i = 1, n/2 + 1
-                    if (i == 1 .and. j == 1) cycle
-                    q = wavevector(i, j, n, n, l, l)
-                    if (i == n/2 + 1) q(1) = 0
-                    if (j == n/2 + 1) q(2) = 0
-                    w = merge(1.0_dp, 2.0_dp, i == 1 .or. i == n/2 + 1)
-                    x(s) = x(s) - w*q(2)*aimag(k%kd(i, j))*abs(fft%k(i, j)/k%kd(i, j))**2
-                end do
-            end do
-            x(s) = x(s)/real(n, dp)**4
+            fxy = full_contact_force(k, fft, h)
+            x(s) = fxy(2)
         end do
         ! F_y = s^2 sum_{ki > 0} c_q |a_q|^2 with c_q = -2 qy Im K/|K|^2 (the ki = 0 column has Im K = 0)
-        call random_coefficients(n, n, l, l, psd, 1_i8, ak, v, sl)
+        call random_coefficients(grid_of(n, n, l, l), psd, 1_i8, ak, v, sl)
         s4 = (1.0e-5_dp)**4/v**2
         var_e = 0; k4 = 0
         do j = 1, n
             do i = 2, n/2
                 if (j == n/2 + 1) cycle
-                q = wavevector(i, j, n, n, l, l)
+                q = k%grid%wavevector(i, j)
                 mu = two_pi**2/l**2*psd_value(psd, q(1), q(2))
-                c = -2*q(2)*aimag(k%kd(i, j))/abs(k%kd(i, j))**2
+                c = -2*q(2)*aimag(k%value(i, j))/abs(k%value(i, j))**2
                 var_e = var_e + c**2*mu**2; k4 = k4 + 6*c**4*mu**4
             end do
         end do
@@ -396,8 +343,8 @@ contains
         integer :: i, j
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         psd = psd_t(hurst=0.7_dp, eccentricity=0.6_dp, alpha_rad=0.3_dp, q_low=two_pi, q_roll=2*two_pi, q_cut=40*two_pi)
-        call random_surface(n, n, 1.0_dp, 1.0_dp, psd, 3_i8, 0.025_dp, 0.0_dp, h, error); if (allocated(error)) return
-        call slope_tensor(fft, 1.0_dp, 1.0_dp, h, m)
+        call random_surface(grid_of(n, n, 1.0_dp, 1.0_dp), psd, 3_i8, 0.025_dp, 0.0_dp, h, error); if (allocated(error)) return
+        call slope_tensor(grid_of(n, n, 1.0_dp, 1.0_dp), fft, h, m)
         call check(error, sqrt(m(1, 1) + m(2, 2)), 0.025_dp, "realised rms slope", rel=1.0e-12_dp)
         if (allocated(error)) return
         ! Parseval for the heights: variance = sum |H_q|^2 / N^2
@@ -413,7 +360,7 @@ contains
         call check(error, var_spec, rms_height(h)**2, "Parseval", rel=1.0e-12_dp); if (allocated(error)) return
         call check(error, abs(sum(h))/size(h) <= 1.0e-15_dp*rms_height(h)*size(h), "zero mean")
         if (allocated(error)) return
-        call random_surface(n, n, 1.0_dp, 1.0_dp, psd, 3_i8, 0.0_dp, 2.0e-6_dp, h, error); if (allocated(error)) return
+        call random_surface(grid_of(n, n, 1.0_dp, 1.0_dp), psd, 3_i8, 0.0_dp, 2.0e-6_dp, h, error); if (allocated(error)) return
         call check(error, rms_height(h), 2.0e-6_dp, "realised rms height", rel=1.0e-12_dp)
     end subroutine test_parseval
 
@@ -429,12 +376,12 @@ contains
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         psd = psd_t(hurst=0.8_dp, eccentricity=0.6_dp, alpha_rad=pi/6, q_low=two_pi, q_roll=two_pi, q_cut=32*two_pi)
         do s = 1, nseed
-            call random_surface(n, n, 1.0_dp, 1.0_dp, psd, int(s, i8), 0.025_dp, 0.0_dp, h, error, realised=.false.)
+            call random_surface(grid_of(n, n, 1.0_dp, 1.0_dp), psd, int(s, i8), 0.025_dp, 0.0_dp, h, error, realised=.false.)
             if (allocated(error)) return
-            call slope_tensor(fft, 1.0_dp, 1.0_dp, h, m)
+            call slope_tensor(grid_of(n, n, 1.0_dp, 1.0_dp), fft, h, m)
             call ratio_angle(m, g(s), th(s))
         end do
-        call expected_slope_tensor(n, n, 1.0_dp, 1.0_dp, psd, me, var)
+        call expected_slope_tensor(grid_of(n, n, 1.0_dp, 1.0_dp), psd, me, var)
         call ratio_angle(me, ge, the)
         sg = sqrt(sum((g - sum(g)/nseed)**2)/(nseed - 1))/sqrt(real(nseed, dp))
         sth = sqrt(sum((th - sum(th)/nseed)**2)/(nseed - 1))/sqrt(real(nseed, dp))
@@ -471,9 +418,9 @@ contains
         call f1%init(64, 64, error, planner='estimate'); if (allocated(error)) return
         call f2%init(128, 128, error, planner='estimate'); if (allocated(error)) return
         psd = psd_t(hurst=0.8_dp, eccentricity=0.5_dp, alpha_rad=1.0_dp, q_low=two_pi, q_roll=two_pi, q_cut=20*two_pi)
-        call random_surface(64, 64, 1.0_dp, 1.0_dp, psd, 9_i8, 0.0_dp, 1.0_dp, h1, error, realised=.false.)
+        call random_surface(grid_of(64, 64, 1.0_dp, 1.0_dp), psd, 9_i8, 0.0_dp, 1.0_dp, h1, error, realised=.false.)
         if (allocated(error)) return
-        call random_surface(128, 128, 1.0_dp, 1.0_dp, psd, 9_i8, 0.0_dp, 1.0_dp, h2, error, realised=.false.)
+        call random_surface(grid_of(128, 128, 1.0_dp, 1.0_dp), psd, 9_i8, 0.0_dp, 1.0_dp, h2, error, realised=.false.)
         if (allocated(error)) return
         call report("max difference", maxval(abs(h2(1::2, 1::2) - h1)))
         call check(error, maxval(abs(h2(1::2, 1::2) - h1)) <= 1.0e-12_dp, "surfaces differ")
@@ -484,7 +431,7 @@ contains
         type(fft2d_t) :: fft
         real(dp) :: h(8, 8)
         call fft%init(8, 8, error, planner='estimate'); if (allocated(error)) return
-        call random_surface(8, 8, 1.0_dp, 1.0_dp, psd_t(hurst=1.5_dp, q_low=1.0_dp, q_roll=1.0_dp, q_cut=10.0_dp), &
+        call random_surface(grid_of(8, 8, 1.0_dp, 1.0_dp), psd_t(hurst=1.5_dp, q_low=1.0_dp, q_roll=1.0_dp, q_cut=10.0_dp), &
                             1_i8, 0.01_dp, 0.0_dp, h, error)
     end subroutine test_bad_hurst
 

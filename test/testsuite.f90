@@ -19,7 +19,8 @@ module testsuite
     type :: unittest_t
         character(len=:), allocatable :: name
         procedure(test_interface), pointer, nopass :: test => null()
-        logical :: should_fail = .false.   !! the test passes when it returns an error
+        logical :: should_fail = .false.   !! the test passes when it returns an error ...
+        character(len=:), allocatable :: expect   !! ... whose message contains this text
     end type unittest_t
 
     abstract interface
@@ -53,15 +54,20 @@ contains
         reported = reported//' ['//label//' '//trim(adjustl(buf))//']'
     end subroutine report
 
-    function new_unittest(name, test, should_fail) result(self)
+    !> A named test; an expected failure (`should_fail`) passes only when the error it returns
+    !> says `expect` (an expected failure without it never passes: any error would do)
+    function new_unittest(name, test, should_fail, expect) result(self)
         character(len=*), intent(in) :: name
         procedure(test_interface) :: test
         logical, intent(in), optional :: should_fail
+        character(len=*), intent(in), optional :: expect
         type(unittest_t) :: self
         self%name = name
         self%test => test
         self%should_fail = .false.
         if (present(should_fail)) self%should_fail = should_fail
+        self%expect = ''
+        if (present(expect)) self%expect = expect
     end function new_unittest
 
     function new_testsuite(name, collect) result(self)
@@ -96,6 +102,13 @@ contains
             ok = allocated(error) .eqv. tests(i)%should_fail
             note = ''
             if (allocated(error)) note = error%message
+            if (ok .and. tests(i)%should_fail) then
+                if (len(tests(i)%expect) == 0) then
+                    ok = .false.; note = 'expected failure without a message to check: '//note
+                else if (index(note, tests(i)%expect) == 0) then
+                    ok = .false.; note = "failed, but not saying '"//tests(i)%expect//"': "//note
+                end if
+            end if
             if (ok) then
                 npass = npass + 1
                 if (tests(i)%should_fail) note = 'expected failure: '//note
@@ -103,7 +116,7 @@ contains
                     real(c1 - c0)/real(rate), " s) "//note//reported
             else
                 nfail = nfail + 1
-                if (tests(i)%should_fail) note = 'an error was expected but none was raised'
+                if (tests(i)%should_fail .and. .not. allocated(error)) note = 'an error was expected but none was raised'
                 write (stdout, '(a)') "  FAIL  "//suite%name//" "//tests(i)%name//": "//note//reported
             end if
             if (allocated(error)) deallocate (error)

@@ -1,68 +1,120 @@
-!> veslide-batch FILE.nml [--overwrite]: the study of FILE.nml on every MPI rank at once.
-!> Rank r runs the speed chains (seed, eccentricity, angle, pressure) whose index is r modulo
-!> the number of ranks, each warm-started along speed as in a serial study, and writes
-!> OUT.rankNNNN.h5 (OUT = &output file without .h5) with global case numbers;
-!> postproc/merge_ranks.py joins the parts into one study file with /summary and /ensemble.
+!> veslide-batch FILE.nml [--overwrite] [--quiet]: the study of FILE.nml on every MPI rank at once.
+!> Rank r runs the speed chains (seed, eccentricity, angle, pressure) whose index is r modulo the
+!> number of ranks, each warm-started along speed as in a serial study, into a rank file next to
+!> the output; when every rank has finished, rank 0 joins the rank files into the study file
+!> (veslide_study's merge: the same /summary and /ensemble as a serial run), publishes it as a
+!> serial run does, and removes the rank files.
 program veslide_batch
     use, intrinsic :: iso_fortran_env, only: stderr => error_unit, stdout => output_unit
     use mpi_f08
     use veslide_error, only: error_t
     use veslide_config, only: config_t, read_config
-    use veslide_run, only: prepare_output, commit_output, discard_output
-    use veslide_sweep, only: run_sweep
+    use veslide_output, only: prepare_output, commit_output, discard_output
+    use veslide_study, only: run_study, merge_study_parts, study_progress_t
     implicit none
     type(config_t) :: cfg
     type(error_t), allocatable :: error
-    character(len=:), allocatable :: input, base, out, tmp
+    character(len=:), allocatable :: input, out, tmp, mine
     character(len=512) :: arg
-    character(len=16) :: suffix
-    integer :: rank, nranks, nfail, total, k, n
-    logical :: overwrite
+    character(len=:), allocatable :: parts(:)
+    integer :: rank, nranks, nfail, total, k, n, status, failed
+    logical :: overwrite, quiet
 
     call MPI_Init()
     call MPI_Comm_rank(MPI_COMM_WORLD, rank)
     call MPI_Comm_size(MPI_COMM_WORLD, nranks)
-    overwrite = .false.; allocate (character(len=0) :: input)
+    overwrite = .false.; quiet = .false.; allocate (character(len=0) :: input)
     do k = 1, command_argument_count()
         call get_command_argument(k, arg, n)
-        if (trim(arg) == '--overwrite') then
-            overwrite = .true.
-        else
-            input = trim(arg)
-        end if
+        select case (trim(arg))
+        case ('--overwrite'); overwrite = .true.
+        case ('--quiet', '-q'); quiet = .true.
+        case default; input = trim(arg)
+        end select
     end do
-    if (len(input) == 0) call die("usage: mpirun -n N veslide-batch FILE.nml [--overwrite]")
+    if (len(input) == 0) call die("usage: mpirun -n N veslide-batch FILE.nml [--overwrite] [--quiet]")
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
-    if (.not. cfg%is_sweep) call die("veslide-batch: "//input//" has no &sweep list; run it with veslide")
-    base = cfg%output_file
-    if (len(base) > 3) then
-        if (base(len(base) - 2:) == '.h5') base = base(:len(base) - 3)
+    if (.not. cfg%sweep%is_study()) call die("veslide-batch: "//input//" has no &sweep list; run it with veslide")
+    out = cfg%output%file
+    status = 0
+    if (rank == 0) then
+        call prepare_output(out, overwrite .or. cfg%output%overwrite, tmp, error)
+        if (allocated(error)) status = 1
     end if
-    write (suffix, '(".rank",i4.4,".h5")') rank
-    out = base//trim(suffix)
-    call prepare_output(out, overwrite .or. cfg%overwrite, tmp, error)
-    if (allocated(error)) call die(error%message)
-    call run_sweep(cfg, tmp, nfail, error, quiet=rank /= 0, part=[rank, nranks])
-    if (allocated(error)) then
-        call discard_output(tmp); call die(error%message)
+    call agree(status); if (status /= 0) call die(error_text())
+    ! rank files: OUT.rankNNNN-of-RRRR.part (the count in the name keeps runs of another size apart)
+    allocate (character(len=len(out) + 24) :: parts(nranks))
+    do k = 1, nranks
+        write (parts(k), '(a,".rank",i4.4,"-of-",i4.4,".part")') out, k - 1, nranks
+    end do
+    mine = trim(parts(rank + 1))
+    if (quiet) then
+        call run_study(cfg, mine, nfail, error, part=[rank, nranks])
+    else
+        call run_study(cfg, mine, nfail, error, progress=print_progress, part=[rank, nranks])
     end if
-    call commit_output(tmp, out, error)
-    if (allocated(error)) call die(error%message)
+    failed = merge(1, 0, allocated(error))
+    if (allocated(error)) write (stderr, '(a,i0,a)') "veslide-batch: rank ", rank, ": "//error%message
+    call MPI_Allreduce(MPI_IN_PLACE, failed, 1, MPI_INTEGER, MPI_SUM, MPI_COMM_WORLD)
     call MPI_Reduce(nfail, total, 1, MPI_INTEGER, MPI_SUM, 0, MPI_COMM_WORLD)
-    if (rank == 0) write (stdout, '(a,i0,a,a,a)') "veslide-batch: ", nranks, " rank files ", base, &
-        ".rank*.h5 written; join them with postproc/merge_ranks.py"
-    if (rank == 0 .and. total > 0) write (stderr, '(a,i0,a)') "veslide-batch: NOT CONVERGED in ", total, " case(s)"
+    if (failed > 0) then
+        call discard_output(mine)
+        if (rank == 0) call discard_output(tmp)
+        call MPI_Finalize(); stop 1, quiet=.true.
+    end if
+    if (rank == 0) then
+        call read_config(input, cfg, error)          ! the study's own values (run_study changes its copy)
+        if (.not. allocated(error)) call merge_study_parts(cfg, tmp, parts, error)
+        if (.not. allocated(error)) call commit_output(tmp, out, overwrite .or. cfg%output%overwrite, error)
+        if (allocated(error)) then
+            write (stderr, '(a)') error%message
+            call discard_output(tmp); status = 1
+        else
+            do k = 1, nranks
+                call discard_output(trim(parts(k)))
+            end do
+            if (.not. quiet) write (stdout, '(a,i0,a)') "veslide-batch: study of ", nranks, " ranks written to "//out
+            if (total > 0) write (stderr, '(a,i0,a)') "veslide-batch: NOT CONVERGED in ", total, &
+                " case(s) (see /summary converged)"
+        end if
+    end if
+    call MPI_Bcast(status, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
     call MPI_Finalize()
+    if (status /= 0) stop 1, quiet=.true.
     if (total > 0 .and. rank == 0) stop 2, quiet=.true.   ! a controlled exit: the message is printed above
 
 contains
 
+    !> Every rank learns whether rank 0 failed
+    subroutine agree(flag)
+        integer, intent(inout) :: flag
+        call MPI_Bcast(flag, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
+    end subroutine agree
+
+    function error_text() result(t)
+        character(len=:), allocatable :: t
+        t = "veslide-batch: the output cannot be written"
+        if (allocated(error)) t = error%message
+    end function error_text
+
+    !> A refusal before any work: one line (from rank 0), no MPI_Abort noise
     subroutine die(message)
         character(len=*), intent(in) :: message
-        write (stderr, '(a)') message
-        call MPI_Abort(MPI_COMM_WORLD, 1)
+        if (rank == 0) write (stderr, '(a)') message
+        call MPI_Finalize()
         stop 1, quiet=.true.
     end subroutine die
+
+    subroutine print_progress(info)
+        type(study_progress_t), intent(in) :: info
+        write (stdout, '("rank ",i0,"/",i0,": case ",i0," (",i0,"/",i0," of this rank): v ",es9.3," m/s, area ",f8.5, &
+            &", f ",es10.3,", ",i0," FFT pairs",a,", ",f7.2," s; rank done in ~",f8.1," s")') rank, nranks, &
+            info%case_number, info%done, info%total, info%speed_m_s, info%contact_area_fraction, &
+            info%friction_coefficient, info%operator_applications, &
+            trim(merge('               ', ', NOT CONVERGED', info%converged)), info%case_s, &
+            info%elapsed_s/info%done*(info%total - info%done)
+        flush (stdout)
+    end subroutine print_progress
 
 end program veslide_batch

@@ -10,9 +10,14 @@ module veslide_material
     implicit none
     private
     public :: material_t, new_elastic, new_one_term, new_creep, new_relaxation
-    public :: MATERIAL_ELASTIC, MATERIAL_CREEP, MATERIAL_RELAXATION
+    public :: MATERIAL_ELASTIC, MATERIAL_CREEP, MATERIAL_RELAXATION, material_model_names
 
+    !> Which series the terms of a material_t are
     integer, parameter :: MATERIAL_ELASTIC = 0, MATERIAL_CREEP = 1, MATERIAL_RELAXATION = 2
+    !> The laws a material can be given by (the namelist's `&material model`); 'one_term' is a
+    !> one-term creep series
+    character(len=*), parameter :: material_model_names(4) = [character(len=10) :: 'elastic', 'one_term', &
+                                                              'creep', 'relaxation']
 
     type :: material_t
         integer :: form = MATERIAL_ELASTIC      !! which series the terms below are

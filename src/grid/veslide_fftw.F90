@@ -9,7 +9,10 @@ module veslide_fftw
     implicit none
     private
 #include "fftw3.f03"
-    public :: fft2d_t, fft_planner_flag
+    public :: fft2d_t, fft_planner_flag, fft_planner_names
+
+    !> FFTW planner rigour by name (the namelist's `&solver fft_planner`)
+    character(len=*), parameter :: fft_planner_names(3) = [character(len=8) :: 'estimate', 'measure', 'patient']
 
     type :: fft2d_t
         integer :: nx = 0, ny = 0
@@ -30,6 +33,17 @@ module veslide_fftw
 
     logical, save :: threads_ready = .false.
 
+    interface
+        integer(c_size_t) function c_strlen(s) bind(c, name='strlen')
+            import :: c_ptr, c_size_t
+            type(c_ptr), value :: s
+        end function c_strlen
+        subroutine c_free(p) bind(c, name='free')
+            import :: c_ptr
+            type(c_ptr), value :: p
+        end subroutine c_free
+    end interface
+
 contains
 
     !> FFTW planner flag from its name: 'estimate', 'measure' or 'patient'
@@ -42,8 +56,11 @@ contains
         end select
     end function fft_planner_flag
 
-    !> Allocate buffers and plan both transforms (buffers are overwritten by planning)
-    subroutine fft_init(self, nx, ny, error, planner, nthreads)
+    !> Allocate buffers and plan both transforms (buffers are overwritten by planning).
+    !> `isolated` plans FFTW_ESTIMATE without the process's accumulated wisdom (and leaves that
+    !> wisdom as it was): a one-off transform whose rounding is the same in every run, whatever
+    !> other plans the process made before (used by the surface generator).
+    subroutine fft_init(self, nx, ny, error, planner, nthreads, isolated)
         class(fft2d_t), intent(inout) :: self
         !> grid size
         integer, intent(in) :: nx, ny
@@ -53,7 +70,13 @@ contains
         character(len=*), intent(in), optional :: planner
         !> threads used by each transform (default 1)
         integer, intent(in), optional :: nthreads
+        !> plan FFTW_ESTIMATE on one thread, ignoring wisdom (default .false.)
+        logical, intent(in), optional :: isolated
         integer :: flag, nthreads_
+        logical :: isolated_
+        type(c_ptr) :: saved
+        integer(c_int) :: stat
+        character(kind=c_char), pointer :: chars(:)
 
         call self%destroy()
         if (nx < 1 .or. ny < 1) then
@@ -69,6 +92,10 @@ contains
             end if
             threads_ready = .true.
         end if
+        isolated_ = .false.; if (present(isolated)) isolated_ = isolated
+        if (isolated_) then
+            flag = FFTW_ESTIMATE; nthreads_ = 1
+        end if
         if (threads_ready) call fftw_plan_with_nthreads(int(nthreads_, c_int))
 
         self%nx = nx; self%ny = ny
@@ -80,8 +107,20 @@ contains
         call c_f_pointer(self%p_x, self%x, [nx, ny])
         call c_f_pointer(self%p_k, self%k, [nx/2 + 1, ny])
         ! FFTW is row-major: dimensions are passed reversed
+        if (isolated_) then
+            saved = fftw_export_wisdom_to_string()
+            call fftw_forget_wisdom()
+        end if
         self%plan_r2c = fftw_plan_dft_r2c_2d(int(ny, c_int), int(nx, c_int), self%x, self%k, flag)
         self%plan_c2r = fftw_plan_dft_c2r_2d(int(ny, c_int), int(nx, c_int), self%k, self%x, flag)
+        if (isolated_) then
+            call fftw_forget_wisdom()
+            if (c_associated(saved)) then
+                call c_f_pointer(saved, chars, [c_strlen(saved) + 1])
+                stat = fftw_import_wisdom_from_string(chars)
+                call c_free(saved)
+            end if
+        end if
         if (.not. (c_associated(self%plan_r2c) .and. c_associated(self%plan_c2r))) then
             call fatal_error(error, "veslide:fftw:init: FFTW returned a null plan"); return
         end if

@@ -3,17 +3,9 @@ module veslide_lapack
     use veslide_kinds, only: dp
     implicit none
     private
-    public :: dgemv, dposv, dgesv
+    public :: dposv, dgesv
 
     interface
-        !> y = alpha op(A) x + beta y
-        subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-            import :: dp
-            character(len=1), intent(in) :: trans
-            integer, intent(in) :: m, n, lda, incx, incy
-            real(dp), intent(in) :: alpha, beta, a(lda, *), x(*)
-            real(dp), intent(inout) :: y(*)
-        end subroutine dgemv
         !> Solve A X = B for symmetric positive definite A (Cholesky)
         subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
             import :: dp

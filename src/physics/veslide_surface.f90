@@ -7,14 +7,20 @@
 !> Nyquist lines zero. Each a_q is drawn from (seed, signed wavenumber) alone (veslide_rng), so a
 !> finer grid with the same spectrum gives the same surface, sampled more densely.
 module veslide_surface
-    use veslide_kinds, only: dp, i8, pi, two_pi
+    use veslide_kinds, only: dp, i8, two_pi
     use veslide_error, only: error_t, fatal_error
     use veslide_rng, only: normal_pair_at
+    use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
+    use veslide_spectrum, only: slope_tensor
     implicit none
     private
-    public :: psd_t, psd_value, random_surface, random_coefficients, slope_tensor, rms_height, expected_slope_tensor
-    public :: cosine_surface, bisinusoid_surface, paraboloid_surface, cylinder_surface
+    public :: psd_t, psd_value, random_surface, random_coefficients, rms_height, expected_slope_tensor
+    public :: cosine_surface, bisinusoid_surface, paraboloid_surface, cylinder_surface, surface_kind_names
+
+    !> The kinds of rigid surface (the namelist's `&surface kind`); 'file' is a measured topography
+    character(len=*), parameter :: surface_kind_names(7) = [character(len=11) :: 'self_affine', 'cosine', &
+                                                            'bisinusoid', 'paraboloid', 'cylinder', 'flat', 'file']
 
     !> Elliptical self-affine power spectral density (appendix B, eq. B.6)
     type :: psd_t
@@ -56,30 +62,27 @@ contains
     !> Each pair {q, -q} is drawn once, from (seed, signed wavenumber of the representative with
     !> ki > 0, or ki = 0 and kj > 0); the ki = 0 column holds both members, conjugate. The q = 0
     !> mode and Nyquist lines are zero. Also returns the expected variance and slope-tensor trace.
-    pure subroutine random_coefficients(nx, ny, lx, ly, psd, seed, ak, var_sum, slope_sum)
-        integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: lx, ly
+    pure subroutine random_coefficients(grid, psd, seed, ak, var_sum, slope_sum)
+        type(grid_t), intent(in) :: grid
         type(psd_t), intent(in) :: psd
         integer(i8), intent(in) :: seed
         complex(dp), intent(out) :: ak(:, :)
         !> expected <h^2> and <|grad h|^2> of the spectrum on this grid
         real(dp), intent(out) :: var_sum, slope_sum
-        integer :: i, j, ki, kj
+        integer :: i, j, ki, kj, k(2)
         real(dp) :: qx, qy, c, sig, z1, z2, wt
         logical :: nyq
         var_sum = 0.0_dp; slope_sum = 0.0_dp
-        do j = 1, ny
-            kj = j - 1; if (kj > ny/2) kj = kj - ny
-            do i = 1, nx/2 + 1
-                ki = i - 1
-                nyq = (mod(nx, 2) == 0 .and. ki == nx/2 .and. nx > 1) .or. &
-                      (mod(ny, 2) == 0 .and. kj == ny/2 .and. ny > 1)
-                qx = two_pi*ki/lx; qy = two_pi*kj/ly
+        do j = 1, grid%ny
+            do i = 1, grid%nq()
+                k = grid%wavenumber(i, j); ki = k(1); kj = k(2)
+                nyq = grid%is_nyquist_x(i) .or. grid%is_nyquist_y(j)
+                qx = two_pi*ki/grid%lx_m; qy = two_pi*kj/grid%ly_m
                 c = psd_value(psd, qx, qy)
                 if (nyq .or. (ki == 0 .and. kj == 0) .or. c == 0.0_dp) then
                     ak(i, j) = (0.0_dp, 0.0_dp); cycle
                 end if
-                sig = sqrt(0.5_dp*two_pi**2/(lx*ly)*c)
+                sig = sqrt(0.5_dp*two_pi**2/(grid%lx_m*grid%ly_m)*c)
                 if (ki > 0 .or. kj > 0) then
                     call normal_pair_at(seed, ki, kj, z1, z2)
                     ak(i, j) = sig*cmplx(z1, z2, dp)
@@ -99,11 +102,11 @@ contains
     !> Random surface with spectrum `psd`, scaled to rms slope (sqrt of the slope-tensor trace)
     !> `rms_slope`, or to `rms_height` when rms_slope <= 0. `realised` (default .true.) scales
     !> the realisation itself to the target; otherwise C0 is set from the expectation.
-    !> The one transform uses its own FFTW_ESTIMATE plan on one thread, so the heights are
-    !> bitwise the same on every run, whatever planner and thread count the solver uses.
-    subroutine random_surface(nx, ny, lx, ly, psd, seed, rms_slope, rms_height_target, h, error, realised)
-        integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: lx, ly
+    !> The one transform uses its own FFTW_ESTIMATE plan on one thread made without the process's
+    !> wisdom, so the heights are bitwise the same on every run, whatever planner and thread count
+    !> the solver uses and whatever was planned before.
+    subroutine random_surface(grid, psd, seed, rms_slope, rms_height_target, h, error, realised)
+        type(grid_t), intent(in) :: grid
         type(psd_t), intent(in) :: psd
         integer(i8), intent(in) :: seed
         real(dp), intent(in) :: rms_slope, rms_height_target
@@ -124,8 +127,8 @@ contains
         if (.not. (psd%q_low > 0.0_dp .and. psd%q_low <= psd%q_roll .and. psd%q_roll <= psd%q_cut)) then
             call fatal_error(error, "wavevectors must satisfy 0 < q_low <= q_roll <= q_cut"); return
         end if
-        call fft%init(nx, ny, error, planner='estimate', nthreads=1); if (allocated(error)) return
-        call random_coefficients(nx, ny, lx, ly, psd, seed, fft%k, var_sum, slope_sum)
+        call fft%init(grid%nx, grid%ny, error, isolated=.true.); if (allocated(error)) return
+        call random_coefficients(grid, psd, seed, fft%k, var_sum, slope_sum)
         if (var_sum <= 0.0_dp) then
             call fatal_error(error, "the spectrum has no mode on this grid (check q_low, q_cut, nx, ny)"); return
         end if
@@ -135,7 +138,7 @@ contains
         h = h - sum(h)/size(h)
         if (realised_) then
             if (rms_slope > 0.0_dp) then
-                call slope_tensor(fft, lx, ly, h, m)
+                call slope_tensor(grid, fft, h, m)
                 scale = rms_slope/sqrt(m(1, 1) + m(2, 2))
             else
                 scale = rms_height_target/rms_height(h)
@@ -152,19 +155,18 @@ contains
     end subroutine random_surface
 
     !> Expected slope tensor of the spectrum on this grid, for unit C0 (sum over modes of q q C)
-    subroutine expected_slope_tensor(nx, ny, lx, ly, psd, m, var)
-        integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: lx, ly
+    pure subroutine expected_slope_tensor(grid, psd, m, var)
+        type(grid_t), intent(in) :: grid
         type(psd_t), intent(in) :: psd
         real(dp), intent(out) :: m(2, 2), var
         integer :: ki, kj
         real(dp) :: qx, qy, c
         m = 0.0_dp; var = 0.0_dp
-        do kj = -(ny - 1)/2, (ny - 1)/2
-            do ki = -(nx - 1)/2, (nx - 1)/2
+        do kj = -(grid%ny - 1)/2, (grid%ny - 1)/2
+            do ki = -(grid%nx - 1)/2, (grid%nx - 1)/2
                 if (ki == 0 .and. kj == 0) cycle
-                qx = two_pi*ki/lx; qy = two_pi*kj/ly
-                c = two_pi**2/(lx*ly)*psd_value(psd, qx, qy)
+                qx = two_pi*ki/grid%lx_m; qy = two_pi*kj/grid%ly_m
+                c = two_pi**2/(grid%lx_m*grid%ly_m)*psd_value(psd, qx, qy)
                 var = var + c
                 m(1, 1) = m(1, 1) + qx*qx*c; m(2, 2) = m(2, 2) + qy*qy*c; m(1, 2) = m(1, 2) + qx*qy*c
             end do
@@ -180,93 +182,60 @@ contains
         r = sqrt(sum((h - mean)**2)/size(h))
     end function rms_height
 
-    !> Slope tensor M_ij = <d_i h d_j h> from spectral derivatives (Parseval), optionally in the
-    !> band band(1) <= |q| <= band(2) [1/m]
-    subroutine slope_tensor(fft, lx, ly, h, m, band)
-        type(fft2d_t), intent(inout) :: fft
-        real(dp), intent(in) :: lx, ly, h(:, :)
-        real(dp), intent(out) :: m(2, 2)
-        real(dp), intent(in), optional :: band(2)
-        integer :: i, j, nx, ny
-        real(dp) :: q(2), w, p2, qn
-        nx = fft%nx; ny = fft%ny
-        fft%x = h
-        call fft%forward()
-        m = 0.0_dp
-        do j = 1, ny
-            do i = 1, nx/2 + 1
-                q(1) = two_pi*(i - 1)/lx
-                q(2) = two_pi*merge(j - 1 - ny, j - 1, j - 1 > ny/2)/ly
-                if (mod(nx, 2) == 0 .and. i == nx/2 + 1 .and. nx > 1) q(1) = 0.0_dp   ! Nyquist: no derivative
-                if (mod(ny, 2) == 0 .and. j == ny/2 + 1 .and. ny > 1) q(2) = 0.0_dp
-                if (present(band)) then
-                    qn = norm2([two_pi*(i - 1)/lx, two_pi*merge(j - 1 - ny, j - 1, j - 1 > ny/2)/ly])
-                    if (qn < band(1) .or. qn > band(2)) cycle
-                end if
-                w = merge(1.0_dp, 2.0_dp, i == 1 .or. (mod(nx, 2) == 0 .and. i == nx/2 + 1))
-                p2 = w*abs(fft%k(i, j))**2
-                m(1, 1) = m(1, 1) + q(1)*q(1)*p2
-                m(2, 2) = m(2, 2) + q(2)*q(2)*p2
-                m(1, 2) = m(1, 2) + q(1)*q(2)*p2
-            end do
-        end do
-        m = m/(real(nx, dp)*real(ny, dp))**2
-        m(2, 1) = m(1, 2)
-    end subroutine slope_tensor
-
     !> h = amplitude cos(q.x), q of length 2 pi/wavelength at angle direction_rad from x
-    pure subroutine cosine_surface(nx, ny, lx, ly, amplitude, wavelength, direction_rad, h)
-        integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: lx, ly, amplitude, wavelength, direction_rad
+    pure subroutine cosine_surface(grid, amplitude, wavelength, direction_rad, h)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: amplitude, wavelength, direction_rad
         real(dp), intent(out) :: h(:, :)
         integer :: i, j
         real(dp) :: qx, qy
         qx = two_pi/wavelength*cos(direction_rad); qy = two_pi/wavelength*sin(direction_rad)
-        do j = 1, ny
-            do i = 1, nx
-                h(i, j) = amplitude*cos(qx*(i - 1)*lx/nx + qy*(j - 1)*ly/ny)
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                h(i, j) = amplitude*cos(qx*(i - 1)*grid%lx_m/grid%nx + qy*(j - 1)*grid%ly_m/grid%ny)
             end do
         end do
     end subroutine cosine_surface
 
     !> h = amplitude cos(2 pi x/wavelength) cos(2 pi y/wavelength)
-    pure subroutine bisinusoid_surface(nx, ny, lx, ly, amplitude, wavelength, h)
-        integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: lx, ly, amplitude, wavelength
+    pure subroutine bisinusoid_surface(grid, amplitude, wavelength, h)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: amplitude, wavelength
         real(dp), intent(out) :: h(:, :)
         integer :: i, j
-        do j = 1, ny
-            do i = 1, nx
-                h(i, j) = amplitude*cos(two_pi*(i - 1)*lx/nx/wavelength)*cos(two_pi*(j - 1)*ly/ny/wavelength)
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                h(i, j) = amplitude*cos(two_pi*(i - 1)*grid%lx_m/grid%nx/wavelength) &
+                          *cos(two_pi*(j - 1)*grid%ly_m/grid%ny/wavelength)
             end do
         end do
     end subroutine bisinusoid_surface
 
     !> Paraboloid bump h = -r^2/(2R), apex at the cell centre point (nx/2+1, ny/2+1)
-    pure subroutine paraboloid_surface(nx, ny, lx, ly, radius, h)
-        integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: lx, ly, radius
+    pure subroutine paraboloid_surface(grid, radius, h)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: radius
         real(dp), intent(out) :: h(:, :)
         integer :: i, j
         real(dp) :: x, y
-        do j = 1, ny
-            do i = 1, nx
-                x = (i - 1 - nx/2)*lx/nx; y = (j - 1 - ny/2)*ly/ny
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                x = (i - 1 - grid%nx/2)*grid%lx_m/grid%nx; y = (j - 1 - grid%ny/2)*grid%ly_m/grid%ny
                 h(i, j) = -(x*x + y*y)/(2.0_dp*radius)
             end do
         end do
     end subroutine paraboloid_surface
 
     !> Cylinder with axis along y: h = -x^2/(2R), apex line at i = nx/2+1
-    pure subroutine cylinder_surface(nx, ny, lx, radius, h)
-        integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: lx, radius
+    pure subroutine cylinder_surface(grid, radius, h)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: radius
         real(dp), intent(out) :: h(:, :)
         integer :: i
         real(dp) :: x
-        do i = 1, nx
-            x = (i - 1 - nx/2)*lx/nx
-            h(i, 1:ny) = -x*x/(2.0_dp*radius)
+        do i = 1, grid%nx
+            x = (i - 1 - grid%nx/2)*grid%lx_m/grid%nx
+            h(i, 1:grid%ny) = -x*x/(2.0_dp*radius)
         end do
     end subroutine cylinder_surface
 

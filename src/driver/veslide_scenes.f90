@@ -3,7 +3,8 @@
 !> q0 .. k_cut q0, rms slope 0.025) and material time tau = 10 ms, so v tau/L0 = speed [m/s].
 module veslide_scenes
     use veslide_kinds, only: dp
-    use veslide_config, only: config_t
+    use veslide_error, only: error_t
+    use veslide_config, only: config_t, default_config, complete_config
     implicit none
     private
     public :: hard_case_count, hard_case
@@ -17,50 +18,51 @@ contains
     end function hard_case_count
 
     !> Configuration of hard case k (1..hard_case_count()) on an n x n grid; `name` describes it
-    subroutine hard_case(k, n, cfg, name)
+    subroutine hard_case(k, n, cfg, name, error)
         integer, intent(in) :: k, n
         type(config_t), intent(out) :: cfg
         character(len=:), allocatable, intent(out) :: name
+        type(error_t), allocatable, intent(out) :: error
         real(dp), parameter :: speeds(7) = [0.0_dp, 1.0e-3_dp, 1.0e-2_dp, 1.0e-1_dp, 1.0_dp, 10.0_dp, 1.0e3_dp]
         character(len=8), parameter :: speed_names(7) = [character(len=8) :: '0', '1e-3', '1e-2', '1e-1', '1', &
                                                           '10', '1e3']
         real(dp), parameter :: loads(5) = [1.0e3_dp, 1.0e4_dp, 3.0e5_dp, 3.0e6_dp, 1.0e8_dp]
         character(len=8), parameter :: load_names(5) = [character(len=8) :: '1e3', '1e4', '3e5', '3e6', '1e8']
         integer :: j
-        cfg%path = 'hard-case'; cfg%text = ''
-        cfg%nx = n; cfg%ny = n; cfg%lx_m = 0.01_dp; cfg%ly_m = 0.01_dp
-        cfg%k_cut = min(64.0_dp, n/4.0_dp)
-        cfg%model = 'one_term'; cfg%einf_pa = 1.0e8_dp; cfg%ratio = 11.0_dp; cfg%tau_s = 0.01_dp; cfg%poisson = 0.5_dp
-        cfg%mean_pressure_pa = 32.0e3_dp; cfg%speed_m_s = 0.13_dp
-        cfg%fft_planner = 'estimate'; cfg%write_fields = .false.
-        allocate (character(len=0) :: cfg%height_file, cfg%height_dataset)
-        allocate (cfg%prony_coef(0), cfg%prony_time_s(0))
-        cfg%output_file = 'hard.h5'
+        call default_config(cfg, 'hard-case')
+        cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp
+        cfg%surface%k_cut = min(64.0_dp, n/4.0_dp)
+        cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+        cfg%material%tau_s = 0.01_dp; cfg%material%poisson = 0.5_dp
+        cfg%load%mean_pressure_pa = 32.0e3_dp; cfg%motion%speed_m_s = 0.13_dp
+        cfg%solver%fft_planner = 'estimate'; cfg%output%fields = .false.
+        cfg%output%file = 'hard.h5'
         select case (k)
         case (1:7)              ! ratio 11 across the loss peak and both limits
-            cfg%speed_m_s = speeds(k)
+            cfg%motion%speed_m_s = speeds(k)
             name = 'ratio 11, v tau/L0 = '//trim(speed_names(k))
         case (8:14)             ! ratio 100
-            cfg%ratio = 100.0_dp; cfg%speed_m_s = speeds(k - 7)
+            cfg%material%ratio = 100.0_dp; cfg%motion%speed_m_s = speeds(k - 7)
             name = 'ratio 100, v tau/L0 = '//trim(speed_names(k - 7))
         case (15:21)            ! ratio 1000
-            cfg%ratio = 1000.0_dp; cfg%speed_m_s = speeds(k - 14)
+            cfg%material%ratio = 1000.0_dp; cfg%motion%speed_m_s = speeds(k - 14)
             name = 'ratio 1000, v tau/L0 = '//trim(speed_names(k - 14))
         case (22:26)            ! contact fractions from a fraction of a percent to full contact
-            cfg%mean_pressure_pa = loads(k - 21)
+            cfg%load%mean_pressure_pa = loads(k - 21)
             name = 'ratio 11, v tau/L0 = 0.13, p = '//trim(load_names(k - 21))//' Pa'
         case (27)
-            cfg%eccentricity = 0.1_dp; cfg%alpha_deg = 45.0_dp
+            cfg%surface%eccentricity = 0.1_dp; cfg%surface%alpha_deg = 45.0_dp
             name = 'eccentricity 0.1 at 45 deg, ratio 11, v tau/L0 = 0.13'
         case (28)               ! 20 creep terms, retardation times 1e-8 .. 1e4 s, Einf/E0 = 100
-            cfg%model = 'creep'; cfg%e0_pa = 1.0e6_dp
-            cfg%prony_time_s = [(10.0_dp**(-8.0_dp + 12.0_dp*(j - 1)/19.0_dp), j = 1, 20)]
-            cfg%prony_coef = [(((1.0_dp/1.0e6_dp - 1.0_dp/1.0e8_dp)/20.0_dp), j = 1, 20)]
+            cfg%material%model = 'creep'; cfg%material%e0_pa = 1.0e6_dp
+            cfg%material%prony_time_s = [(10.0_dp**(-8.0_dp + 12.0_dp*(j - 1)/19.0_dp), j = 1, 20)]
+            cfg%material%prony_coef = [(((1.0_dp/1.0e6_dp - 1.0_dp/1.0e8_dp)/20.0_dp), j = 1, 20)]
             name = '20-term creep series over 12 decades, v = 0.13 m/s'
         case (29)
-            cfg%hurst = 0.3_dp
+            cfg%surface%hurst = 0.3_dp
             name = 'Hurst 0.3, ratio 11, v tau/L0 = 0.13'
         end select
+        call complete_config(cfg, error)
     end subroutine hard_case
 
 end module veslide_scenes

@@ -1,20 +1,20 @@
-!> Elastic contact against closed-form solutions, identities and symmetries
-module test_veslide_solver
+!> The Polonsky-Keer solver (and the dispatcher's choice of it) on elastic contact: closed-form
+!> solutions, identities and symmetries; and its agreement with the splitting solver
+module test_veslide_solver_pk
     use veslide_kinds, only: dp, pi, two_pi, i8
-    use veslide_fftw, only: fft2d_t
-    use veslide_solver, only: contact_state_t
+    use veslide_contact, only: contact_state_t
     use veslide_surface, only: cosine_surface, bisinusoid_surface, paraboloid_surface, psd_t, random_surface
     use veslide_analysis, only: contact_area_fraction, mean_separation
-    use veslide_kernel, only: KERNEL_SPECTRAL
     use testsuite, only: error_t, unittest_t, new_unittest, check, rel_error, report
-    use test_support, only: solve_case
+    use test_support, only: solve_case, square_grid
+    use reference_oracles, only: westergaard_t, westergaard
     implicit none
     private
-    public :: collect_solver
+    public :: collect_solver_pk
 
 contains
 
-    subroutine collect_solver(tests)
+    subroutine collect_solver_pk(tests)
         type(unittest_t), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest("westergaard", test_westergaard), &
@@ -29,25 +29,23 @@ contains
             new_unittest("warm-start", test_warm_start), &
             new_unittest("dr-matches-pk-elastic", test_dr_matches_pk) &
             ]
-    end subroutine collect_solver
+    end subroutine collect_solver_pk
 
-    !> Westergaard: h = h0 cos(2 pi x/l), plane strain. psi = sin(pi a/l) = sqrt(p/p*),
-    !> p* = pi E* h0/l; peak pressure 2 sqrt(p p*); mean gap h0 + 2 p l/(pi E*) (ln psi - 1/2)
-    !> (derived in docs/validation.md from g(0) = 0 and sum_k cos(k t)/k = -ln|2 sin(t/2)|).
+    !> Errors against Westergaard's solution (h = h0 cos(2 pi x/l), plane strain) on n cells
     subroutine westergaard_errors(n, e_area, e_peak, e_gap, error)
         integer, intent(in) :: n
         real(dp), intent(out) :: e_area, e_peak, e_gap
         type(error_t), allocatable, intent(out) :: error
         real(dp), parameter :: l = 1.0_dp, h0 = 1.0e-3_dp, estar = 1.0e6_dp, p = 1000.0_dp
-        real(dp) :: h(n, 1), pstar, psi
+        real(dp) :: h(n, 1)
         type(contact_state_t) :: s
-        call cosine_surface(n, 1, l, l, h0, l, 0.0_dp, h)
+        type(westergaard_t) :: w
+        call cosine_surface(square_grid(h, l, l), h0, l, 0.0_dp, h)
         call solve_case(h, l, l, p, s, error, estar=estar); if (allocated(error)) return
-        pstar = pi*estar*h0/l
-        psi = sqrt(p/pstar)
-        e_area = abs(contact_area_fraction(s%p) - 2.0_dp*asin(psi)/pi)
-        e_peak = rel_error(maxval(s%p), 2.0_dp*sqrt(p*pstar))
-        e_gap = rel_error(mean_separation(s%g), h0 + 2.0_dp*p*l/(pi*estar)*(log(psi) - 0.5_dp))
+        w = westergaard(p, h0, l, estar)
+        e_area = abs(contact_area_fraction(s%p) - w%width_fraction)
+        e_peak = rel_error(maxval(s%p), w%peak_pa)
+        e_gap = rel_error(mean_separation(s%g), w%mean_gap_m)
     end subroutine westergaard_errors
 
     subroutine test_westergaard(error)
@@ -86,7 +84,7 @@ contains
         type(contact_state_t) :: s
         ! wavevector (3, 2) * 2 pi/l
         lam = l/sqrt(13.0_dp); th = atan2(2.0_dp, 3.0_dp)
-        call cosine_surface(n, n, l, l, h0, lam, th, h)
+        call cosine_surface(square_grid(h, l, l), h0, lam, th, h)
         amp = 0.5_dp*estar*two_pi/lam*h0
         p_mean = 1.5_dp*amp
         call solve_case(h, l, l, p_mean, s, error, estar=estar); if (allocated(error)) return
@@ -120,7 +118,7 @@ contains
         f = 4.0_dp*estar*a**3/(3.0_dp*r)
         p_mean = f/l**2
         p0 = 3.0_dp*f/(2.0_dp*pi*a**2)
-        call paraboloid_surface(n, n, l, l, r, h)
+        call paraboloid_surface(square_grid(h, l, l), r, h)
         call solve_case(h, l, l, p_mean, s, error, estar=estar); if (allocated(error)) return
         a_num = sqrt(contact_area_fraction(s%p)*l*l/pi)
         call report("radius", rel_error(a_num, a)); call report("peak", rel_error(maxval(s%p), p0))
@@ -137,7 +135,7 @@ contains
         real(dp), parameter :: l = 1.0_dp, d = 1.0e-3_dp, estar = 1.0e6_dp
         real(dp) :: h(n, n), pstar, p, f, r, a, area
         type(contact_state_t) :: s
-        call bisinusoid_surface(n, n, l, l, d, l, h)
+        call bisinusoid_surface(square_grid(h, l, l), d, l, h)
         pstar = sqrt(2.0_dp)*pi*estar*d/l
         p = 5.0e-4_dp*pstar
         f = 0.5_dp*p*l*l
@@ -158,7 +156,7 @@ contains
         real(dp), parameter :: l = 1.0_dp, d = 1.0e-3_dp, estar = 1.0e6_dp
         real(dp) :: h(n, n), pstar, p, free
         type(contact_state_t) :: s
-        call bisinusoid_surface(n, n, l, l, d, l, h)
+        call bisinusoid_surface(square_grid(h, l, l), d, l, h)
         pstar = sqrt(2.0_dp)*pi*estar*d/l
         p = 0.96_dp*pstar
         call solve_case(h, l, l, p, s, error, estar=estar); if (allocated(error)) return
@@ -173,14 +171,12 @@ contains
         real(dp), intent(out) :: h(n, n)
         type(error_t), allocatable, intent(out) :: error
         integer(i8), intent(in), optional :: seed
-        type(fft2d_t) :: fft
         type(psd_t) :: psd
         integer(i8) :: seed_
         seed_ = 7_i8; if (present(seed)) seed_ = seed
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         psd = psd_t(hurst=0.8_dp, eccentricity=0.5_dp, alpha_rad=0.4_dp, q_low=two_pi, q_roll=two_pi, &
                     q_cut=two_pi*n/4)
-        call random_surface(size(h, 1), size(h, 2), 1.0_dp, 1.0_dp, psd, seed_, 0.0_dp, 1.0e-3_dp, h, error)
+        call random_surface(square_grid(h, 1.0_dp, 1.0_dp), psd, seed_, 0.0_dp, 1.0e-3_dp, h, error)
     end subroutine rough
 
     !> Rotating the surface by 90 degrees, or mirroring it, rotates/mirrors the solution
@@ -260,4 +256,4 @@ contains
         call check(error, maxval(abs(s%p - sd%p))/maxval(s%p) <= 1.0e-9_dp, "pressures differ")
     end subroutine test_dr_matches_pk
 
-end module test_veslide_solver
+end module test_veslide_solver_pk

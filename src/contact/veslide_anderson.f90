@@ -1,0 +1,117 @@
+!> Anderson acceleration (type II) of a fixed-point iteration z <- z + f(z).
+!>
+!> With memory m the accelerator keeps the last m differences dF_k = f_k - f_{k-1} and
+!> G_k = (z_k - z_{k-1}) + dF_k, and replaces the plain step by
+!>   z <- z + f - G c,   c = argmin |f - dF c|,
+!> solving the m x m least-squares problem from its Gram matrix dF^T dF (LAPACK dposv, with a
+!> relative diagonal shift of 1e-10). A step costs one pass over the 2m columns and the grid;
+!> the Gram matrix is updated by one new row per step. Memory: 2 (m + 1) doubles per unknown.
+!> Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715; Fang & Saad, Numer. Linear Algebra Appl.
+!> 16 (2009) 197 (type II).
+module veslide_anderson
+    use veslide_kinds, only: dp
+    use veslide_lapack, only: dposv
+    implicit none
+    private
+    public :: anderson_t
+
+    type :: anderson_t
+        integer :: memory = 0            !! m; 0 gives the plain step
+        integer :: stored = 0            !! columns held (<= memory)
+        integer :: slot = 0              !! column written last
+        logical :: have_prev = .false.   !! a previous (z, f) is held
+        real(dp), allocatable :: df(:, :), gm(:, :), gram(:, :), zprev(:), fprev(:)
+    contains
+        procedure :: init => anderson_init
+        procedure :: reset => anderson_reset
+        procedure :: step => anderson_step
+        procedure :: plain_step_from_previous => anderson_plain_previous
+    end type anderson_t
+
+contains
+
+    !> Set up for n unknowns and memory m (m = 0: no acceleration)
+    subroutine anderson_init(self, n, memory)
+        class(anderson_t), intent(inout) :: self
+        integer, intent(in) :: n, memory
+        self%memory = max(0, memory)
+        if (allocated(self%df)) deallocate (self%df, self%gm, self%gram, self%zprev, self%fprev)
+        allocate (self%df(n, max(self%memory, 1)), self%gm(n, max(self%memory, 1)))
+        allocate (self%gram(max(self%memory, 1), max(self%memory, 1)), self%zprev(n), self%fprev(n))
+        call self%reset()
+    end subroutine anderson_init
+
+    !> Forget the history (after a change of the map, or a rejected step)
+    pure subroutine anderson_reset(self)
+        class(anderson_t), intent(inout) :: self
+        self%stored = 0; self%have_prev = .false.
+    end subroutine anderson_reset
+
+    !> One step from (z, f = residual at z): z <- z + f - G c. Returns .true. when the step was
+    !> accelerated (a history existed and the least-squares problem was solved)
+    function anderson_step(self, z, f) result(accelerated)
+        class(anderson_t), intent(inout) :: self
+        real(dp), intent(inout) :: z(:)
+        real(dp), intent(in) :: f(:)
+        logical :: accelerated
+        real(dp) :: gtmp(max(self%memory, 1), max(self%memory, 1)), coef(max(self%memory, 1))
+        real(dp) :: dots(max(self%memory, 1), 2), dfv, zn
+        integer :: i, k, n, mk, slot, info
+        n = size(z)
+        accelerated = .false.
+        if (self%memory > 0 .and. self%have_prev) then
+            self%slot = modulo(self%slot, self%memory) + 1
+            self%stored = min(self%stored + 1, self%memory)
+            slot = self%slot; mk = self%stored
+            dots = 0.0_dp
+            ! new columns with the Gram row and the right-hand side, in one pass
+            !$omp parallel do private(dfv, k) reduction(+:dots)
+            do i = 1, n
+                dfv = f(i) - self%fprev(i)
+                self%df(i, slot) = dfv
+                self%gm(i, slot) = (z(i) - self%zprev(i)) + dfv
+                do k = 1, mk
+                    dots(k, 1) = dots(k, 1) + self%df(i, k)*dfv
+                    dots(k, 2) = dots(k, 2) + self%df(i, k)*f(i)
+                end do
+            end do
+            !$omp end parallel do
+            self%gram(1:mk, slot) = dots(1:mk, 1); self%gram(slot, 1:mk) = dots(1:mk, 1)
+            gtmp(1:mk, 1:mk) = self%gram(1:mk, 1:mk)
+            do k = 1, mk
+                gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp)
+            end do
+            coef(1:mk) = dots(1:mk, 2)
+            call dposv('U', mk, 1, gtmp, size(gtmp, 1), coef, size(coef), info)
+            if (info /= 0) then
+                self%stored = 0; mk = 0; coef = 0.0_dp
+            end if
+            accelerated = info == 0
+            ! the update of z, keeping (z, f) for the next step
+            !$omp parallel do private(zn, k)
+            do i = 1, n
+                zn = z(i) + f(i)
+                do k = 1, mk
+                    zn = zn - self%gm(i, k)*coef(k)
+                end do
+                self%zprev(i) = z(i); self%fprev(i) = f(i)
+                z(i) = zn
+            end do
+            !$omp end parallel do
+        else
+            self%zprev = z; self%fprev = f
+            z = z + f
+        end if
+        self%have_prev = .true.
+    end function anderson_step
+
+    !> z <- z_prev + f_prev (the plain step from the previous point, replacing a rejected
+    !> accelerated step), and the history cleared
+    subroutine anderson_plain_previous(self, z)
+        class(anderson_t), intent(inout) :: self
+        real(dp), intent(out) :: z(:)
+        z = self%zprev + self%fprev
+        call self%reset()
+    end subroutine anderson_plain_previous
+
+end module veslide_anderson

@@ -1,0 +1,132 @@
+!> The load-controlled periodic contact problem of a rigid surface on a half-space, and the one
+!> residual definition every solver reports.
+!>
+!> Find p >= 0 with mean(p) = p_mean, and an approach d, such that the gap
+!> g = K p - h + d >= 0 and p g = 0 everywhere. K is the kernel (zero on the mean mode), h the
+!> heights with their mean removed; d is then the mean gap (the mean separation).
+!>
+!> Residual (`residual_measures`): max(penetration, complementarity, negative pressure, load error),
+!>   penetration = max(-g)/h_s, complementarity = |sum p g|/(sum p * h_s),
+!>   negative pressure = max(-p)/p_mean, load error = |mean p - p_mean|/p_mean,
+!> h_s = rms height (or the displacement scale p_mean*max|K| for a flat surface), always evaluated
+!> on a freshly computed K p before a solver reports convergence. A new contact law (adhesion, a
+!> different constraint) is a new projection in the solvers and new measures here.
+module veslide_contact
+    use veslide_kinds, only: dp
+    use veslide_error, only: error_t, fatal_error
+    use veslide_grid, only: grid_t
+    use veslide_kernel, only: kernel_t
+    implicit none
+    private
+    public :: contact_problem_t, contact_state_t, new_contact_problem, residual_measures
+
+    !> One contact problem: the operator, the heights and the load
+    type :: contact_problem_t
+        type(kernel_t) :: kernel                   !! the influence operator
+        real(dp), allocatable :: hc(:, :)          !! heights with their mean removed [m]
+        real(dp) :: p_mean_pa = 0.0_dp             !! nominal pressure [Pa]
+        real(dp) :: height_scale_m = 0.0_dp        !! h_s of the residual [m]
+    contains
+        procedure :: grid => problem_grid
+        procedure :: residuals => problem_residuals
+        procedure :: start => problem_start
+    end type contact_problem_t
+
+    !> A candidate or final solution with its residuals and the work spent
+    type :: contact_state_t
+        real(dp), allocatable :: p(:, :)        !! pressure [Pa]
+        real(dp), allocatable :: u(:, :)        !! zero-mean displacement K p, positive into the solid [m]
+        real(dp), allocatable :: g(:, :)        !! gap [m], >= 0 up to the tolerance
+        real(dp) :: approach_m = 0.0_dp         !! d: the mean gap [m]
+        integer :: iterations = 0
+        integer :: operator_applications = 0    !! FFT pairs spent on K
+        logical :: converged = .false.
+        real(dp) :: penetration = huge(1.0_dp), complementarity = huge(1.0_dp)
+        real(dp) :: negative_pressure = huge(1.0_dp), load_error = huge(1.0_dp)
+        real(dp) :: residual = huge(1.0_dp)
+        character(len=:), allocatable :: method  !! name of the method used
+    end type contact_state_t
+
+contains
+
+    !> The problem of heights `h` (any mean) under nominal pressure `p_mean` with operator `kernel`
+    subroutine new_contact_problem(self, kernel, h, p_mean, error)
+        type(contact_problem_t), intent(out) :: self
+        type(kernel_t), intent(in) :: kernel
+        real(dp), intent(in) :: h(:, :)
+        real(dp), intent(in) :: p_mean
+        type(error_t), allocatable, intent(out) :: error
+        if (size(h, 1) /= kernel%grid%nx .or. size(h, 2) /= kernel%grid%ny) then
+            call fatal_error(error, "veslide:contact:new_contact_problem: heights and kernel grids differ"); return
+        end if
+        if (.not. (p_mean > 0.0_dp)) then
+            call fatal_error(error, "veslide:contact:new_contact_problem: the nominal pressure must be positive"); return
+        end if
+        if (any(h /= h)) then
+            call fatal_error(error, "veslide:contact:new_contact_problem: the heights contain NaN"); return
+        end if
+        self%kernel = kernel
+        self%p_mean_pa = p_mean
+        self%hc = h - sum(h)/size(h)
+        self%height_scale_m = sqrt(sum(self%hc**2)/size(self%hc))
+        if (self%height_scale_m <= 0.0_dp) self%height_scale_m = p_mean*kernel%max_abs()
+        if (self%height_scale_m <= 0.0_dp) self%height_scale_m = 1.0_dp
+    end subroutine new_contact_problem
+
+    pure function problem_grid(self) result(grid)
+        class(contact_problem_t), intent(in) :: self
+        type(grid_t) :: grid
+        grid = self%kernel%grid
+    end function problem_grid
+
+    !> A fresh state: fields allocated, pressure uniform or from `p_init` (clipped at zero and
+    !> rescaled to the load)
+    pure subroutine problem_start(self, state, p_init)
+        class(contact_problem_t), intent(in) :: self
+        type(contact_state_t), intent(out) :: state
+        real(dp), intent(in), optional :: p_init(:, :)
+        integer :: nx, ny
+        nx = size(self%hc, 1); ny = size(self%hc, 2)
+        allocate (state%p(nx, ny), state%u(nx, ny), state%g(nx, ny))
+        state%p = self%p_mean_pa
+        if (present(p_init)) then
+            if (all(shape(p_init) == [nx, ny])) then
+                if (sum(max(p_init, 0.0_dp)) > 0.0_dp) then
+                    state%p = max(p_init, 0.0_dp)
+                    state%p = state%p*(self%p_mean_pa*size(state%p)/sum(state%p))
+                end if
+            end if
+        end if
+    end subroutine problem_start
+
+    !> The four measures and the residual from sums over the grid: min gap `gmin`, sum(p g) `spg`,
+    !> sum(|p|) `sp`, min pressure `pmin`, sum(p) `sum_p` over `n` points (the one definition)
+    pure subroutine residual_measures(state, gmin, spg, sp, pmin, sum_p, n, p_mean, hs)
+        type(contact_state_t), intent(inout) :: state
+        real(dp), intent(in) :: gmin, spg, sp, pmin, sum_p, n, p_mean, hs
+        state%penetration = max(0.0_dp, -gmin)/hs
+        state%complementarity = abs(spg)/(sp*hs)
+        state%negative_pressure = max(0.0_dp, -pmin)/p_mean
+        state%load_error = abs(sum_p/n - p_mean)/p_mean
+        state%residual = max(state%penetration, state%complementarity, state%negative_pressure, state%load_error)
+    end subroutine residual_measures
+
+    !> Residuals of a candidate (p, u = K p): fills d (the contact-set mean of h - u), g and the
+    !> four measures of `state`
+    pure subroutine problem_residuals(self, state)
+        class(contact_problem_t), intent(in) :: self
+        type(contact_state_t), intent(inout) :: state
+        integer :: nc
+        nc = count(state%p > 0.0_dp)
+        state%g = state%u - self%hc
+        if (nc > 0) then
+            state%approach_m = -sum(state%g, mask=state%p > 0.0_dp)/nc
+        else
+            state%approach_m = -maxval(state%g)
+        end if
+        state%g = state%g + state%approach_m
+        call residual_measures(state, minval(state%g), sum(state%p*state%g), sum(abs(state%p)), minval(state%p), &
+                               sum(state%p), real(size(state%p), dp), self%p_mean_pa, self%height_scale_m)
+    end subroutine problem_residuals
+
+end module veslide_contact

@@ -1,0 +1,214 @@
+!> Polonsky & Keer (1999) constrained conjugate gradient for the symmetric (elastic) contact
+!> problem, load control. The displacement is updated linearly (u <- s (u - tau K t)), so an
+!> iteration costs one operator application (one FFT pair) unless the active set changed, when the
+!> correction K c of the clipped/re-admitted points costs one more.
+!> Polonsky & Keer, Wear 231 (1999) 206-219.
+module veslide_solver_pk
+    use veslide_kinds, only: dp
+    use veslide_fftw, only: fft2d_t
+    use veslide_contact, only: contact_problem_t, contact_state_t, residual_measures
+    use veslide_solver_options, only: solver_options_t
+    implicit none
+    private
+    public :: polonsky_keer
+
+contains
+
+    !> Polonsky & Keer (1999) constrained conjugate gradient, load control.
+    !>
+    !> The iteration is memory-bound outside its one FFT pair, so it is written as four fused,
+    !> OpenMP-parallel passes over the grid and keeps no gap array:
+    !>   A  residuals, contact-set mean of the gap and |g|^2 (sums shifted by the previous mean,
+    !>      so that no cancellation spoils them near convergence);
+    !>   C  conjugate direction t, written straight into the FFT buffer, with sum(g t), sum(t);
+    !>   -  r = K t (the FFT pair);
+    !>   D  step-length sums;  E  step, projection p >= 0, re-admission, u <- u - tau r.
+    !> The load rescaling p, u <- s p, s u is kept as a pending scalar `a` (true p = a P). The
+    !> displacement is carried along linearly; the correction K c for the points that projection
+    !> or re-admission changed costs one more FFT pair in the iterations that have any, unless
+    !> there is a single such point (then one shifted column of the influence function is added).
+    subroutine polonsky_keer(problem, fft, opts, state)
+        type(contact_problem_t), intent(in) :: problem
+        type(fft2d_t), intent(inout) :: fft
+        type(solver_options_t), intent(in) :: opts
+        !> on entry the starting pressure (problem%start); on exit the solution
+        type(contact_state_t), intent(inout) :: state
+        real(dp), allocatable :: t(:, :), green(:, :)
+        real(dp) :: a, gp, gbar, s1, s2, gg, gg_old, beta, tau, den, num, sr, srt, st, sp_new, pv, g, pn, hs
+        real(dp) :: gmin, spg, sp, pmin, c1, delta, uo, c, p_mean
+        integer :: nx, ny, i, j, nc, m, since_fresh, ic, jc
+        logical :: fresh, have_green
+        integer :: noverlap
+
+        nx = size(problem%hc, 1); ny = size(problem%hc, 2)
+        hs = problem%height_scale_m
+        p_mean = problem%p_mean_pa
+        state%method = 'pk'
+        allocate (t(nx, ny))
+        have_green = .false.
+        call problem%kernel%apply(fft, state%p, state%u)
+        state%operator_applications = 1
+        fresh = .true.; since_fresh = 0
+        t = 0.0_dp; delta = 0.0_dp; gg_old = 1.0_dp; a = 1.0_dp
+        gp = sum(state%u - problem%hc, mask=state%p > 0.0_dp)/max(1, count(state%p > 0.0_dp))
+        do
+            ! pass A: residuals and contact-set statistics of g = a U - h, shifted by gp
+            nc = 0; s1 = 0.0_dp; s2 = 0.0_dp; gmin = huge(1.0_dp); spg = 0.0_dp; sp = 0.0_dp; pmin = huge(1.0_dp)
+            !$omp parallel do private(i, pv, g) reduction(+:nc, s1, s2, spg, sp) reduction(min:gmin, pmin)
+            do j = 1, ny
+                do i = 1, nx
+                    pv = a*state%p(i, j)
+                    g = a*state%u(i, j) - problem%hc(i, j) - gp
+                    if (pv > 0.0_dp) then
+                        nc = nc + 1; s1 = s1 + g; s2 = s2 + g*g
+                    end if
+                    gmin = min(gmin, g)
+                    spg = spg + pv*g
+                    sp = sp + pv
+                    pmin = min(pmin, pv)
+                end do
+            end do
+            !$omp end parallel do
+            c1 = s1/nc
+            gbar = gp + c1
+            gg = max(s2 - s1*c1, 0.0_dp)
+            state%approach_m = -gbar
+            call residual_measures(state, gmin - c1, spg - c1*sp, sp, pmin, sp, real(nx, dp)*ny, p_mean, hs)
+            gp = gbar
+            if (state%residual <= opts%tolerance) then
+                if (fresh) then
+                    state%converged = .true.; exit
+                end if
+                call refresh(); cycle
+            end if
+            if (state%iterations >= opts%max_iterations) exit
+            state%iterations = state%iterations + 1
+
+            ! pass C: conjugate direction on the contact set, straight into the FFT buffer
+            beta = delta*gg/gg_old
+            gg_old = gg
+            num = 0.0_dp; st = 0.0_dp
+            !$omp parallel do private(i, g) reduction(+:num, st)
+            do j = 1, ny
+                do i = 1, nx
+                    if (state%p(i, j) > 0.0_dp) then
+                        g = a*state%u(i, j) - problem%hc(i, j) - gbar
+                        t(i, j) = g + beta*t(i, j)
+                        num = num + g*t(i, j)
+                        st = st + t(i, j)
+                    else
+                        t(i, j) = 0.0_dp
+                    end if
+                    fft%x(i, j) = t(i, j)
+                end do
+            end do
+            !$omp end parallel do
+            call problem%kernel%apply_buffer(fft)          ! fft%x = r = K t
+            state%operator_applications = state%operator_applications + 1
+
+            ! pass D: step length, with r centred on the contact set
+            sr = 0.0_dp; srt = 0.0_dp
+            !$omp parallel do private(i) reduction(+:sr, srt)
+            do j = 1, ny
+                do i = 1, nx
+                    if (state%p(i, j) > 0.0_dp) then
+                        sr = sr + fft%x(i, j)
+                        srt = srt + fft%x(i, j)*t(i, j)
+                    end if
+                end do
+            end do
+            !$omp end parallel do
+            den = srt - sr/nc*st
+            if (.not. (den > 0.0_dp)) then
+                ! no descent left: only round-off remains, confirm on a fresh product
+                if (fresh) exit
+                call refresh(); cycle
+            end if
+            tau = num/den
+
+            ! pass E: step, projection, re-admission of overlapping points, displacement update.
+            ! r is not needed after its use here, so the buffer takes the correction c (what
+            ! projection and re-admission add to the linear step).
+            m = 0; sp_new = 0.0_dp; noverlap = 0; ic = 0; jc = 0
+            !$omp parallel do private(i, pn, g, uo, c) reduction(+:m, sp_new, noverlap) reduction(max:ic, jc)
+            do j = 1, ny
+                do i = 1, nx
+                    uo = a*state%u(i, j)
+                    pn = a*state%p(i, j) - tau*t(i, j)
+                    state%u(i, j) = uo - tau*fft%x(i, j)
+                    c = 0.0_dp
+                    if (pn < 0.0_dp) then
+                        c = -pn
+                        pn = 0.0_dp
+                    end if
+                    if (pn == 0.0_dp) then
+                        g = uo - problem%hc(i, j) - gbar
+                        if (g < 0.0_dp) then
+                            noverlap = noverlap + 1
+                            c = c - tau*g
+                            pn = -tau*g
+                        end if
+                    end if
+                    fft%x(i, j) = c
+                    if (c /= 0.0_dp) then
+                        m = m + 1; ic = max(ic, i); jc = max(jc, j)
+                    end if
+                    state%p(i, j) = pn
+                    sp_new = sp_new + pn
+                end do
+            end do
+            !$omp end parallel do
+            delta = merge(0.0_dp, 1.0_dp, noverlap > 0)
+            if (m > 0) call add_correction(m, ic, jc)
+            a = p_mean*(real(nx, dp)*ny)/sp_new
+            fresh = .false.
+            since_fresh = since_fresh + 1
+            if (since_fresh >= opts%refresh_every) call refresh()
+        end do
+        state%p = a*state%p
+        state%u = a*state%u
+        state%g = state%u - problem%hc - gbar
+
+    contains
+
+        !> U = K P exactly, with the pending scale applied first
+        subroutine refresh()
+            state%p = a*state%p; a = 1.0_dp
+            call problem%kernel%apply(fft, state%p, state%u)
+            state%operator_applications = state%operator_applications + 1
+            fresh = .true.; since_fresh = 0
+        end subroutine refresh
+
+        !> u += K c for the correction held in the FFT buffer (m non-zeros; for m = 1 at (ic, jc))
+        subroutine add_correction(m, ic, jc)
+            integer, intent(in) :: m, ic, jc
+            integer :: ii, jj, i0, j0, js
+            real(dp) :: cv
+            if (m > 1) then
+                call problem%kernel%apply_buffer(fft)
+                state%u = state%u + fft%x
+                state%operator_applications = state%operator_applications + 1
+                return
+            end if
+            cv = fft%x(ic, jc)
+            if (.not. have_green) then
+                allocate (green(nx, ny))
+                call problem%kernel%impulse_response(fft, green)
+                have_green = .true.
+                state%operator_applications = state%operator_applications + 1
+            end if
+            i0 = ic - 1; j0 = jc - 1
+            do jj = 1, ny
+                js = modulo(jj - 1 - j0, ny) + 1
+                do ii = 1, i0
+                    state%u(ii, jj) = state%u(ii, jj) + cv*green(nx - i0 + ii, js)
+                end do
+                do ii = i0 + 1, nx
+                    state%u(ii, jj) = state%u(ii, jj) + cv*green(ii - i0, js)
+                end do
+            end do
+        end subroutine add_correction
+
+    end subroutine polonsky_keer
+
+end module veslide_solver_pk

@@ -1,0 +1,335 @@
+!> One case from a configuration: surface, material, kernel, contact problem, solve, derived
+!> quantities, and its results (the list the output, the study rows and the summary read).
+module veslide_case
+    use veslide_kinds, only: dp, pi
+    use veslide_error, only: error_t, add_context
+    use veslide_clock, only: wall_seconds
+    use veslide_config, only: config_t
+    use veslide_grid, only: grid_t, new_grid
+    use veslide_fftw, only: fft2d_t
+    use veslide_spectrum, only: slope_tensor
+    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
+    use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
+                               paraboloid_surface, cylinder_surface, rms_height
+    use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id
+    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
+    use veslide_solver_options, only: solver_options_t, solver_method_id
+    use veslide_solver, only: solve_contact
+    use veslide_analysis, only: contact_area_fraction, mean_separation, slope_force
+    use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta, patch_stats_t, contact_patches, percolates
+    use veslide_quantities, only: results_t, add_force_quantities, add_solver_quantities
+    use veslide_topography, only: read_topography
+    use veslide_hdf5, only: h5file_t
+    use veslide_output, only: write_provenance, write_results, write_field
+    implicit none
+    private
+    public :: case_t, build_surface, build_material, build_kernel, case_grid, run_case, solve_prepared, &
+              case_results, write_case, write_case_group, velocity_of
+
+    !> Everything one solve produced
+    type :: case_t
+        type(grid_t) :: grid
+        real(dp), allocatable :: h(:, :)          !! rigid heights [m]
+        type(material_t) :: mat
+        type(kernel_t) :: kernel
+        type(contact_state_t) :: state
+        real(dp) :: velocity_m_s(2) = 0.0_dp
+        real(dp) :: force_pa(2) = 0.0_dp          !! <p grad w>, solid on rigid surface [Pa]
+        real(dp) :: slope_force_pa(2) = 0.0_dp    !! <p grad h> [Pa] (check)
+        real(dp) :: kernel_seconds = 0.0_dp, solve_seconds = 0.0_dp, surface_seconds = 0.0_dp
+        ! &analysis anisotropy
+        logical :: have_anisotropy = .false.
+        real(dp) :: band_q(2) = 0.0_dp                    !! [zeta1, zeta2] q0 [1/m]
+        real(dp) :: m_surface(2, 2) = 0.0_dp, m_deformed(2, 2) = 0.0_dp
+        real(dp) :: gamma_s = 0.0_dp, gamma_d = 0.0_dp, theta_s = 0.0_dp, theta_d = 0.0_dp
+        real(dp) :: sigma1 = 0.0_dp, sigma2 = 0.0_dp, phi = 0.0_dp
+        ! &analysis patches
+        logical :: have_patches = .false.
+        type(patch_stats_t) :: patches
+        logical :: percolates_x = .false., percolates_y = .false.
+    end type case_t
+
+contains
+
+    !> The velocity vector of &motion [m/s]
+    pure function velocity_of(cfg) result(v)
+        type(config_t), intent(in) :: cfg
+        real(dp) :: v(2), th
+        th = cfg%motion%direction_deg*pi/180.0_dp
+        v = cfg%motion%speed_m_s*[cos(th), sin(th)]
+    end function velocity_of
+
+    !> The grid of the configuration (for a measured topography, after build_surface read it)
+    subroutine case_grid(cfg, grid, error)
+        type(config_t), intent(in) :: cfg
+        type(grid_t), intent(out) :: grid
+        type(error_t), allocatable, intent(out) :: error
+        call new_grid(grid, cfg%grid%nx, cfg%grid%ny, cfg%grid%lx_m, cfg%grid%ly_m, error)
+        call add_context(error, "veslide: "//cfg%path//": &grid: ")
+    end subroutine case_grid
+
+    !> Rigid heights from the configuration; a measured topography fixes &grid nx, ny, lx_m, ly_m
+    subroutine build_surface(cfg, h, error)
+        type(config_t), intent(inout) :: cfg
+        real(dp), allocatable, intent(out) :: h(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        type(grid_t) :: grid
+        type(psd_t) :: psd
+        real(dp) :: q0
+        if (cfg%surface%kind == 'file') then
+            call read_topography(cfg%surface%file, cfg%surface%dataset, h, cfg%grid%lx_m, error)
+            call add_context(error, "veslide: "//cfg%path//": &surface ")
+            if (allocated(error)) return
+            cfg%grid%nx = size(h, 1); cfg%grid%ny = size(h, 2); cfg%grid%ly_m = cfg%grid%lx_m
+            return
+        end if
+        call case_grid(cfg, grid, error); if (allocated(error)) return
+        allocate (h(grid%nx, grid%ny))
+        associate (s => cfg%surface)
+            select case (s%kind)
+            case ('self_affine')
+                q0 = grid%q0()
+                psd = psd_t(hurst=s%hurst, eccentricity=s%eccentricity, alpha_rad=s%alpha_deg*pi/180.0_dp, &
+                            q_low=s%k_low*q0, q_roll=s%k_roll*q0, q_cut=s%k_cut*q0)
+                call random_surface(grid, psd, s%seed, s%rms_slope, s%rms_height_m, h, error, &
+                                    realised=s%scale_to == 'realised')
+                call add_context(error, "veslide: "//cfg%path//": &surface: ")
+            case ('cosine')
+                call cosine_surface(grid, s%amplitude_m, s%wavelength_m, s%direction_deg*pi/180.0_dp, h)
+            case ('bisinusoid')
+                call bisinusoid_surface(grid, s%amplitude_m, s%wavelength_m, h)
+            case ('paraboloid')
+                call paraboloid_surface(grid, s%radius_m, h)
+            case ('cylinder')
+                call cylinder_surface(grid, s%radius_m, h)
+            case ('flat')
+                h = 0.0_dp
+            end select
+        end associate
+    end subroutine build_surface
+
+    !> The solid from &material
+    subroutine build_material(cfg, mat, error)
+        type(config_t), intent(in) :: cfg
+        type(material_t), intent(out) :: mat
+        type(error_t), allocatable, intent(out) :: error
+        associate (m => cfg%material)
+            select case (m%model)
+            case ('elastic')
+                call new_elastic(mat, m%young_pa, m%poisson, error)
+            case ('one_term')
+                call new_one_term(mat, m%einf_pa, m%ratio, m%tau_s, m%poisson, error)
+            case ('creep')
+                call new_creep(mat, m%e0_pa, m%prony_coef, m%prony_time_s, m%poisson, error)
+            case ('relaxation')
+                call new_relaxation(mat, m%e0_pa, m%prony_coef, m%prony_time_s, m%poisson, error)
+            end select
+        end associate
+        call add_context(error, "veslide: "//cfg%path//": &material: ")
+    end subroutine build_material
+
+    !> The kernel of a grid, material and the configuration's velocity
+    subroutine build_kernel(cfg, grid, mat, kernel, seconds, error)
+        type(config_t), intent(in) :: cfg
+        type(grid_t), intent(in) :: grid
+        type(material_t), intent(in) :: mat
+        type(kernel_t), intent(out) :: kernel
+        real(dp), intent(out) :: seconds
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: t0
+        t0 = wall_seconds()
+        call new_kernel(kernel, grid, mat, velocity_of(cfg), kernel_variant_id(cfg%solver%kernel), error, &
+                        alias_tol=cfg%solver%alias_tol, alias_max=cfg%solver%alias_max)
+        call add_context(error, "veslide: "//cfg%path//": &solver kernel = '"//cfg%solver%kernel//"': ")
+        seconds = wall_seconds() - t0
+    end subroutine build_kernel
+
+    !> Build and solve one case
+    subroutine run_case(cfg, c, error)
+        type(config_t), intent(inout) :: cfg
+        type(case_t), intent(out) :: c
+        type(error_t), allocatable, intent(out) :: error
+        type(fft2d_t) :: fft
+        real(dp) :: t0
+        t0 = wall_seconds()
+        call build_surface(cfg, c%h, error); if (allocated(error)) return
+        c%surface_seconds = wall_seconds() - t0
+        call case_grid(cfg, c%grid, error); if (allocated(error)) return
+        call fft%init(c%grid%nx, c%grid%ny, error, planner=cfg%solver%fft_planner, nthreads=cfg%solver%threads)
+        if (allocated(error)) return
+        call build_material(cfg, c%mat, error); if (allocated(error)) return
+        call build_kernel(cfg, c%grid, c%mat, c%kernel, c%kernel_seconds, error); if (allocated(error)) return
+        call solve_prepared(cfg, fft, c, error)
+        call fft%destroy()
+    end subroutine run_case
+
+    !> The solver options of &solver
+    pure function solver_options(cfg) result(opts)
+        type(config_t), intent(in) :: cfg
+        type(solver_options_t) :: opts
+        opts%method = solver_method_id(cfg%solver%method)
+        opts%tolerance = cfg%solver%tolerance
+        opts%max_iterations = cfg%solver%max_iterations
+        opts%anderson_memory = cfg%solver%anderson_memory
+        opts%balance_every = cfg%solver%balance_every
+        opts%balance_ratio = cfg%solver%balance_ratio
+        opts%balance_factor = cfg%solver%balance_factor
+    end function solver_options
+
+    !> Solve a case whose heights, material and kernel are set, then derive its quantities;
+    !> `p_init`, `g_init` warm-start the solver (a speed sweep passes the previous speed's solution)
+    subroutine solve_prepared(cfg, fft, c, error, p_init, g_init)
+        type(config_t), intent(in) :: cfg
+        type(fft2d_t), intent(inout) :: fft
+        type(case_t), intent(inout) :: c
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: p_init(:, :), g_init(:, :)
+        type(contact_problem_t) :: problem
+        real(dp) :: t0
+        c%grid = c%kernel%grid
+        c%velocity_m_s = c%kernel%velocity_m_s
+        call new_contact_problem(problem, c%kernel, c%h, cfg%load%mean_pressure_pa, error)
+        call add_context(error, "veslide: "//cfg%path//": ")
+        if (allocated(error)) return
+        t0 = wall_seconds()
+        call solve_contact(problem, fft, solver_options(cfg), c%state, error, p_init=p_init, g_init=g_init)
+        if (allocated(error)) return
+        c%solve_seconds = wall_seconds() - t0
+        c%force_pa = c%kernel%tangential_force(fft, c%state%p)
+        call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)
+        c%have_anisotropy = .false.; c%have_patches = .false.
+        if (cfg%analysis%anisotropy) call anisotropy_analysis(cfg, fft, c)
+        if (cfg%analysis%patches) then
+            call contact_patches(c%state%p > 0.0_dp, c%grid%lx_m, c%grid%ly_m, c%patches)
+            c%percolates_x = percolates(.not. (c%state%p > 0.0_dp), 1)
+            c%percolates_y = percolates(.not. (c%state%p > 0.0_dp), 2)
+            c%have_patches = .true.
+        end if
+    end subroutine solve_prepared
+
+    !> Slope tensors of h and of the deformed surface w in the band [zeta1, zeta2] q0, and eq. (16)
+    subroutine anisotropy_analysis(cfg, fft, c)
+        type(config_t), intent(in) :: cfg
+        type(fft2d_t), intent(inout) :: fft
+        type(case_t), intent(inout) :: c
+        real(dp) :: l1, l2
+        c%band_q = [cfg%analysis%zeta1, cfg%analysis%zeta2]*c%grid%q0()
+        call slope_tensor(c%grid, fft, c%h, c%m_surface, band=c%band_q)
+        call slope_tensor(c%grid, fft, c%state%u, c%m_deformed, band=c%band_q)
+        call tensor_axes(c%m_surface, l1, l2, c%theta_s); c%gamma_s = l2/l1
+        call tensor_axes(c%m_deformed, l1, l2, c%theta_d); c%gamma_d = l2/l1
+        call decompose(c%m_surface, c%m_deformed, cfg%analysis%iso_tol, c%sigma1, c%sigma2, c%phi)
+        c%have_anisotropy = .true.
+    end subroutine anisotropy_analysis
+
+    !> The results of a case, in output order: every scalar with its units, and the arrays
+    subroutine case_results(cfg, c, r)
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        type(results_t), intent(out) :: r
+        real(dp) :: along, across, d
+        integer :: j
+        call r%add('contact_area_fraction', contact_area_fraction(c%state%p), '-')
+        call r%add('mean_separation_m', mean_separation(c%state%g), 'm')
+        call r%add('rms_height_m', rms_height(c%h), 'm')
+        call r%add('max_pressure_pa', maxval(c%state%p), 'Pa')
+        call r%add('mean_pressure_pa', cfg%load%mean_pressure_pa, 'Pa')
+        call r%add('approach_m', c%state%approach_m, 'm')
+        call add_solver_quantities(r, c%state, cfg%solver%tolerance)
+        call r%add('length_x_m', c%grid%lx_m, 'm')
+        call r%add('length_y_m', c%grid%ly_m, 'm')
+        call r%add('nx', real(c%grid%nx, dp), '-', is_integer=.true.)
+        call r%add('ny', real(c%grid%ny, dp), '-', is_integer=.true.)
+        call r%add('contact_modulus_pa', c%mat%e0_pa/(1.0_dp - c%mat%poisson**2), 'Pa')
+        call r%add('speed_m_s', norm2(c%velocity_m_s), 'm/s')
+        call r%add('velocity_direction_deg', cfg%motion%direction_deg, 'degree')
+        call add_force_quantities(r, c%force_pa, c%slope_force_pa, c%velocity_m_s, cfg%motion%direction_deg, &
+                                  cfg%load%mean_pressure_pa)
+        call r%add('kernel_alias_error', c%kernel%alias_error, '-')
+        call r%add('kernel_alias_zones', real(c%kernel%alias_zones, dp), '-', is_integer=.true.)
+        call r%add('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
+        call r%add('surface_seconds', c%surface_seconds, 's')
+        call r%add('kernel_seconds', c%kernel_seconds, 's')
+        call r%add('solve_seconds', c%solve_seconds, 's')
+        if (c%have_anisotropy) then
+            call r%add('gamma_s', c%gamma_s, '-'); call r%add('gamma_d', c%gamma_d, '-')
+            call r%add('theta_s_rad', c%theta_s, 'rad'); call r%add('theta_d_rad', c%theta_d, 'rad')
+            call r%add('sigma1', c%sigma1, '-'); call r%add('sigma2', c%sigma2, '-')
+            call r%add('phi_rad', c%phi, 'rad')
+            block
+                real(dp) :: theta(cfg%analysis%n_theta)
+                theta = [(pi*(j - 1)/cfg%analysis%n_theta, j = 1, cfg%analysis%n_theta)]
+                call r%add_array('/anisotropy/band_q_per_m', c%band_q, '1/m')
+                call r%add_array('/anisotropy/band_zeta', [cfg%analysis%zeta1, cfg%analysis%zeta2], '-')
+                call r%add_array('/anisotropy/surface_tensor', reshape(c%m_surface, [4]), '-', &
+                                 layout='[M11, M21, M12, M22]')
+                call r%add_array('/anisotropy/deformed_tensor', reshape(c%m_deformed, [4]), '-', &
+                                 layout='[M11, M21, M12, M22]')
+                call r%add_array('/anisotropy/theta_rad', theta, 'rad')
+                call r%add_array('/anisotropy/m2_surface', m2_of_theta(c%m_surface, theta), '-')
+                call r%add_array('/anisotropy/mu2_deformed', m2_of_theta(c%m_deformed, theta), '-')
+            end block
+        end if
+        if (c%have_patches) then
+            call r%add('patch_count', real(c%patches%count, dp), '-', is_integer=.true.)
+            call r%add('patch_mean_area_fraction', c%patches%mean_area_fraction, '-')
+            call r%add('patch_gamma', c%patches%gamma, '-')
+            call r%add('patch_theta_rad', c%patches%theta, 'rad')
+            call r%add('percolates_x', merge(1.0_dp, 0.0_dp, c%percolates_x), '-', is_integer=.true.)
+            call r%add('percolates_y', merge(1.0_dp, 0.0_dp, c%percolates_y), '-', is_integer=.true.)
+            ! along and across v when v lies on a grid axis; -1 (undefined) otherwise
+            d = modulo(cfg%motion%direction_deg, 180.0_dp)
+            along = -1.0_dp; across = -1.0_dp
+            if (d < 1.0e-9_dp .or. d > 180.0_dp - 1.0e-9_dp) then
+                along = merge(1.0_dp, 0.0_dp, c%percolates_x); across = merge(1.0_dp, 0.0_dp, c%percolates_y)
+            else if (abs(d - 90.0_dp) < 1.0e-9_dp) then
+                along = merge(1.0_dp, 0.0_dp, c%percolates_y); across = merge(1.0_dp, 0.0_dp, c%percolates_x)
+            end if
+            call r%add('percolates_along_v', along, '-', is_integer=.true.)
+            call r%add('percolates_across_v', across, '-', is_integer=.true.)
+            call r%add_array('/patches/orientation_tensor', reshape(c%patches%orientation, [4]), '-', &
+                             layout='[G11, G21, G12, G22]')
+        end if
+        call r%trim()
+    end subroutine case_results
+
+    !> Write one case to an HDF5 file (the caller writes to a temporary name, then commits)
+    subroutine write_case(path, cfg, c, error)
+        character(len=*), intent(in) :: path
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        type(error_t), allocatable, intent(out) :: error
+        type(h5file_t) :: f
+        call f%open(path, 'w', error); if (allocated(error)) return
+        call write_provenance(f, cfg%path, cfg%text, [cfg%surface%seed], error); if (allocated(error)) return
+        call write_case_group(f, '', cfg, c, error); if (allocated(error)) return
+        call f%close(error)
+    end subroutine write_case
+
+    !> Results and fields of a case under `prefix` ('' for the root)
+    subroutine write_case_group(f, prefix, cfg, c, error, r)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: prefix
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        type(error_t), allocatable, intent(out) :: error
+        !> the case's results, when the caller has them already
+        type(results_t), intent(in), optional :: r
+        type(results_t) :: r_
+        if (present(r)) then
+            r_ = r
+        else
+            call case_results(cfg, c, r_)
+        end if
+        call write_results(f, prefix, r_, error); if (allocated(error)) return
+        call f%writeattr(prefix//'/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
+        call f%writeattr(prefix//'/scalars', 'kernel_variant', cfg%solver%kernel, error); if (allocated(error)) return
+        if (cfg%output%fields) then
+            call write_field(f, prefix//'/fields/height_m', c%h, 'm', error); if (allocated(error)) return
+            call write_field(f, prefix//'/fields/pressure_pa', c%state%p, 'Pa', error); if (allocated(error)) return
+            call write_field(f, prefix//'/fields/displacement_m', c%state%u, 'm', error); if (allocated(error)) return
+            call write_field(f, prefix//'/fields/gap_m', c%state%g, 'm', error)
+        end if
+    end subroutine write_case_group
+
+end module veslide_case

@@ -1,0 +1,411 @@
+!> Parameter studies: every combination of the &sweep lists in one run.
+!>
+!> The study is enumerated up front as a list of speed chains (seed x eccentricity x angle x
+!> pressure, seed-major), each run through its speeds in the order given, warm-started along
+!> speed; then one loop over the chains (all of them, or one rank's share) and one row writer.
+!> Each surface is generated once per (seed, eccentricity, angle), each speed's kernel built once.
+!> Every finished case is written at once under /cases/NNNNNN with its parameters and appended as
+!> a row of /summary (case, seed, parameters, every scalar of the case; int64 where integer), then
+!> flushed; with several seeds, /ensemble holds n_seeds and the mean and standard error over seeds
+!> of every scalar (axes averaged as axial data). Progress goes to a callback the application
+!> supplies: the library never prints. Rank files of a distributed study are joined by
+!> `merge_study_parts`, with the same row and ensemble code.
+module veslide_study
+    use veslide_kinds, only: dp, i8, pi
+    use veslide_error, only: error_t, fatal_error
+    use veslide_clock, only: wall_seconds
+    use veslide_config, only: config_t
+    use veslide_grid, only: grid_t
+    use veslide_fftw, only: fft2d_t
+    use veslide_kernel, only: kernel_t
+    use veslide_material, only: material_t
+    use veslide_hdf5, only: h5file_t
+    use veslide_output, only: write_provenance
+    use veslide_quantities, only: results_t, axial_of, AXIAL_NONE, AXIAL_HALF_TURN
+    use veslide_case, only: case_t, build_surface, build_material, build_kernel, case_grid, solve_prepared, &
+                            case_results, write_case_group
+    implicit none
+    private
+    public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
+              seed_statistics, write_ensemble
+
+    !> The parameter columns that lead every /summary row
+    integer, parameter :: nparam = 6
+    character(len=*), parameter :: param_names(nparam) = [character(len=12) :: 'case', 'seed', 'eccentricity', &
+                                                          'alpha_deg', 'pressure_pa', 'speed_m_s']
+    character(len=*), parameter :: param_units(nparam) = [character(len=6) :: '-', '-', '-', 'degree', 'Pa', 'm/s']
+
+    !> One speed chain: a surface and a load, run through every speed
+    type :: study_chain_t
+        integer(i8) :: seed = 0_i8
+        real(dp) :: eccentricity = 0.0_dp, alpha_deg = 0.0_dp, pressure_pa = 0.0_dp
+        integer :: first_case = 0          !! global number of its first case; speeds follow
+    end type study_chain_t
+
+    type :: study_plan_t
+        type(study_chain_t), allocatable :: chains(:)
+        real(dp), allocatable :: speeds(:)
+        integer(i8), allocatable :: seeds(:)
+        integer :: ncase = 0
+    end type study_plan_t
+
+    !> What a progress callback is told after each case
+    type :: study_progress_t
+        integer :: done = 0, total = 0              !! cases finished by this process, and its share
+        real(dp) :: elapsed_s = 0.0_dp, case_s = 0.0_dp
+        integer :: case_number = 0                  !! global case number
+        integer(i8) :: seed = 0_i8
+        real(dp) :: eccentricity = 0.0_dp, alpha_deg = 0.0_dp, pressure_pa = 0.0_dp, speed_m_s = 0.0_dp
+        real(dp) :: contact_area_fraction = 0.0_dp, friction_coefficient = 0.0_dp
+        integer :: operator_applications = 0
+        logical :: converged = .false.
+    end type study_progress_t
+
+    abstract interface
+        subroutine progress_callback(info)
+            import :: study_progress_t
+            type(study_progress_t), intent(in) :: info
+        end subroutine progress_callback
+    end interface
+
+contains
+
+    !> The chains of the study of `cfg` (lists of &sweep, or the single values of their groups)
+    subroutine plan_study(cfg, plan)
+        type(config_t), intent(in) :: cfg
+        type(study_plan_t), intent(out) :: plan
+        real(dp), allocatable :: alphas(:), eccs(:), pressures(:)
+        integer :: is, ie, ia, ip, k
+        plan%speeds = list_or(cfg%sweep%speeds, cfg%motion%speed_m_s)
+        alphas = list_or(cfg%sweep%alphas, cfg%surface%alpha_deg)
+        eccs = list_or(cfg%sweep%eccentricities, cfg%surface%eccentricity)
+        pressures = list_or(cfg%sweep%pressures, cfg%load%mean_pressure_pa)
+        if (size(cfg%sweep%seeds) > 0) then
+            plan%seeds = cfg%sweep%seeds
+        else
+            plan%seeds = [cfg%surface%seed]
+        end if
+        allocate (plan%chains(size(plan%seeds)*size(eccs)*size(alphas)*size(pressures)))
+        k = 0
+        do is = 1, size(plan%seeds)
+            do ie = 1, size(eccs)
+                do ia = 1, size(alphas)
+                    do ip = 1, size(pressures)
+                        k = k + 1
+                        plan%chains(k) = study_chain_t(plan%seeds(is), eccs(ie), alphas(ia), pressures(ip), &
+                                                       (k - 1)*size(plan%speeds) + 1)
+                    end do
+                end do
+            end do
+        end do
+        plan%ncase = size(plan%chains)*size(plan%speeds)
+    contains
+        pure function list_or(list, single) result(v)
+            real(dp), intent(in) :: list(:), single
+            real(dp), allocatable :: v(:)
+            if (size(list) > 0) then
+                v = list
+            else
+                v = [single]
+            end if
+        end function list_or
+    end subroutine plan_study
+
+    !> Run the study of `cfg` into the (temporary) HDF5 file `path`; `nfail` counts cases that
+    !> did not converge. `part` = [rank, nranks] runs only the chains whose index is rank modulo
+    !> nranks, with global case numbers (a rank file of a distributed study: no /ensemble).
+    subroutine run_study(cfg, path, nfail, error, progress, part)
+        type(config_t), intent(inout) :: cfg
+        character(len=*), intent(in) :: path
+        integer, intent(out) :: nfail
+        type(error_t), allocatable, intent(out) :: error
+        procedure(progress_callback), optional :: progress
+        integer, intent(in), optional :: part(2)
+        type(study_plan_t) :: plan
+        type(grid_t) :: grid
+        type(kernel_t), allocatable :: kernels(:)
+        real(dp), allocatable :: kernel_seconds(:), h(:, :), p_prev(:, :), g_prev(:, :)
+        integer(i8), allocatable :: table(:, :)
+        character(len=64), allocatable :: columns(:), units(:)
+        logical, allocatable :: is_int(:)
+        type(material_t) :: mat
+        type(fft2d_t) :: fft
+        type(h5file_t) :: f
+        type(case_t) :: c
+        type(results_t) :: r
+        type(study_progress_t) :: info
+        integer :: ic, iv, k, rank, nranks, nmine, nrow
+        integer, allocatable :: keep(:)
+        integer(i8) :: surface_seed
+        real(dp) :: surface_ecc, surface_alpha, t_start, t_case
+        logical :: have_surface
+
+        nfail = 0
+        rank = 0; nranks = 1
+        if (present(part)) then
+            rank = part(1); nranks = max(1, part(2))
+        end if
+        call plan_study(cfg, plan)
+        nmine = count([(modulo(ic - 1, nranks) == rank, ic = 1, size(plan%chains))])*size(plan%speeds)
+
+        call build_material(cfg, mat, error); if (allocated(error)) return
+        ! a measured topography fixes the grid and the cell size, which the kernels need
+        have_surface = .false.
+        if (cfg%surface%kind == 'file') then
+            call build_surface(cfg, h, error); if (allocated(error)) return
+            have_surface = .true.
+        end if
+        call case_grid(cfg, grid, error); if (allocated(error)) return
+        allocate (kernels(size(plan%speeds)), kernel_seconds(size(plan%speeds)))
+        do iv = 1, size(plan%speeds)
+            cfg%motion%speed_m_s = plan%speeds(iv)
+            call build_kernel(cfg, grid, mat, kernels(iv), kernel_seconds(iv), error); if (allocated(error)) return
+        end do
+        call f%open(path, 'w', error); if (allocated(error)) return
+        call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true.); if (allocated(error)) return
+        call fft%init(grid%nx, grid%ny, error, planner=cfg%solver%fft_planner, nthreads=cfg%solver%threads)
+        if (allocated(error)) return
+
+        t_start = wall_seconds()
+        info%total = nmine; nrow = 0
+        surface_seed = -huge(1_i8); surface_ecc = -1.0_dp; surface_alpha = -huge(1.0_dp)
+        do ic = 1, size(plan%chains)
+            if (modulo(ic - 1, nranks) /= rank) cycle
+            associate (chain => plan%chains(ic))
+                cfg%surface%seed = chain%seed; cfg%surface%eccentricity = chain%eccentricity
+                cfg%surface%alpha_deg = chain%alpha_deg; cfg%load%mean_pressure_pa = chain%pressure_pa
+                if (cfg%surface%kind /= 'file' .and. .not. (have_surface .and. chain%seed == surface_seed .and. &
+                    chain%eccentricity == surface_ecc .and. chain%alpha_deg == surface_alpha)) then
+                    call build_surface(cfg, h, error); if (allocated(error)) return
+                    have_surface = .true.
+                    surface_seed = chain%seed; surface_ecc = chain%eccentricity; surface_alpha = chain%alpha_deg
+                end if
+                do iv = 1, size(plan%speeds)
+                    k = chain%first_case + iv - 1
+                    cfg%motion%speed_m_s = plan%speeds(iv)
+                    c%h = h; c%mat = mat; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
+                    t_case = wall_seconds()
+                    if (iv > 1 .and. cfg%sweep%warm_start) then
+                        call solve_prepared(cfg, fft, c, error, p_init=p_prev, g_init=g_prev)
+                    else
+                        call solve_prepared(cfg, fft, c, error)
+                    end if
+                    if (allocated(error)) return
+                    p_prev = c%state%p; g_prev = c%state%g
+                    if (.not. c%state%converged) nfail = nfail + 1
+                    call case_results(cfg, c, r)
+                    call write_row(k, chain, plan%speeds(iv), error); if (allocated(error)) return
+                    if (present(progress)) then
+                        info%done = info%done + 1; info%elapsed_s = wall_seconds() - t_start
+                        info%case_s = wall_seconds() - t_case; info%case_number = k
+                        info%seed = chain%seed; info%eccentricity = chain%eccentricity
+                        info%alpha_deg = chain%alpha_deg; info%pressure_pa = chain%pressure_pa
+                        info%speed_m_s = plan%speeds(iv)
+                        info%contact_area_fraction = r%get('contact_area_fraction')
+                        info%friction_coefficient = r%get('friction_coefficient')
+                        info%operator_applications = c%state%operator_applications
+                        info%converged = c%state%converged
+                        call progress(info)
+                    end if
+                end do
+            end associate
+        end do
+        if (size(plan%seeds) > 1 .and. nranks == 1) then
+            call write_ensemble(f, columns, units, is_int, table(:, 1:nrow), size(plan%seeds), error)
+            if (allocated(error)) return
+        end if
+        call f%close(error)
+        call fft%destroy()
+
+    contains
+
+        !> /cases/NNNNNN and the /summary row of case k
+        subroutine write_row(k, chain, speed, error)
+            integer, intent(in) :: k
+            type(study_chain_t), intent(in) :: chain
+            real(dp), intent(in) :: speed
+            type(error_t), allocatable, intent(out) :: error
+            character(len=16) :: tag
+            integer :: j
+            write (tag, '("/cases/",i6.6)') k
+            call write_case_group(f, trim(tag), cfg, c, error, r); if (allocated(error)) return
+            call f%write(trim(tag)//'/parameters', [real(k, dp), real(chain%seed, dp), chain%eccentricity, &
+                                                    chain%alpha_deg, chain%pressure_pa, speed], error)
+            if (allocated(error)) return
+            call f%writeattr(trim(tag)//'/parameters', 'columns', &
+                             'case, seed, eccentricity, alpha_deg, pressure_pa, speed_m_s', error)
+            if (allocated(error)) return
+            if (.not. allocated(table)) then
+                ! every scalar of the case, except those that repeat a parameter column (speed_m_s)
+                keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names), j = 1, r%n)])
+                allocate (columns(nparam + size(keep)), units(nparam + size(keep)), is_int(nparam + size(keep)))
+                allocate (table(nparam + size(keep), nmine))
+                columns(1:nparam) = param_names; units(1:nparam) = param_units
+                is_int(1:nparam) = [.true., .true., .false., .false., .false., .false.]
+                do j = 1, size(keep)
+                    columns(nparam + j) = r%scalars(keep(j))%name; units(nparam + j) = r%scalars(keep(j))%units
+                    is_int(nparam + j) = r%scalars(keep(j))%is_integer
+                end do
+            end if
+            nrow = nrow + 1
+            table(1:nparam, nrow) = [int(k, i8), chain%seed, transfer(chain%eccentricity, 0_i8), &
+                                     transfer(chain%alpha_deg, 0_i8), transfer(chain%pressure_pa, 0_i8), &
+                                     transfer(speed, 0_i8)]
+            do j = 1, size(keep)
+                if (r%scalars(keep(j))%is_integer) then
+                    table(nparam + j, nrow) = nint(r%scalars(keep(j))%value, i8)
+                else
+                    table(nparam + j, nrow) = transfer(r%scalars(keep(j))%value, 0_i8)
+                end if
+            end do
+            call f%append_row('/summary', columns, units, is_int, table(:, nrow), error); if (allocated(error)) return
+            call f%flush(error)
+        end subroutine write_row
+
+    end subroutine run_study
+
+    !> The value of cell (j, i) of a table as a real
+    pure real(dp) function cell(bits, is_int, j, i) result(x)
+        integer(i8), intent(in) :: bits(:, :)
+        logical, intent(in) :: is_int(:)
+        integer, intent(in) :: j, i
+        if (is_int(j)) then
+            x = real(bits(j, i), dp)
+        else
+            x = transfer(bits(j, i), 0.0_dp)
+        end if
+    end function cell
+
+    !> /ensemble from the complete /summary table (rows in case order, seed-major, so row r of
+    !> seed s is r + (s - 1) m): per combination of the other parameters, n_seeds and the mean
+    !> and standard error over seeds of every scalar
+    subroutine write_ensemble(f, columns, units, is_int, table, nseed, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: columns(:), units(:)
+        logical, intent(in) :: is_int(:)
+        integer(i8), intent(in) :: table(:, :)
+        integer, intent(in) :: nseed
+        type(error_t), allocatable, intent(out) :: error
+        character(len=64), allocatable :: ecols(:), eunits(:)
+        logical, allocatable :: eint(:)
+        integer(i8), allocatable :: e(:, :)
+        real(dp) :: x(nseed), mean, sem
+        integer :: m, r, j, ncol, nv, kk
+        ncol = size(columns); m = size(table, 2)/nseed; nv = ncol - nparam
+        allocate (ecols(5 + 2*nv), eunits(5 + 2*nv), eint(5 + 2*nv), e(5 + 2*nv, m))
+        ecols(1:4) = param_names(3:6); eunits(1:4) = param_units(3:6); eint(1:4) = .false.
+        ecols(5) = 'n_seeds'; eunits(5) = '-'; eint(5) = .true.
+        eint(6:) = .false.
+        do j = 1, nv
+            ecols(5 + j) = 'mean_'//trim(columns(nparam + j)); eunits(5 + j) = units(nparam + j)
+            ecols(5 + nv + j) = 'sem_'//trim(columns(nparam + j)); eunits(5 + nv + j) = units(nparam + j)
+        end do
+        do r = 1, m
+            e(1:4, r) = table(3:6, r)
+            e(5, r) = nseed
+            do j = 1, nv
+                x = [(cell(table, is_int, nparam + j, r + (kk - 1)*m), kk = 1, nseed)]
+                call seed_statistics(x, axial_of(trim(columns(nparam + j))), mean, sem)
+                e(5 + j, r) = transfer(mean, 0_i8); e(5 + nv + j, r) = transfer(sem, 0_i8)
+            end do
+        end do
+        call f%write_table('/ensemble', ecols, eunits, eint, e, error)
+    end subroutine write_ensemble
+
+    !> Mean and standard error of the mean over seeds. Axial data (angles modulo pi, `axial`
+    !> AXIAL_HALF_TURN for [0, pi) or AXIAL_SYMMETRIC for (-pi/2, pi/2]) use the circular mean of
+    !> the doubled angle, atan2(<sin 2x>, <cos 2x>)/2, in the range of the quantity, and deviations
+    !> wrapped into (-pi/2, pi/2]: an axis scattering about 0 = pi averages to 0, not to pi/2.
+    pure subroutine seed_statistics(x, axial, mean, sem)
+        real(dp), intent(in) :: x(:)
+        integer, intent(in) :: axial
+        real(dp), intent(out) :: mean, sem
+        real(dp) :: d(size(x))
+        integer :: n
+        n = size(x)
+        if (axial /= AXIAL_NONE) then
+            mean = 0.5_dp*atan2(sum(sin(2*x)), sum(cos(2*x)))      ! in (-pi/2, pi/2]
+            if (axial == AXIAL_HALF_TURN) mean = modulo(mean, pi)
+            d = x - mean
+            d = d - pi*anint(d/pi)
+        else
+            mean = sum(x)/n
+            d = x - mean
+        end if
+        sem = sqrt(sum(d**2)/max(1, n - 1))/sqrt(real(n, dp))
+    end subroutine seed_statistics
+
+    !> Join the rank files `parts` of a distributed study of `cfg` into the (temporary) file `path`:
+    !> provenance, every /cases group, /summary in case order and /ensemble, as a serial study
+    !> writes them. Every case of the plan must be present exactly once.
+    subroutine merge_study_parts(cfg, path, parts, error)
+        type(config_t), intent(in) :: cfg
+        character(len=*), intent(in) :: path, parts(:)
+        type(error_t), allocatable, intent(out) :: error
+        type(study_plan_t) :: plan
+        type(h5file_t) :: f, src
+        character(len=64), allocatable :: columns(:), pcols(:), units(:)
+        logical, allocatable :: is_int(:), pint(:)
+        integer(i8), allocatable :: table(:, :), rows(:, :)
+        integer :: k, i, ncol, kcase
+        logical, allocatable :: seen(:)
+        character(len=16) :: tag
+        call plan_study(cfg, plan)
+        allocate (seen(plan%ncase)); seen = .false.
+        call f%open(path, 'w', error); if (allocated(error)) return
+        call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true.); if (allocated(error)) return
+        do k = 1, size(parts)
+            call src%open(trim(parts(k)), 'r', error); if (allocated(error)) return
+            call src%read_table('/summary', pcols, pint, rows, error)
+            if (allocated(error)) return
+            if (.not. allocated(table)) then
+                ncol = size(pcols)
+                columns = pcols; is_int = pint
+                allocate (table(ncol, plan%ncase))
+            else if (size(pcols) /= ncol) then
+                call fatal_error(error, "veslide:study:merge: "//trim(parts(k))//" has other columns than "// &
+                                 trim(parts(1))); return
+            end if
+            do i = 1, size(rows, 2)
+                kcase = int(rows(1, i))
+                write (tag, '("/cases/",i6.6)') kcase
+                if (kcase < 1 .or. kcase > plan%ncase) then
+                    call fatal_error(error, "veslide:study:merge: "//trim(parts(k))//" holds a case outside the study")
+                    return
+                end if
+                if (seen(kcase)) then
+                    call fatal_error(error, "veslide:study:merge: "//trim(tag)//" appears in two parts"); return
+                end if
+                seen(kcase) = .true.
+                table(:, kcase) = rows(:, i)
+                call f%copy_from(src, trim(tag), trim(tag), error); if (allocated(error)) return
+            end do
+            call src%close()
+        end do
+        if (.not. all(seen)) then
+            call fatal_error(error, "veslide:study:merge: the parts lack some cases of the study"); return
+        end if
+        call units_of(columns, units)
+        call f%write_table('/summary', columns, units, is_int, table, error); if (allocated(error)) return
+        if (size(plan%seeds) > 1) then
+            call write_ensemble(f, columns, units, is_int, table, size(plan%seeds), error)
+            if (allocated(error)) return
+        end if
+        call f%close(error)
+
+    contains
+
+        !> The units attribute of the first part's /summary
+        subroutine units_of(columns, units)
+            character(len=64), intent(in) :: columns(:)
+            character(len=64), allocatable, intent(out) :: units(:)
+            allocate (units(size(columns)))
+            units = '-'
+            call src%open(trim(parts(1)), 'r', error); if (allocated(error)) return
+            call src%read_attr_text_list('/summary', 'units', units, error)
+            call src%close()
+        end subroutine units_of
+
+    end subroutine merge_study_parts
+
+end module veslide_study

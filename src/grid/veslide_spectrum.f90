@@ -1,0 +1,55 @@
+!> Second spectral moments of fields on the grid: the slope tensor M_ij = <d_i h d_j h>,
+!> optionally restricted to a band of |q| (Parseval on the half-spectrum, with the grid's
+!> Hermitian weights; Nyquist lines carry no derivative).
+module veslide_spectrum
+    use veslide_kinds, only: dp
+    use veslide_grid, only: grid_t
+    use veslide_fftw, only: fft2d_t
+    implicit none
+    private
+    public :: spectrum_slope_tensor, slope_tensor
+
+contains
+
+    !> Slope tensor of the field whose half-spectrum is `ak`, times scale^2:
+    !> M = scale^2 sum_q w q q |ak|^2 over band(1) <= |q| <= band(2) [1/m] (all q when absent).
+    !> For coefficients of h = sum_q a_q exp(i q.x) scale = 1; for FFTW's output 1/(nx ny).
+    pure subroutine spectrum_slope_tensor(grid, ak, m, band, scale)
+        type(grid_t), intent(in) :: grid
+        complex(dp), intent(in) :: ak(:, :)
+        real(dp), intent(out) :: m(2, 2)
+        real(dp), intent(in), optional :: band(2), scale
+        integer :: i, j
+        real(dp) :: q(2), p2, qn
+        m = 0.0_dp
+        do j = 1, grid%ny
+            do i = 1, grid%nq()
+                if (present(band)) then
+                    qn = norm2(grid%wavevector(i, j))
+                    if (qn < band(1) .or. qn > band(2)) cycle
+                end if
+                q = grid%derivative_wavevector(i, j)
+                p2 = grid%hermitian_weight(i)*abs(ak(i, j))**2
+                m(1, 1) = m(1, 1) + q(1)*q(1)*p2
+                m(2, 2) = m(2, 2) + q(2)*q(2)*p2
+                m(1, 2) = m(1, 2) + q(1)*q(2)*p2
+            end do
+        end do
+        if (present(scale)) m = m*scale**2
+        m(2, 1) = m(1, 2)
+    end subroutine spectrum_slope_tensor
+
+    !> Slope tensor M_ij = <d_i h d_j h> of a real field h, optionally in the band
+    !> band(1) <= |q| <= band(2) [1/m]; uses the buffers of `fft`
+    subroutine slope_tensor(grid, fft, h, m, band)
+        type(grid_t), intent(in) :: grid
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), intent(in) :: h(:, :)
+        real(dp), intent(out) :: m(2, 2)
+        real(dp), intent(in), optional :: band(2)
+        fft%x = h
+        call fft%forward()
+        call spectrum_slope_tensor(grid, fft%k, m, band, scale=1.0_dp/grid%cells())
+    end subroutine slope_tensor
+
+end module veslide_spectrum

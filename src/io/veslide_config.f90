@@ -1,0 +1,217 @@
+!> The namelist input: one file, groups &grid, &surface, &material, &load, &motion, &solver,
+!> &analysis, &sweep, &output, each read and checked by its own module (veslide_config_<group>),
+!> composed here into `config_t`, with the checks that involve several groups.
+!>
+!> Every group is optional (defaults apply); every value is range-checked, and a failure is an
+!> `error_t` whose message names the file, the group, the variable and the allowed range.
+module veslide_config
+    use veslide_kinds, only: dp, pi
+    use veslide_error, only: error_t, fatal_error
+    use veslide_strings, only: str, lower
+    use veslide_config_common, only: require
+    use veslide_config_grid, only: grid_config_t, read_grid_config
+    use veslide_config_surface, only: surface_config_t, read_surface_config
+    use veslide_config_material, only: material_config_t, read_material_config
+    use veslide_config_load, only: load_config_t, read_load_config
+    use veslide_config_motion, only: motion_config_t, read_motion_config
+    use veslide_config_solver, only: solver_config_t, read_solver_config
+    use veslide_config_analysis, only: analysis_config_t, read_analysis_config
+    use veslide_config_sweep, only: sweep_config_t, read_sweep_config
+    use veslide_config_output, only: output_config_t, read_output_config
+    implicit none
+    private
+    public :: config_t, read_config, read_text_file, default_config, complete_config
+
+    type :: config_t
+        character(len=:), allocatable :: path        !! namelist file
+        character(len=:), allocatable :: text        !! its text, verbatim
+        type(grid_config_t) :: grid
+        type(surface_config_t) :: surface
+        type(material_config_t) :: material
+        type(load_config_t) :: load
+        type(motion_config_t) :: motion
+        type(solver_config_t) :: solver
+        type(analysis_config_t) :: analysis
+        type(sweep_config_t) :: sweep
+        type(output_config_t) :: output
+    end type config_t
+
+contains
+
+    !> Whole text of a file
+    subroutine read_text_file(path, text, error)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable, intent(out) :: text
+        type(error_t), allocatable, intent(out) :: error
+        integer :: u, stat, n
+        character(len=512) :: msg
+        logical :: exists
+        inquire (file=path, exist=exists, size=n)
+        if (.not. exists) then
+            call fatal_error(error, "veslide: cannot open '"//path//"': no such file"); return
+        end if
+        open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', &
+              iostat=stat, iomsg=msg)
+        if (stat /= 0) then
+            call fatal_error(error, "veslide: cannot open '"//path//"': "//trim(msg)); return
+        end if
+        allocate (character(len=max(n, 0)) :: text)
+        if (n > 0) read (u, iostat=stat, iomsg=msg) text
+        close (u)
+        if (stat /= 0) call fatal_error(error, "veslide: cannot read '"//path//"': "//trim(msg))
+    end subroutine read_text_file
+
+    !> Read and check a namelist file
+    subroutine read_config(path, cfg, error)
+        character(len=*), intent(in) :: path
+        type(config_t), intent(out) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        integer :: u, stat
+        character(len=512) :: msg
+
+        cfg%path = path
+        call read_text_file(path, cfg%text, error); if (allocated(error)) return
+        call check_group_names(path, cfg%text, error); if (allocated(error)) return
+        open (newunit=u, file=path, status='old', action='read', iostat=stat, iomsg=msg)
+        if (stat /= 0) then
+            call fatal_error(error, "veslide: cannot open '"//path//"': "//trim(msg)); return
+        end if
+        call read_groups(); close (u)
+        if (allocated(error)) return
+        call complete_config(cfg, error)
+
+    contains
+
+        subroutine read_groups()
+            call read_grid_config(cfg%grid, u, path, error); if (allocated(error)) return
+            call read_surface_config(cfg%surface, u, path, error); if (allocated(error)) return
+            call read_material_config(cfg%material, u, path, error); if (allocated(error)) return
+            call read_load_config(cfg%load, u, path, error); if (allocated(error)) return
+            call read_motion_config(cfg%motion, u, path, error); if (allocated(error)) return
+            call read_solver_config(cfg%solver, u, path, error); if (allocated(error)) return
+            call read_analysis_config(cfg%analysis, u, path, error); if (allocated(error)) return
+            call read_sweep_config(cfg%sweep, u, path, error); if (allocated(error)) return
+            call read_output_config(cfg%output, u, path, error)
+        end subroutine read_groups
+
+    end subroutine read_config
+
+    !> Every default, for programs that build cases in code (benchmarks, scenes, tests): set what
+    !> differs, then call complete_config, which fills the defaults that depend on other groups
+    !> and checks across groups, as read_config does
+    subroutine default_config(cfg, path)
+        type(config_t), intent(out) :: cfg
+        character(len=*), intent(in) :: path
+        cfg%path = path; cfg%text = ''
+        cfg%surface%kind = 'self_affine'; cfg%surface%scale_to = 'realised'
+        cfg%surface%file = ''; cfg%surface%dataset = '/height_m'
+        cfg%material%model = 'elastic'
+        allocate (cfg%material%prony_coef(0), cfg%material%prony_time_s(0))
+        cfg%solver%method = 'auto'; cfg%solver%kernel = 'spectral'; cfg%solver%fft_planner = 'measure'
+        allocate (cfg%sweep%speeds(0), cfg%sweep%alphas(0), cfg%sweep%eccentricities(0), cfg%sweep%pressures(0))
+        allocate (cfg%sweep%seeds(0))
+        cfg%output%file = 'veslide.h5'
+    end subroutine default_config
+
+    !> Defaults that depend on other groups, and the checks across groups
+    subroutine complete_config(cfg, error)
+        type(config_t), intent(inout) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        character(len=:), allocatable :: p
+        real(dp) :: nyq
+        integer :: k
+        p = cfg%path
+        if (cfg%surface%kind /= 'file') call default_lengths(cfg, 0.01_dp)
+        select case (cfg%surface%kind)
+        case ('self_affine')
+            nyq = 0.5_dp*min(real(cfg%grid%nx, dp), cfg%grid%ny*cfg%grid%lx_m/cfg%grid%ly_m)
+            call require(error, cfg%surface%k_cut < nyq, p, 'surface', 'k_cut', str(cfg%surface%k_cut), &
+                         ">= k_roll and below the Nyquist wavenumber "//str(nyq)//" of the grid")
+        case ('cosine', 'bisinusoid')
+            call require(error, periodic_wave(cfg), p, 'surface', 'wavelength_m/direction_deg', &
+                         str(cfg%surface%wavelength_m)//"/"//str(cfg%surface%direction_deg), &
+                         "a wave periodic on the cell: lx_m*cos(direction)/wavelength_m and "// &
+                         "ly_m*sin(direction)/wavelength_m whole numbers below nx/2, ny/2")
+        end select
+        if (allocated(error)) return
+        call require(error, .not. (cfg%solver%method == 'pk' .and. cfg%material%model /= 'elastic' .and. &
+                                   cfg%motion%speed_m_s > 0.0_dp), p, 'solver', 'method', "'pk'", &
+                     "'auto' or 'dr' for a viscoelastic solid in motion (the operator is not symmetric)")
+        if (cfg%analysis%zeta2 == 0.0_dp) cfg%analysis%zeta2 = max(cfg%surface%k_cut, cfg%analysis%zeta1)
+        call require(error, cfg%analysis%zeta1 >= 0.0_dp .and. cfg%analysis%zeta1 < cfg%analysis%zeta2 .and. &
+                     cfg%analysis%zeta2 < 1.0e6_dp, p, 'analysis', 'zeta1/zeta2', &
+                     str(cfg%analysis%zeta1)//"/"//str(cfg%analysis%zeta2), &
+                     "0 <= zeta1 < zeta2 (band in multiples of 2 pi/lx_m; zeta2 = 0 means k_cut)")
+        call require(error, (size(cfg%sweep%alphas) == 0 .and. size(cfg%sweep%eccentricities) == 0) .or. &
+                     cfg%surface%kind == 'self_affine', p, 'sweep', 'alphas_deg/eccentricities', "", &
+                     "only with &surface kind = 'self_affine'")
+        if (allocated(error)) return
+        if (cfg%sweep%n_seeds > 0) cfg%sweep%seeds = [(cfg%surface%seed + k, k = 0, cfg%sweep%n_seeds - 1)]
+    end subroutine complete_config
+
+    !> Fill unset cell lengths: lx from `lx_default`, ly from lx*ny/nx (square cells)
+    subroutine default_lengths(cfg, lx_default)
+        type(config_t), intent(inout) :: cfg
+        real(dp), intent(in) :: lx_default
+        if (cfg%grid%lx_m == 0.0_dp) cfg%grid%lx_m = lx_default
+        if (cfg%grid%ly_m == 0.0_dp) cfg%grid%ly_m = cfg%grid%lx_m*cfg%grid%ny/cfg%grid%nx
+    end subroutine default_lengths
+
+    !> Is the wave of (wavelength, direction) periodic on the cell and below Nyquist?
+    pure logical function periodic_wave(cfg) result(ok)
+        type(config_t), intent(in) :: cfg
+        real(dp) :: kx, ky, th
+        th = cfg%surface%direction_deg*pi/180.0_dp
+        kx = cfg%grid%lx_m*cos(th)/cfg%surface%wavelength_m
+        ky = cfg%grid%ly_m*sin(th)/cfg%surface%wavelength_m
+        if (cfg%surface%kind == 'bisinusoid') then
+            kx = cfg%grid%lx_m/cfg%surface%wavelength_m; ky = cfg%grid%ly_m/cfg%surface%wavelength_m
+        end if
+        ok = abs(kx - anint(kx)) < 1.0e-9_dp*max(1.0_dp, abs(kx)) .and. &
+             abs(ky - anint(ky)) < 1.0e-9_dp*max(1.0_dp, abs(ky)) .and. &
+             abs(kx) < 0.5_dp*cfg%grid%nx .and. abs(ky) < max(0.5_dp*cfg%grid%ny, 0.5_dp)
+    end function periodic_wave
+
+    !> Every '&name' that opens a group must be one veslide reads (a misspelt group would be
+    !> skipped silently by the namelist reads); comments and quoted strings are ignored
+    subroutine check_group_names(path, text, error)
+        character(len=*), intent(in) :: path, text
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), parameter :: known(9) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
+                                                   'motion', 'solver', 'analysis', 'sweep', 'output']
+        character(len=1) :: quote
+        integer :: i, j
+        logical :: comment
+        quote = ' '; comment = .false.
+        i = 1
+        do while (i <= len(text))
+            if (text(i:i) == new_line('a')) then
+                comment = .false.
+            else if (comment) then
+                continue
+            else if (quote /= ' ') then
+                if (text(i:i) == quote) quote = ' '
+            else if (text(i:i) == '"' .or. text(i:i) == "'") then
+                quote = text(i:i)
+            else if (text(i:i) == '!') then
+                comment = .true.
+            else if (text(i:i) == '&') then
+                j = i + 1
+                do while (j <= len(text))
+                    if (index('abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_', text(j:j)) == 0) exit
+                    j = j + 1
+                end do
+                if (j > i + 1) then
+                    if (all(lower(text(i + 1:j - 1)) /= known) .and. lower(text(i + 1:j - 1)) /= 'end') then
+                        call fatal_error(error, "veslide: "//path//": unknown namelist group &"//text(i + 1:j - 1)// &
+                            " (known: &grid, &surface, &material, &load, &motion, &solver, &analysis, &sweep,"// &
+                            " &output)"); return
+                    end if
+                end if
+                i = j - 1
+            end if
+            i = i + 1
+        end do
+    end subroutine check_group_names
+
+end module veslide_config

@@ -1,0 +1,46 @@
+!> &analysis: what is derived from a solution beyond the always-reported quantities
+module veslide_config_analysis
+    use veslide_kinds, only: dp
+    use veslide_error, only: error_t
+    use veslide_strings, only: str
+    use veslide_config_common, only: namelist_status, require
+    implicit none
+    private
+    public :: analysis_config_t, read_analysis_config
+
+    type :: analysis_config_t
+        logical :: anisotropy = .false.     !! slope tensors of surface and deformed solid, eq. (16)
+        real(dp) :: zeta1 = 1.0_dp          !! lower band edge [2 pi/lx_m]
+        real(dp) :: zeta2 = 0.0_dp          !! upper band edge [2 pi/lx_m]; 0: k_cut
+        integer :: n_theta = 72             !! polar samples of m2, mu2
+        real(dp) :: iso_tol = 1.0e-3_dp     !! 1 - gamma <= iso_tol counts as isotropic
+        logical :: patches = .false.        !! contact patches and percolation
+    end type analysis_config_t
+
+contains
+
+    !> Read &analysis from the open namelist file `u` (absent: defaults) and check what does not
+    !> depend on the surface (zeta2 = 0 is resolved by the configuration)
+    subroutine read_analysis_config(self, u, path, error)
+        type(analysis_config_t), intent(out) :: self
+        integer, intent(in) :: u
+        character(len=*), intent(in) :: path
+        type(error_t), allocatable, intent(out) :: error
+        logical :: anisotropy, patches
+        real(dp) :: zeta1, zeta2, iso_tol
+        integer :: n_theta, stat
+        character(len=512) :: msg
+        namelist /analysis/ anisotropy, zeta1, zeta2, n_theta, iso_tol, patches
+        anisotropy = self%anisotropy; zeta1 = self%zeta1; zeta2 = self%zeta2; n_theta = self%n_theta
+        iso_tol = self%iso_tol; patches = self%patches
+        rewind (u); read (u, nml=analysis, iostat=stat, iomsg=msg)
+        call namelist_status(stat, msg, path, 'analysis', error); if (allocated(error)) return
+        self%anisotropy = anisotropy; self%zeta1 = zeta1; self%zeta2 = zeta2; self%n_theta = n_theta
+        self%iso_tol = iso_tol; self%patches = patches
+        call require(error, n_theta >= 4 .and. n_theta <= 100000, path, 'analysis', 'n_theta', str(n_theta), &
+                     "4 to 100000")
+        call require(error, iso_tol >= 0.0_dp .and. iso_tol < 1.0_dp, path, 'analysis', 'iso_tol', str(iso_tol), &
+                     "0 <= iso_tol < 1")
+    end subroutine read_analysis_config
+
+end module veslide_config_analysis

@@ -1,0 +1,164 @@
+!> The result file at the edge: provenance written into it, and its atomic publication.
+!>
+!> A run writes to `OUT.part-PID` and publishes it under `OUT` only when complete: with link(2)
+!> then unlink(2), which fails if `OUT` appeared meanwhile (so two runs never silently replace
+!> each other's result), or with rename(2) when overwriting was asked. A failed run removes its
+!> part file and leaves any earlier result untouched.
+module veslide_output
+    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+    use veslide_kinds, only: dp, i8
+    use veslide_error, only: error_t, fatal_error
+    use veslide_hdf5, only: h5file_t, hdf5_library_version
+    use veslide_quantities, only: results_t
+    use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
+    implicit none
+    private
+    public :: prepare_output, commit_output, discard_output, write_provenance, process_id, write_results, write_field
+
+    !> How a 2-D field is laid out, for readers in other languages
+    character(len=*), parameter :: field_layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
+
+    interface
+        integer(c_int) function c_rename(old, new) bind(c, name='rename')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: old(*), new(*)
+        end function c_rename
+        integer(c_int) function c_link(old, new) bind(c, name='link')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: old(*), new(*)
+        end function c_link
+        integer(c_int) function c_unlink(path) bind(c, name='unlink')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+        end function c_unlink
+        integer(c_int) function c_getpid() bind(c, name='getpid')
+            import :: c_int
+        end function c_getpid
+    end interface
+
+contains
+
+    !> The process id (POSIX getpid), for names unique to this run
+    integer function process_id() result(pid)
+        pid = int(c_getpid())
+    end function process_id
+
+    !> Check that the result can be written, before any work: refuses an existing file unless
+    !> `overwrite`, and creates (then removes) the temporary file it will write to
+    subroutine prepare_output(path, overwrite, tmp, error)
+        character(len=*), intent(in) :: path
+        logical, intent(in) :: overwrite
+        character(len=:), allocatable, intent(out) :: tmp
+        type(error_t), allocatable, intent(out) :: error
+        logical :: exists
+        integer :: u, stat
+        character(len=512) :: msg
+        character(len=16) :: pid
+        inquire (file=path, exist=exists)
+        if (exists .and. .not. overwrite) then
+            call fatal_error(error, "veslide: &output file '"//path//"' exists; "// &
+                "set &output overwrite = .true. or pass --overwrite to replace it"); return
+        end if
+        write (pid, '(i0)') process_id()
+        tmp = path//'.part-'//trim(pid)
+        open (newunit=u, file=tmp, status='replace', action='write', iostat=stat, iomsg=msg)
+        if (stat /= 0) then
+            call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: "//trim(msg)); return
+        end if
+        close (u, status='delete')
+    end subroutine prepare_output
+
+    !> Publish the finished temporary file under its final name: without replacing anything
+    !> (link + unlink) unless `overwrite` (rename)
+    subroutine commit_output(tmp, path, overwrite, error)
+        character(len=*), intent(in) :: tmp, path
+        logical, intent(in) :: overwrite
+        type(error_t), allocatable, intent(out) :: error
+        integer(c_int) :: stat
+        if (overwrite) then
+            if (c_rename(tmp//c_null_char, path//c_null_char) /= 0) &
+                call fatal_error(error, "veslide: cannot rename '"//tmp//"' to '"//path//"'")
+            return
+        end if
+        if (c_link(tmp//c_null_char, path//c_null_char) /= 0) then
+            call fatal_error(error, "veslide: &output file '"//path//"' cannot be published (it appeared while"// &
+                " this run worked, or the directory refuses links); the result stays in '"//tmp//"'")
+            return
+        end if
+        stat = c_unlink(tmp//c_null_char)
+    end subroutine commit_output
+
+    !> Remove a temporary file, if present
+    subroutine discard_output(tmp)
+        character(len=*), intent(in) :: tmp
+        integer(c_int) :: stat
+        stat = c_unlink(tmp//c_null_char)
+    end subroutine discard_output
+
+    !> Root attributes of provenance, and the input text as /input/namelist. A single case
+    !> records its `seed`; a study (`study` present and true) the list of its `seeds`.
+    subroutine write_provenance(f, input_path, input_text, seeds, error, study)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: input_path, input_text
+        integer(i8), intent(in) :: seeds(:)
+        type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: study
+        logical :: study_
+        study_ = .false.; if (present(study)) study_ = study
+        call f%writeattr('/', 'veslide_version', version_string(), error); if (allocated(error)) return
+        call f%writeattr('/', 'git_revision', git_revision(), error); if (allocated(error)) return
+        call f%writeattr('/', 'compiler', compiler_string(), error); if (allocated(error)) return
+        call f%writeattr('/', 'compiler_options', compiler_flags(), error); if (allocated(error)) return
+        call f%writeattr('/', 'hdf5_version', hdf5_library_version(), error); if (allocated(error)) return
+        call f%writeattr('/', 'created', utc_timestamp(), error); if (allocated(error)) return
+        if (study_) then
+            call f%writeattr('/', 'seeds', seeds, error)
+        else
+            call f%writeattr('/', 'seed', seeds(1), error)
+        end if
+        if (allocated(error)) return
+        call f%writeattr('/', 'input_file', input_path, error); if (allocated(error)) return
+        call f%write('/input/namelist', input_text, error); if (allocated(error)) return
+        call f%writeattr('/input/namelist', 'units', '-', error)
+    end subroutine write_provenance
+
+    !> The scalars of `r` under PREFIX/scalars/NAME (integers as int64) and its arrays under
+    !> PREFIX/PATH, each with its `units` attribute (and `layout` where given)
+    subroutine write_results(f, prefix, r, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: prefix
+        type(results_t), intent(in) :: r
+        type(error_t), allocatable, intent(out) :: error
+        integer :: k
+        character(len=:), allocatable :: name
+        do k = 1, r%n
+            name = prefix//'/scalars/'//r%scalars(k)%name
+            if (r%scalars(k)%is_integer) then
+                call f%write(name, nint(r%scalars(k)%value, i8), error)
+            else
+                call f%write(name, r%scalars(k)%value, error)
+            end if
+            if (allocated(error)) return
+            call f%writeattr(name, 'units', r%scalars(k)%units, error); if (allocated(error)) return
+        end do
+        do k = 1, r%na
+            name = prefix//r%arrays(k)%path
+            call f%write(name, r%arrays(k)%values, error); if (allocated(error)) return
+            call f%writeattr(name, 'units', r%arrays(k)%units, error); if (allocated(error)) return
+            if (len(r%arrays(k)%layout) > 0) call f%writeattr(name, 'layout', r%arrays(k)%layout, error)
+            if (allocated(error)) return
+        end do
+    end subroutine write_results
+
+    !> A 2-D field with its units and layout
+    subroutine write_field(f, name, values, units, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: name, units
+        real(dp), intent(in) :: values(:, :)
+        type(error_t), allocatable, intent(out) :: error
+        call f%write(name, values, error); if (allocated(error)) return
+        call f%writeattr(name, 'units', units, error); if (allocated(error)) return
+        call f%writeattr(name, 'layout', field_layout, error)
+    end subroutine write_field
+
+end module veslide_output

@@ -1,0 +1,381 @@
+!> Periodic influence operator of a half-space, applied as a Fourier multiplier on the r2c
+!> half-spectrum: the kernel as an operator.
+!>
+!> Displacement from pressure in the sliding frame: w(q) = K(q) p(q), K(q) = 2(1-nu^2) C(-q.v)/|q|,
+!> C the complex compliance of the material (elastic: C = 1/E). On the grid the multiplier is
+!>   K_d(q_k) = sum_m K(q_k + Q m) S(q_k + Q m),   Q = (2 pi/a, 2 pi/b)
+!> with, per variant,
+!>   spectral:    m = 0 only, S = 1 (what most FFT contact codes do);
+!>   collocation: m = 0 only, S = sinc(qx a/2) sinc(qy b/2) (uniform pressure on the cell, point receiver);
+!>   collocation-alias: S as collocation, summed over alias zones (the exact real-space influence
+!>                coefficients of the paper's eq. 10, periodised);
+!>   galerkin:    S = sinc^2 (cell-averaged source and receiver), summed over alias zones.
+!> Alias sums run over square shells |m|_inf <= M, M = 2, 4, 8, ..., with Richardson extrapolation
+!> (error ~ M^-2); they stop when the extrapolated value changes by less than `alias_tol` relative to
+!> max|K_d|, and report the estimate. One code path serves elastic and viscoelastic kernels.
+!> The q = 0 mode is zero: the mean displacement is the rigid-body approach of the solver.
+!>
+!> What the solvers and the analysis use (they never touch the multiplier or the FFT themselves):
+!>  - `apply`:  out = K f (zero mean); `apply_buffer`: the same in place on an FFT buffer;
+!>  - `impulse_response`: K applied to a unit pressure on cell (1, 1) (one column of the matrix);
+!>  - `resolvent`: the multiplier of (I + gamma s K)^-1 as a `resolvent_t`, whose `solve` gives
+!>    x = (I + gamma s K)^-1 (z + gamma r) with the mean of x fixed;
+!>  - `tangential_force`: F = <p grad w> of a pressure field, exact for the discrete operator.
+module veslide_kernel
+    use veslide_kinds, only: dp, two_pi
+    use veslide_error, only: error_t, fatal_error
+    use veslide_grid, only: grid_t
+    use veslide_fftw, only: fft2d_t
+    use veslide_material, only: material_t
+    implicit none
+    private
+    public :: kernel_t, resolvent_t, new_kernel, new_kernel_from_multiplier, kernel_variant_id, kernel_names
+    public :: KERNEL_SPECTRAL, KERNEL_COLLOCATION, KERNEL_COLLOCATION_ALIAS, KERNEL_GALERKIN
+
+    integer, parameter :: KERNEL_SPECTRAL = 1, KERNEL_COLLOCATION = 2, &
+                          KERNEL_COLLOCATION_ALIAS = 3, KERNEL_GALERKIN = 4
+    !> Names of the variants, indexed by their KERNEL_* id (the namelist's `&solver kernel`)
+    character(len=*), parameter :: kernel_names(4) = [character(len=17) :: 'spectral', 'collocation', &
+                                                      'collocation-alias', 'galerkin']
+
+    !> The discrete influence operator of one grid, material, velocity and variant
+    type :: kernel_t
+        type(grid_t) :: grid                         !! the grid it acts on
+        integer :: variant = KERNEL_SPECTRAL         !! KERNEL_* id
+        real(dp) :: velocity_m_s(2) = 0.0_dp         !! sliding velocity of the rigid surface [m/s]
+        logical :: symmetric = .true.                !! all Im K_d == 0 (elastic or v = 0): a symmetric operator
+        integer :: alias_zones = 0                   !! M of the last shell summed (0: none)
+        real(dp) :: alias_error = 0.0_dp             !! estimated relative error of the alias sum
+        real(dp) :: min_re = 0.0_dp                  !! min Re K_d over q /= 0 [m/Pa]
+        complex(dp), allocatable, private :: kd(:, :)  !! multiplier K_d (nx/2+1, ny) [m/Pa]
+    contains
+        procedure :: apply => kernel_apply
+        procedure :: apply_buffer => kernel_apply_buffer
+        procedure :: impulse_response => kernel_impulse_response
+        procedure :: resolvent => kernel_resolvent
+        procedure :: tangential_force => kernel_tangential_force
+        procedure :: value => kernel_value
+        procedure :: max_abs => kernel_max_abs
+        procedure :: typical_abs => kernel_typical_abs
+    end type kernel_t
+
+    !> The multiplier of (I + gamma s K)^-1 / (nx ny) (FFTW's normalisation folded in)
+    type :: resolvent_t
+        complex(dp), allocatable, private :: mult(:, :)
+    contains
+        procedure :: solve => resolvent_solve
+    end type resolvent_t
+
+contains
+
+    !> KERNEL_* id from a variant name; 0 when unknown
+    pure integer function kernel_variant_id(name) result(id)
+        character(len=*), intent(in) :: name
+        integer :: k
+        id = 0
+        do k = 1, size(kernel_names)
+            if (trim(name) == trim(kernel_names(k))) id = k
+        end do
+    end function kernel_variant_id
+
+    elemental real(dp) function sinc(z)
+        real(dp), intent(in) :: z
+        if (abs(z) < 1.0e-8_dp) then
+            sinc = 1.0_dp - z*z/6.0_dp
+        else
+            sinc = sin(z)/z
+        end if
+    end function sinc
+
+    !> Continuous kernel 2(1-nu^2) C(-q.v)/|q| times the cell factor of the variant
+    pure complex(dp) function term(mat, q, v, a, b, variant) result(t)
+        type(material_t), intent(in) :: mat
+        real(dp), intent(in) :: q(2), v(2), a, b
+        integer, intent(in) :: variant
+        real(dp) :: s, qn
+        qn = norm2(q)
+        t = 2.0_dp*(1.0_dp - mat%poisson**2)*mat%compliance(-dot_product(q, v))/qn
+        select case (variant)
+        case (KERNEL_COLLOCATION, KERNEL_COLLOCATION_ALIAS)
+            s = sinc(0.5_dp*q(1)*a)*sinc(0.5_dp*q(2)*b)
+            t = t*s
+        case (KERNEL_GALERKIN)
+            s = sinc(0.5_dp*q(1)*a)*sinc(0.5_dp*q(2)*b)
+            t = t*s*s
+        end select
+    end function term
+
+    !> Sum of term() over the shell |m|_inf == m (m = 0: the single term m = 0)
+    pure complex(dp) function shell_sum(mat, q, v, a, b, variant, m, use_x, use_y) result(s)
+        type(material_t), intent(in) :: mat
+        real(dp), intent(in) :: q(2), v(2), a, b
+        integer, intent(in) :: variant, m
+        logical, intent(in) :: use_x, use_y   ! a direction with one cell has no aliases
+        real(dp) :: bq(2)
+        integer :: mx, my
+        bq = [two_pi/a, two_pi/b]
+        s = (0.0_dp, 0.0_dp)
+        if (m == 0) then
+            s = term(mat, q, v, a, b, variant); return
+        end if
+        if (use_x .and. use_y) then
+            do my = -m, m
+                if (abs(my) == m) then
+                    do mx = -m, m
+                        s = s + term(mat, q + bq*[mx, my], v, a, b, variant)
+                    end do
+                else
+                    s = s + term(mat, q + bq*[-m, my], v, a, b, variant)
+                    s = s + term(mat, q + bq*[m, my], v, a, b, variant)
+                end if
+            end do
+        else if (use_x) then
+            s = term(mat, q + bq*[-m, 0], v, a, b, variant) + term(mat, q + bq*[m, 0], v, a, b, variant)
+        else if (use_y) then
+            s = term(mat, q + bq*[0, -m], v, a, b, variant) + term(mat, q + bq*[0, m], v, a, b, variant)
+        end if
+    end function shell_sum
+
+    !> Build the operator for a grid, material, velocity and variant
+    subroutine new_kernel(self, grid, mat, velocity_m_s, variant, error, alias_tol, alias_max)
+        type(kernel_t), intent(out) :: self
+        type(grid_t), intent(in) :: grid
+        type(material_t), intent(in) :: mat
+        !> velocity of the rigid surface relative to the solid [m/s]
+        real(dp), intent(in) :: velocity_m_s(2)
+        !> KERNEL_* id
+        integer, intent(in) :: variant
+        type(error_t), allocatable, intent(out) :: error
+        !> relative tolerance of the alias sums (default 1e-6)
+        real(dp), intent(in), optional :: alias_tol
+        !> largest shell index M (default 64)
+        integer, intent(in), optional :: alias_max
+        real(dp) :: tol_, a, b, kmax, worst, d(2)
+        integer :: max_, i, j, m, nrep_x, nrep_y, rx, ry, nq, nx, ny
+        real(dp) :: q(2), qr(2)
+        complex(dp), allocatable :: s_prev(:, :), r_prev(:, :), s_cur(:, :), r_cur(:, :)
+        logical :: use_x, use_y, aliased
+
+        tol_ = 1.0e-6_dp; if (present(alias_tol)) tol_ = alias_tol
+        max_ = 64; if (present(alias_max)) max_ = alias_max
+        nx = grid%nx; ny = grid%ny
+        if (nx < 1 .or. ny < 1 .or. .not. (grid%lx_m > 0.0_dp .and. grid%ly_m > 0.0_dp)) then
+            call fatal_error(error, "veslide:kernel:new_kernel: grid and cell size must be positive"); return
+        end if
+        if (variant < 1 .or. variant > size(kernel_names)) then
+            call fatal_error(error, "veslide:kernel:new_kernel: unknown kernel variant"); return
+        end if
+        self%grid = grid
+        self%variant = variant; self%velocity_m_s = velocity_m_s
+        d = grid%spacing(); a = d(1); b = d(2)
+        use_x = nx > 1; use_y = ny > 1
+        aliased = variant == KERNEL_COLLOCATION_ALIAS .or. variant == KERNEL_GALERKIN
+        nq = grid%nq()
+        allocate (self%kd(nq, ny), s_cur(nq, ny), r_cur(nq, ny))
+
+        ! Shell 0, then shells 1..M in doubling stages. On a Nyquist line the two signed
+        ! representatives of the mode are averaged (this keeps the operator real, and makes
+        ! truncated alias sums symmetric).
+        m = 0
+        call add_shells(0, 0, s_cur)
+        if (.not. aliased) then
+            self%kd = s_cur
+        else
+            allocate (s_prev(nq, ny), r_prev(nq, ny))
+            r_prev = s_cur
+            m = 1
+            call add_shells(1, 1, s_cur)
+            do
+                s_prev = s_cur
+                call add_shells(m + 1, 2*m, s_cur)
+                m = 2*m
+                ! Richardson for an M^-2 tail: R(M) = S(M) + (S(M) - S(M/2))/3
+                r_cur = s_cur + (s_cur - s_prev)/3.0_dp
+                kmax = maxval(abs(r_cur))
+                worst = maxval(abs(r_cur - r_prev))/kmax
+                r_prev = r_cur
+                if (worst <= tol_ .or. 2*m > max_) exit
+            end do
+            self%kd = r_cur
+            self%alias_zones = m
+            self%alias_error = worst
+        end if
+        call finish_kernel(self, error)
+
+    contains
+
+        subroutine add_shells(m1, m2, acc)
+            integer, intent(in) :: m1, m2
+            complex(dp), intent(inout) :: acc(:, :)
+            integer :: mm
+            complex(dp) :: s
+            if (m1 == 0) acc = (0.0_dp, 0.0_dp)
+            !$omp parallel do schedule(dynamic) private(i, q, qr, nrep_x, nrep_y, rx, ry, s, mm)
+            do j = 1, ny
+                do i = 1, nq
+                    if (i == 1 .and. j == 1) cycle
+                    q = grid%wavevector(i, j)
+                    nrep_x = merge(2, 1, grid%is_nyquist_x(i)); nrep_y = merge(2, 1, grid%is_nyquist_y(j))
+                    s = (0.0_dp, 0.0_dp)
+                    do ry = 1, nrep_y
+                        do rx = 1, nrep_x
+                            qr = q
+                            if (rx == 2) qr(1) = -qr(1)
+                            if (ry == 2) qr(2) = -qr(2)
+                            do mm = m1, m2
+                                s = s + shell_sum(mat, qr, velocity_m_s, a, b, variant, mm, use_x, use_y)
+                            end do
+                        end do
+                    end do
+                    acc(i, j) = acc(i, j) + s/real(nrep_x*nrep_y, dp)
+                end do
+            end do
+            !$omp end parallel do
+        end subroutine add_shells
+
+    end subroutine new_kernel
+
+    !> A kernel from a given multiplier K_d on the half-spectrum of `grid` (a material law or a
+    !> geometry that new_kernel does not build: layered solids, tabulated compliances, limits)
+    subroutine new_kernel_from_multiplier(self, grid, kd, velocity_m_s, error)
+        type(kernel_t), intent(out) :: self
+        type(grid_t), intent(in) :: grid
+        complex(dp), intent(in) :: kd(:, :)
+        real(dp), intent(in) :: velocity_m_s(2)
+        type(error_t), allocatable, intent(out) :: error
+        if (size(kd, 1) /= grid%nq() .or. size(kd, 2) /= grid%ny) then
+            call fatal_error(error, "veslide:kernel:new_kernel_from_multiplier: the multiplier is not (nx/2+1, ny)")
+            return
+        end if
+        self%grid = grid; self%velocity_m_s = velocity_m_s; self%variant = 0
+        self%kd = kd
+        call finish_kernel(self, error)
+    end subroutine new_kernel_from_multiplier
+
+    !> Zero mean mode, symmetry flag, and the definiteness check min Re K_d > 0
+    subroutine finish_kernel(self, error)
+        type(kernel_t), intent(inout) :: self
+        type(error_t), allocatable, intent(out) :: error
+        integer :: i, j
+        self%kd(1, 1) = (0.0_dp, 0.0_dp)
+        self%symmetric = all(aimag(self%kd) == 0.0_dp)
+        self%min_re = huge(1.0_dp)
+        do j = 1, size(self%kd, 2)
+            do i = 1, size(self%kd, 1)
+                if (i == 1 .and. j == 1) cycle
+                self%min_re = min(self%min_re, real(self%kd(i, j), dp))
+            end do
+        end do
+        if (size(self%kd) == 1) self%min_re = 0.0_dp
+        if (.not. (self%min_re > 0.0_dp) .and. size(self%kd) > 1) then
+            if (self%variant == KERNEL_COLLOCATION_ALIAS) then
+                call fatal_error(error, "veslide:kernel:new_kernel: the discrete kernel is not positive definite"// &
+                    " (min Re K_d <= 0); the collocation-alias variant loses definiteness for large"// &
+                    " Einf/E0 at speed: use the 'galerkin' or 'collocation' variant")
+            else
+                call fatal_error(error, "veslide:kernel:new_kernel: the discrete kernel is not positive definite"// &
+                    " (min Re K_d <= 0, or not finite)")
+            end if
+        end if
+    end subroutine finish_kernel
+
+    !> out = K f (zero mean), using the buffers of `fft`
+    subroutine kernel_apply(self, fft, f, out)
+        class(kernel_t), intent(in) :: self
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), intent(in) :: f(:, :)
+        real(dp), intent(out) :: out(:, :)
+        fft%x = f
+        call self%apply_buffer(fft)
+        out = fft%x
+    end subroutine kernel_apply
+
+    !> fft%x <- K fft%x in place (one FFT pair; fft%k is overwritten)
+    subroutine kernel_apply_buffer(self, fft)
+        class(kernel_t), intent(in) :: self
+        type(fft2d_t), intent(inout) :: fft
+        real(dp) :: n
+        n = self%grid%cells()
+        call fft%forward()
+        fft%k = fft%k*(self%kd/n)
+        call fft%backward_unscaled()
+    end subroutine kernel_apply_buffer
+
+    !> green = K applied to a unit pressure on cell (1, 1); column j of the influence matrix is
+    !> green shifted periodically to cell j
+    subroutine kernel_impulse_response(self, fft, green)
+        class(kernel_t), intent(in) :: self
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), intent(out) :: green(:, :)
+        fft%k = self%kd/self%grid%cells()
+        call fft%backward_unscaled()
+        green = fft%x
+    end subroutine kernel_impulse_response
+
+    !> The resolvent (I + gamma s K)^-1 as a multiplier (s scales K, e.g. to dimensionless units)
+    subroutine kernel_resolvent(self, gamma, s, r)
+        class(kernel_t), intent(in) :: self
+        real(dp), intent(in) :: gamma, s
+        type(resolvent_t), intent(out) :: r
+        r%mult = 1.0_dp/((1.0_dp + gamma*(self%kd*s))*self%grid%cells())
+    end subroutine kernel_resolvent
+
+    !> x = (I + gamma s K)^-1 (z + gamma r) with mean(x) = mean_x: on entry fft%x holds z and
+    !> `rk` the unnormalised transform of r; on exit fft%x holds x (one FFT pair)
+    subroutine resolvent_solve(self, fft, rk, gamma, mean_x)
+        class(resolvent_t), intent(in) :: self
+        type(fft2d_t), intent(inout) :: fft
+        complex(dp), intent(in) :: rk(:, :)
+        real(dp), intent(in) :: gamma, mean_x
+        call fft%forward()
+        fft%k = self%mult*(fft%k + gamma*rk)
+        fft%k(1, 1) = mean_x
+        call fft%backward_unscaled()
+    end subroutine resolvent_solve
+
+    !> Tangential force per unit nominal area exerted by the solid on the rigid surface,
+    !> F = <p grad w> [Pa], evaluated exactly for the discrete operator:
+    !> F = -(1/N^2) sum_q q Im K_d(q) |P(q)|^2 (full-plane sum, Nyquist lines carry no derivative).
+    !> Zero for a symmetric (elastic) kernel.
+    function kernel_tangential_force(self, fft, p) result(f)
+        class(kernel_t), intent(in) :: self
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), intent(in) :: p(:, :)
+        real(dp) :: f(2)
+        integer :: i, j
+        f = 0.0_dp
+        if (self%symmetric) return
+        fft%x = p
+        call fft%forward()
+        do j = 1, self%grid%ny
+            do i = 1, self%grid%nq()
+                f = f - self%grid%hermitian_weight(i)*self%grid%derivative_wavevector(i, j)*aimag(self%kd(i, j)) &
+                    *abs(fft%k(i, j))**2
+            end do
+        end do
+        f = f/self%grid%cells()**2
+    end function kernel_tangential_force
+
+    !> K_d at half-spectrum entry (i, j) [m/Pa]
+    elemental complex(dp) function kernel_value(self, i, j) result(k)
+        class(kernel_t), intent(in) :: self
+        integer, intent(in) :: i, j
+        k = self%kd(i, j)
+    end function kernel_value
+
+    !> max |K_d| [m/Pa]
+    pure real(dp) function kernel_max_abs(self) result(k)
+        class(kernel_t), intent(in) :: self
+        k = maxval(abs(self%kd))
+    end function kernel_max_abs
+
+    !> Geometric mean of |s K_d| over q /= 0: the magnitude that makes a step of 1/it balanced
+    pure real(dp) function kernel_typical_abs(self, s) result(k)
+        class(kernel_t), intent(in) :: self
+        real(dp), intent(in) :: s
+        complex(dp), allocatable :: ks(:, :)
+        ks = self%kd*s
+        k = exp(sum(log(abs(ks) + tiny(1.0_dp)), mask=abs(ks) > 0.0_dp)/max(1, count(abs(ks) > 0.0_dp)))
+    end function kernel_typical_abs
+
+end module veslide_kernel

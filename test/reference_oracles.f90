@@ -1,0 +1,75 @@
+!> Closed-form and exact references shared by several test suites
+module reference_oracles
+    use veslide_kinds, only: dp, pi, two_pi
+    use veslide_error, only: error_t
+    use veslide_fftw, only: fft2d_t
+    use veslide_kernel, only: kernel_t
+    use veslide_material, only: material_t, new_one_term
+    implicit none
+    private
+    public :: westergaard_t, westergaard, full_contact_force, paper_solid, peak_speed, einf, tau, lcell
+
+    !> The paper's solid and cell: glassy modulus [Pa], retardation time [s], cell side [m]
+    real(dp), parameter :: einf = 1.0e8_dp, tau = 1.0e-2_dp, lcell = 1.0e-2_dp
+
+    !> Westergaard's solution of a wave h0 cos(2 pi x/l) pressed on an elastic half-plane
+    type :: westergaard_t
+        real(dp) :: width_fraction = 0.0_dp   !! contact width / l
+        real(dp) :: peak_pa = 0.0_dp          !! maximum pressure
+        real(dp) :: mean_gap_m = 0.0_dp       !! mean separation
+    end type westergaard_t
+
+contains
+
+    !> The paper's one-term solid with Einf/E0 = ratio (nu = 0.5)
+    subroutine paper_solid(ratio, mat, error)
+        real(dp), intent(in) :: ratio
+        type(material_t), intent(out) :: mat
+        type(error_t), allocatable, intent(out) :: error
+        call new_one_term(mat, einf, ratio, tau, 0.5_dp, error)
+    end subroutine paper_solid
+
+    !> Speed at which the wavelength lcell/k sees the loss peak w = Einf/(E0 tau) of paper_solid
+    pure real(dp) function peak_speed(ratio, k) result(v)
+        real(dp), intent(in) :: ratio, k
+        v = ratio/tau/(two_pi*k/lcell)
+    end function peak_speed
+
+    !> Plane strain, psi = sin(pi a/l) = sqrt(p/p*), p* = pi E* h0/l; peak pressure 2 sqrt(p p*);
+    !> mean gap h0 + 2 p l/(pi E*) (ln psi - 1/2) (docs/validation.md derives it from g(0) = 0
+    !> and sum_k cos(k t)/k = -ln|2 sin(t/2)|)
+    pure function westergaard(p, h0, l, estar) result(w)
+        real(dp), intent(in) :: p, h0, l, estar
+        type(westergaard_t) :: w
+        real(dp) :: pstar, psi
+        pstar = pi*estar*h0/l
+        psi = sqrt(p/pstar)
+        w%width_fraction = 2.0_dp*asin(psi)/pi
+        w%peak_pa = 2.0_dp*sqrt(p*pstar)
+        w%mean_gap_m = h0 + 2.0_dp*p*l/(pi*estar)*(log(psi) - 0.5_dp)
+    end function westergaard
+
+    !> The exact tangential force of the solid on the rigid surface h in full contact, for the
+    !> discrete operator: p(q) = h(q)/K(q) (q /= 0), so F = -(1/N^4) sum_q w q Im K |H/K|^2 with H the
+    !> unnormalised transform of h (Nyquist lines carry no derivative). Any surface, any kernel.
+    function full_contact_force(kernel, fft, h) result(f)
+        type(kernel_t), intent(in) :: kernel
+        type(fft2d_t), intent(inout) :: fft
+        real(dp), intent(in) :: h(:, :)
+        real(dp) :: f(2)
+        integer :: i, j
+        f = 0.0_dp
+        fft%x = h; call fft%forward()
+        associate (g => kernel%grid)
+            do j = 1, g%ny
+                do i = 1, g%nq()
+                    if (i == 1 .and. j == 1) cycle
+                    f = f - g%hermitian_weight(i)*g%derivative_wavevector(i, j)*aimag(kernel%value(i, j)) &
+                        *abs(fft%k(i, j)/kernel%value(i, j))**2
+                end do
+            end do
+            f = f/g%cells()**2
+        end associate
+    end function full_contact_force
+
+end module reference_oracles

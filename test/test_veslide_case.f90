@@ -1,0 +1,117 @@
+!> One case end to end: the output contract (paths, units, types), the results list (names unique,
+!> units everywhere, the same values as the file), and refusals that name the input
+module test_veslide_case
+    use veslide_kinds, only: dp, i8
+    use veslide_error, only: fatal_error
+    use veslide_config, only: config_t
+    use veslide_hdf5, only: h5file_t
+    use veslide_output, only: prepare_output, commit_output
+    use veslide_quantities, only: results_t
+    use veslide_case, only: case_t, run_case, write_case, case_results
+    use testsuite, only: error_t, unittest_t, new_unittest, check
+    use test_support, only: unique_name
+    use test_veslide_config, only: read_text
+    implicit none
+    private
+    public :: collect_case
+
+contains
+
+    subroutine collect_case(tests)
+        type(unittest_t), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest("hdf5-contract", test_hdf5_contract), &
+            new_unittest("results-named-once-with-units", test_results_list), &
+            new_unittest("friction-sign-and-lateral-direction", test_friction_sign) &
+            ]
+    end subroutine collect_case
+
+    !> A small case end to end: the paths and units of the output contract
+    subroutine test_hdf5_contract(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out, tmp
+        character(len=40) :: paths(12)
+        real(dp) :: a
+        integer(i8) :: its
+        integer :: k, u
+        out = unique_name('contract.h5')
+        call read_text('contract', "&grid nx = 32, ny = 32 / &surface k_cut = 8 / &solver fft_planner='estimate' /"// &
+                       " &output file = '"//out//"' / &analysis anisotropy = .true., patches = .true. /", cfg, error)
+        if (allocated(error)) return
+        call prepare_output(cfg%output%file, .false., tmp, error); if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call write_case(tmp, cfg, c, error); if (allocated(error)) return
+        call commit_output(tmp, out, .false., error); if (allocated(error)) return
+        paths = [character(len=40) :: '/scalars/contact_area_fraction', '/scalars/mean_separation_m', &
+                 '/scalars/rms_height_m', '/scalars/max_pressure_pa', '/scalars/iterations', '/scalars/converged', &
+                 '/scalars/residual', '/fields/height_m', '/fields/pressure_pa', '/fields/displacement_m', &
+                 '/fields/gap_m', '/anisotropy/surface_tensor']
+        call f%open(out, 'r', error); if (allocated(error)) return
+        do k = 1, size(paths)
+            if (.not. f%exists(trim(paths(k)))) then
+                call fatal_error(error, "missing "//trim(paths(k))); return
+            end if
+            if (.not. f%attr_exists(trim(paths(k)), 'units')) then
+                call fatal_error(error, "no units on "//trim(paths(k))); return
+            end if
+        end do
+        call f%read_r0('/scalars/contact_area_fraction', a, error); if (allocated(error)) return
+        call f%read_i0('/scalars/iterations', its, error); if (allocated(error)) return
+        call f%close()
+        open (newunit=u, file=out); close (u, status='delete')
+        call check(error, a, real(count(c%state%p > 0), dp)/1024.0_dp, "area read back", rel=0.0_dp)
+        if (allocated(error)) return
+        call check(error, its == c%state%iterations, "iterations stored as an integer")
+    end subroutine test_hdf5_contract
+
+    !> Every scalar has one name and a units string; the list the summary reads is the file's
+    subroutine test_results_list(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        integer :: i, j
+        call read_text('results', "&grid nx = 16, ny = 16 / &surface k_cut = 4 / &solver fft_planner='estimate' /"// &
+                       " &material model='one_term' / &motion speed_m_s = 0.1 /"// &
+                       " &analysis anisotropy = .true., patches = .true. /", cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call case_results(cfg, c, r)
+        do i = 1, r%n
+            call check(error, len(r%scalars(i)%units) > 0, r%scalars(i)%name//" has no units")
+            if (allocated(error)) return
+            do j = i + 1, r%n
+                call check(error, r%scalars(i)%name /= r%scalars(j)%name, r%scalars(i)%name//" defined twice")
+                if (allocated(error)) return
+            end do
+        end do
+        call check(error, r%has('friction_coefficient') .and. r%has('gamma_d') .and. r%has('patch_count'), &
+                   "quantities missing")
+    end subroutine test_results_list
+
+    !> Sliding along +y over an anisotropic surface: friction positive (it resists the motion),
+    !> the lateral force is the component 90 degrees counter-clockwise from v (here along -x)
+    subroutine test_friction_sign(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        call read_text('sign', "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.4, alpha_deg = 30 /"// &
+                       " &solver fft_planner='estimate' / &material model='one_term' /"// &
+                       " &motion speed_m_s = 0.05, direction_deg = 90 /", cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call case_results(cfg, c, r)
+        call check(error, r%get('friction_coefficient') > 0.0_dp, "friction must resist the motion")
+        if (allocated(error)) return
+        call check(error, r%get('friction_coefficient'), -c%force_pa(2)/cfg%load%mean_pressure_pa, "friction = -F_y/p", &
+                   rel=1.0e-14_dp)
+        if (allocated(error)) return
+        call check(error, r%get('lateral_force_ratio'), -c%force_pa(1)/cfg%load%mean_pressure_pa, &
+                   "lateral = F.(z x v_hat)/p = -F_x/p", rel=1.0e-14_dp)
+    end subroutine test_friction_sign
+
+end module test_veslide_case

@@ -1,0 +1,219 @@
+!> Studies: the enumeration of cases, every case equal to its single run, a study over a measured
+!> topography, the seed statistics, and rank parts joined into the serial study
+module test_veslide_study
+    use veslide_kinds, only: dp, i8, pi
+    use veslide_config, only: config_t
+    use veslide_hdf5, only: h5file_t
+    use veslide_quantities, only: AXIAL_NONE, AXIAL_HALF_TURN, AXIAL_SYMMETRIC
+    use veslide_case, only: case_t, run_case
+    use veslide_study, only: study_plan_t, plan_study, run_study, merge_study_parts, seed_statistics
+    use testsuite, only: error_t, unittest_t, new_unittest, check, report
+    use test_support, only: unique_name
+    use test_veslide_config, only: read_text
+    use test_veslide_topography, only: write_heights
+    implicit none
+    private
+    public :: collect_study
+
+    character(len=*), parameter :: base = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5 /"// &
+        " &solver fft_planner='estimate', tolerance = 1e-12 / &material model='one_term' / &motion speed_m_s = 0.1 /"
+
+contains
+
+    subroutine collect_study(tests)
+        type(unittest_t), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest("chains-enumerated-seed-major", test_plan), &
+            new_unittest("cases-equal-single-runs", test_sweep), &
+            new_unittest("study-over-height-file", test_sweep_file), &
+            new_unittest("seed-statistics-axial", test_seed_statistics), &
+            new_unittest("rank-parts-join-into-the-serial-study", test_merge) &
+            ]
+    end subroutine collect_study
+
+    subroutine remove(path)
+        character(len=*), intent(in) :: path
+        integer :: u, stat
+        open (newunit=u, file=path, iostat=stat); if (stat == 0) close (u, status='delete')
+    end subroutine remove
+
+    !> 2 seeds x 2 angles x 3 speeds: 4 chains, seeds outermost, speeds innermost
+    subroutine test_plan(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(study_plan_t) :: plan
+        call read_text('plan', base//" &sweep speeds_m_s = 0.01, 0.1, 1.0, alphas_deg = 0, 30, seeds = 5, 9 /", &
+                       cfg, error)
+        if (allocated(error)) return
+        call plan_study(cfg, plan)
+        call check(error, size(plan%chains) == 4 .and. plan%ncase == 12, "counts"); if (allocated(error)) return
+        call check(error, all(plan%chains%seed == [5_i8, 5_i8, 9_i8, 9_i8]) .and. &
+                   all(plan%chains%alpha_deg == [0.0_dp, 30.0_dp, 0.0_dp, 30.0_dp]) .and. &
+                   all(plan%chains%first_case == [1, 4, 7, 10]), "order")
+    end subroutine test_plan
+
+    !> A study of 2 seeds x 2 angles x 3 speeds: every case (kernel reused, warm-started along
+    !> speed) equals the single run of its parameters to the solver tolerance
+    subroutine test_sweep(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg, one
+        type(case_t) :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out
+        character(len=64), allocatable :: columns(:)
+        logical, allocatable :: is_int(:)
+        integer(i8), allocatable :: rows(:, :)
+        real(dp) :: fric, area, worst
+        integer :: nfail, k, jf, ja
+        out = unique_name('sweep.h5')
+        call read_text('sweep', base//" &sweep speeds_m_s = 0.01, 0.1, 1.0, alphas_deg = 0, 30, n_seeds = 2 /"// &
+                       " &output fields = .false. /", cfg, error)
+        if (allocated(error)) return
+        call run_study(cfg, out, nfail, error); if (allocated(error)) return
+        call check(error, nfail, 0, "cases not converged"); if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        call f%read_table('/summary', columns, is_int, rows, error); if (allocated(error)) return
+        call check(error, size(rows, 2) == 12, "summary rows"); if (allocated(error)) return
+        call check(error, f%exists('/ensemble') .and. f%attr_exists('/', 'seeds'), "ensemble table, seeds")
+        if (allocated(error)) return
+        call check(error, is_int(1) .and. is_int(2) .and. .not. is_int(3), "case and seed are integer columns")
+        if (allocated(error)) return
+        jf = findloc(columns, 'friction_coefficient', dim=1); ja = findloc(columns, 'contact_area_fraction', dim=1)
+        worst = 0
+        do k = 1, 12, 5
+            fric = transfer(rows(jf, k), 0.0_dp); area = transfer(rows(ja, k), 0.0_dp)
+            call read_text('sweep-one', base, one, error); if (allocated(error)) return
+            one%surface%seed = rows(2, k); one%surface%alpha_deg = transfer(rows(4, k), 0.0_dp)
+            one%motion%speed_m_s = transfer(rows(6, k), 0.0_dp)
+            call run_case(one, c, error); if (allocated(error)) return
+            worst = max(worst, abs(fric + c%force_pa(1)/one%load%mean_pressure_pa)/abs(fric))
+            call check(error, area, real(count(c%state%p > 0), dp)/1024, "area of a case", rel=0.0_dp)
+            if (allocated(error)) return
+        end do
+        call report("max rel. friction difference", worst)
+        call check(error, worst <= 1.0e-8_dp, "study case differs from its single run")
+        call f%close()
+        call remove(out)
+    end subroutine test_sweep
+
+    !> A speed study over a measured topography takes its grid and cell size from the file
+    !> (&grid left unset), and its cases equal the single run of the same file
+    subroutine test_sweep_file(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg, one
+        type(case_t) :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out, h5, text
+        real(dp) :: h(16, 16), fric
+        integer :: nfail, i, j, rank
+        integer(8) :: dims(7)
+        logical :: is_double
+        out = unique_name('sweepfile.h5'); h5 = unique_name('sweepfile-heights.h5')
+        do j = 1, 16
+            do i = 1, 16
+                h(i, j) = 1.0e-6_dp*(cos(2*pi*i/16)*sin(2*pi*2*j/16) + 0.5_dp*cos(2*pi*(3*i + j)/16))
+            end do
+        end do
+        call write_heights(h5, h, 4.0e-3_dp, error); if (allocated(error)) return
+        text = "&surface kind='file', file='"//h5//"' / &material model='one_term' / &solver fft_planner='estimate'"// &
+               ", tolerance = 1e-12 / &load mean_pressure_pa = 1e5 / &output fields = .false. /"
+        call read_text('sweepfile', text//" &sweep speeds_m_s = 0.001, 0.01 /", cfg, error); if (allocated(error)) return
+        call run_study(cfg, out, nfail, error); if (allocated(error)) return
+        call check(error, nfail, 0, "cases not converged"); if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        call f%shape_of('/summary', dims, rank, is_double)
+        call check(error, rank == 1 .and. dims(1) == 2, "summary rows"); if (allocated(error)) return
+        call f%read_r0('/cases/000002/scalars/friction_coefficient', fric, error); if (allocated(error)) return
+        call f%close()
+        call read_text('sweepfile-one', text//" &motion speed_m_s = 0.01 /", one, error); if (allocated(error)) return
+        call run_case(one, c, error); if (allocated(error)) return
+        call report("friction", fric)
+        call check(error, fric, -c%force_pa(1)/one%load%mean_pressure_pa, "study case vs single run", rel=1.0e-8_dp)
+        call remove(out); call remove(h5)
+    end subroutine test_sweep_file
+
+    !> Ensemble statistics: arithmetic for ordinary quantities, circular (modulo pi) for axes
+    subroutine test_seed_statistics(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: m, s
+        call seed_statistics([1.0_dp, 2.0_dp, 3.0_dp, 6.0_dp], AXIAL_NONE, m, s)
+        call check(error, m, 3.0_dp, "mean", rel=1.0e-15_dp); if (allocated(error)) return
+        call check(error, s, sqrt(14.0_dp/3.0_dp)/2.0_dp, "standard error", rel=1.0e-15_dp); if (allocated(error)) return
+        ! theta in [0, pi): samples at 0.02, pi - 0.04, 0.05 average to an axis near 0.01, not pi/2
+        call seed_statistics([0.02_dp, pi - 0.04_dp, 0.05_dp], AXIAL_HALF_TURN, m, s)
+        call check(error, m, 0.01_dp, "axial mean across 0 = pi", abs=1.0e-4_dp); if (allocated(error)) return
+        call check(error, s, sqrt((0.01_dp**2 + 0.05_dp**2 + 0.04_dp**2)/2)/sqrt(3.0_dp), "axial standard error", &
+                   rel=1.0e-3_dp)
+        if (allocated(error)) return
+        ! an axis across 0 from below: the mean stays in [0, pi)
+        call seed_statistics([pi - 0.02_dp, pi - 0.04_dp, 0.0_dp], AXIAL_HALF_TURN, m, s)
+        call check(error, m, pi - 0.02_dp, "axial mean in [0, pi)", abs=1.0e-4_dp); if (allocated(error)) return
+        ! phi in (-pi/2, pi/2]: samples about pi/2 = -pi/2
+        call seed_statistics([pi/2 - 0.01_dp, -pi/2 + 0.03_dp], AXIAL_SYMMETRIC, m, s)
+        call check(error, abs(abs(m) - (pi/2 - 0.01_dp)) < 1.0e-4_dp .and. s < 0.03_dp, "phi across +-pi/2")
+    end subroutine test_seed_statistics
+
+    !> The two halves of a study (chains striped over two ranks) joined by merge_study_parts give
+    !> the serial study's /summary and /ensemble, cell for cell (timings aside)
+    subroutine test_merge(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(h5file_t) :: f
+        character(len=:), allocatable :: serial, part0, part1, merged
+        character(len=64), allocatable :: ca(:), cb(:)
+        logical, allocatable :: ia(:), ib(:)
+        integer(i8), allocatable :: ra(:, :), rb(:, :)
+        integer :: nfail, j, ndiff
+        character(len=*), parameter :: study = base//" &sweep speeds_m_s = 0.01, 0.1, alphas_deg = 0, 45, n_seeds = 3 /"// &
+            " &output fields = .false. /"
+        serial = unique_name('serial.h5'); part0 = unique_name('part0.h5'); part1 = unique_name('part1.h5')
+        merged = unique_name('merged.h5')
+        call read_text('merge', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, serial, nfail, error); if (allocated(error)) return
+        call read_text('merge', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, part0, nfail, error, part=[0, 2]); if (allocated(error)) return
+        call read_text('merge', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, part1, nfail, error, part=[1, 2]); if (allocated(error)) return
+        call read_text('merge', study, cfg, error); if (allocated(error)) return
+        call merge_study_parts(cfg, merged, [character(len=len(part0)) :: part0, part1], error)
+        if (allocated(error)) return
+        do j = 1, 2
+            call f%open(serial, 'r', error); if (allocated(error)) return
+            call f%read_table(trim(merge('/summary ', '/ensemble', j == 1)), ca, ia, ra, error); if (allocated(error)) return
+            call f%close()
+            call f%open(merged, 'r', error); if (allocated(error)) return
+            call f%read_table(trim(merge('/summary ', '/ensemble', j == 1)), cb, ib, rb, error); if (allocated(error)) return
+            call f%close()
+            call check(error, all(ca == cb) .and. all(ia .eqv. ib) .and. all(shape(ra) == shape(rb)), "columns")
+            if (allocated(error)) return
+            ndiff = count_differences(ca, ia, ra, rb)
+            call check(error, ndiff, 0, "cells differ from the serial study"); if (allocated(error)) return
+        end do
+        call remove(serial); call remove(part0); call remove(part1); call remove(merged)
+    end subroutine test_merge
+
+    !> Cells that differ: integers exactly (work counts aside), reals beyond 1e-9 relative (timings
+    !> aside). OpenMP sums combine in any order, so two solves of one case agree to round-off.
+    integer function count_differences(columns, is_int, a, b) result(n)
+        character(len=*), intent(in) :: columns(:)
+        logical, intent(in) :: is_int(:)
+        integer(i8), intent(in) :: a(:, :), b(:, :)
+        integer :: i, j
+        real(dp) :: x, y
+        character(len=*), parameter :: skip(8) = [character(len=24) :: 'seconds', 'iterations', &
+            'operator_applications', 'residual', 'penetration', 'complementarity', 'negative_pressure', 'load_error']
+        n = 0
+        do j = 1, size(columns)
+            if (any([(index(columns(j), trim(skip(i))) > 0, i = 1, size(skip))])) cycle
+            do i = 1, size(a, 2)
+                if (is_int(j)) then
+                    if (a(j, i) /= b(j, i)) n = n + 1
+                else
+                    x = transfer(a(j, i), 0.0_dp); y = transfer(b(j, i), 0.0_dp)
+                    if (abs(x - y) > 1.0e-9_dp*max(abs(x), abs(y), tiny(1.0_dp))) n = n + 1
+                end if
+            end do
+        end do
+    end function count_differences
+
+end module test_veslide_study
