@@ -14,6 +14,7 @@ program veslide_tests
     use test_veslide_solver_pk, only: collect_solver_pk
     use test_veslide_solver_dr, only: collect_solver_dr
     use test_veslide_anisotropy, only: collect_anisotropy
+    use test_veslide_persson, only: collect_persson
     use test_veslide_hdf5, only: collect_hdf5
     use test_veslide_config, only: collect_config, collect_config_grid, collect_config_surface, &
                                    collect_config_material, collect_config_load, collect_config_motion, &
@@ -43,6 +44,7 @@ program veslide_tests
         new_testsuite("solver-dr", collect_solver_dr), &
         new_testsuite("analysis", collect_analysis), &
         new_testsuite("anisotropy", collect_anisotropy), &
+        new_testsuite("persson", collect_persson), &
         new_testsuite("quantities", collect_quantities), &
         new_testsuite("hdf5", collect_hdf5), &
         new_testsuite("config", collect_config), &

@@ -22,7 +22,8 @@ contains
         tests = [ &
             new_unittest("hdf5-contract", test_hdf5_contract), &
             new_unittest("results-named-once-with-units", test_results_list), &
-            new_unittest("friction-sign-and-lateral-direction", test_friction_sign) &
+            new_unittest("friction-sign-and-lateral-direction", test_friction_sign), &
+            new_unittest("persson-equals-the-solve-in-full-contact", test_persson_full_contact) &
             ]
     end subroutine collect_case
 
@@ -113,5 +114,29 @@ contains
         call check(error, r%get('lateral_force_ratio'), -c%force_pa(1)/cfg%load%mean_pressure_pa, &
                    "lateral = F.(z x v_hat)/p = -F_x/p", rel=1.0e-14_dp)
     end subroutine test_friction_sign
+
+    !> &analysis persson beside a solve: in full contact the theory is exact, so its friction and
+    !> lateral force equal the boundary elements' (anisotropic surface, oblique v), and its area is 1
+    subroutine test_persson_full_contact(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        call read_text('persson', "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5, alpha_deg = 30 /"// &
+                       " &solver fft_planner='estimate', tolerance = 1e-12 / &material model='one_term' /"// &
+                       " &load mean_pressure_pa = 3e7 / &motion speed_m_s = 0.05, direction_deg = 20 /"// &
+                       " &analysis persson = .true. /", cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call case_results(cfg, c, r)
+        call check(error, r%get('contact_area_fraction'), 1.0_dp, "full contact", abs=0.0_dp); if (allocated(error)) return
+        call check(error, r%get('persson_contact_area_fraction'), 1.0_dp, "theory: full contact", abs=1.0e-12_dp)
+        if (allocated(error)) return
+        call check(error, r%get('persson_friction_coefficient'), r%get('friction_coefficient'), "friction", &
+                   rel=1.0e-9_dp)
+        if (allocated(error)) return
+        call check(error, r%get('persson_lateral_force_ratio'), r%get('lateral_force_ratio'), "lateral force", &
+                   rel=1.0e-8_dp)
+    end subroutine test_persson_full_contact
 
 end module test_veslide_case

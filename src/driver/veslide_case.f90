@@ -11,7 +11,8 @@ module veslide_case
     use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
     use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
                                paraboloid_surface, cylinder_surface, rms_height
-    use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id
+    use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id, KERNEL_SPECTRAL
+    use veslide_persson, only: persson_t, persson_estimate
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
     use veslide_solver_options, only: solver_options_t, solver_method_id
     use veslide_solver, only: solve_contact
@@ -47,6 +48,9 @@ module veslide_case
         logical :: have_patches = .false.
         type(patch_stats_t) :: patches
         logical :: percolates_x = .false., percolates_y = .false.
+        ! &analysis persson
+        logical :: have_persson = .false.
+        type(persson_t) :: persson
     end type case_t
 
 contains
@@ -197,8 +201,11 @@ contains
         c%solve_seconds = wall_seconds() - t0
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)
         call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)
-        c%have_anisotropy = .false.; c%have_patches = .false.
+        c%have_anisotropy = .false.; c%have_patches = .false.; c%have_persson = .false.
         if (cfg%analysis%anisotropy) call anisotropy_analysis(cfg, fft, c)
+        if (cfg%analysis%persson) then
+            call persson_analysis(cfg, fft, c, error); if (allocated(error)) return
+        end if
         if (cfg%analysis%patches) then
             call contact_patches(c%state%p > 0.0_dp, c%grid%lx_m, c%grid%ly_m, c%patches)
             c%percolates_x = percolates(.not. (c%state%p > 0.0_dp), 1)
@@ -206,6 +213,29 @@ contains
             c%have_patches = .true.
         end if
     end subroutine solve_prepared
+
+    !> Persson's theory on the realised spectrum of the heights, with the case's solid, velocity and
+    !> load (the spectral kernel: the case's own when it is spectral)
+    subroutine persson_analysis(cfg, fft, c, error)
+        type(config_t), intent(in) :: cfg
+        type(fft2d_t), intent(inout) :: fft
+        type(case_t), intent(inout) :: c
+        type(error_t), allocatable, intent(out) :: error
+        type(kernel_t) :: spectral
+        fft%x = c%h
+        call fft%forward()
+        if (c%kernel%variant == KERNEL_SPECTRAL) then
+            call persson_estimate(c%kernel, fft%k/c%grid%cells(), cfg%load%mean_pressure_pa, c%persson, error, &
+                                  s_correction=cfg%analysis%persson_correction)
+        else
+            call new_kernel(spectral, c%grid, c%mat, c%velocity_m_s, KERNEL_SPECTRAL, error)
+            if (allocated(error)) return
+            call persson_estimate(spectral, fft%k/c%grid%cells(), cfg%load%mean_pressure_pa, c%persson, error, &
+                                  s_correction=cfg%analysis%persson_correction)
+        end if
+        call add_context(error, "veslide: "//cfg%path//": &analysis persson: ")
+        c%have_persson = .not. allocated(error)
+    end subroutine persson_analysis
 
     !> Slope tensors of h and of the deformed surface w in the band [zeta1, zeta2] q0, and eq. (16)
     subroutine anisotropy_analysis(cfg, fft, c)
@@ -289,6 +319,13 @@ contains
             call r%add('percolates_across_v', across, '-', is_integer=.true.)
             call r%add_array('/patches/orientation_tensor', reshape(c%patches%orientation, [4]), '-', &
                              layout='[G11, G21, G12, G22]')
+        end if
+        if (c%have_persson) then
+            call r%add('persson_contact_area_fraction', c%persson%contact_area_fraction, '-')
+            call r%add('persson_friction_coefficient', c%persson%friction_coefficient, '-')
+            call r%add('persson_lateral_force_ratio', c%persson%lateral_force_ratio, '-')
+            call r%add_array('/persson/q_per_m', c%persson%q_per_m, '1/m')
+            call r%add_array('/persson/area_fraction', c%persson%area_fraction, '-')
         end if
         call r%trim()
     end subroutine case_results

@@ -15,6 +15,8 @@ module veslide_config_analysis
         integer :: n_theta = 72             !! polar samples of m2, mu2
         real(dp) :: iso_tol = 1.0e-3_dp     !! 1 - gamma <= iso_tol counts as isotropic
         logical :: patches = .false.        !! contact patches and percolation
+        logical :: persson = .false.        !! Persson's theory on the realised spectrum, beside the solve
+        logical :: persson_correction = .false.  !! Persson's S(q) = 1/2 + P^2/2 instead of S = 1
     end type analysis_config_t
 
 contains
@@ -26,17 +28,19 @@ contains
         integer, intent(in) :: u
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        logical :: anisotropy, patches
+        logical :: anisotropy, patches, persson, persson_correction
         real(dp) :: zeta1, zeta2, iso_tol
         integer :: n_theta, stat
         character(len=512) :: msg
-        namelist /analysis/ anisotropy, zeta1, zeta2, n_theta, iso_tol, patches
+        namelist /analysis/ anisotropy, zeta1, zeta2, n_theta, iso_tol, patches, persson, persson_correction
         anisotropy = self%anisotropy; zeta1 = self%zeta1; zeta2 = self%zeta2; n_theta = self%n_theta
-        iso_tol = self%iso_tol; patches = self%patches
+        iso_tol = self%iso_tol; patches = self%patches; persson = self%persson
+        persson_correction = self%persson_correction
         rewind (u); read (u, nml=analysis, iostat=stat, iomsg=msg)
         call namelist_status(stat, msg, path, 'analysis', error); if (allocated(error)) return
         self%anisotropy = anisotropy; self%zeta1 = zeta1; self%zeta2 = zeta2; self%n_theta = n_theta
-        self%iso_tol = iso_tol; self%patches = patches
+        self%iso_tol = iso_tol; self%patches = patches; self%persson = persson
+        self%persson_correction = persson_correction
         call require(error, n_theta >= 4 .and. n_theta <= 100000, path, 'analysis', 'n_theta', str(n_theta), &
                      "4 to 100000")
         call require(error, iso_tol >= 0.0_dp .and. iso_tol < 1.0_dp, path, 'analysis', 'iso_tol', str(iso_tol), &
