@@ -1,13 +1,15 @@
 !> Closed-form and exact references shared by several test suites
 module reference_oracles
-    use veslide_kinds, only: dp, pi, two_pi
+    use veslide_kinds, only: dp, i8, pi, two_pi
     use veslide_error, only: error_t
+    use veslide_grid, only: grid_t, new_grid
+    use veslide_surface, only: psd_t, random_surface
     use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: kernel_t
     use veslide_material, only: material_t, new_one_term
     implicit none
     private
-    public :: westergaard_t, westergaard, full_contact_force, paper_solid, peak_speed, einf, tau, lcell
+    public :: westergaard_t, westergaard, full_contact_force, paper_solid, paper_rough, peak_speed, einf, tau, lcell
 
     !> The paper's solid and cell: glassy modulus [Pa], retardation time [s], cell side [m]
     real(dp), parameter :: einf = 1.0e8_dp, tau = 1.0e-2_dp, lcell = 1.0e-2_dp
@@ -28,6 +30,24 @@ contains
         type(error_t), allocatable, intent(out) :: error
         call new_one_term(mat, einf, ratio, tau, 0.5_dp, error)
     end subroutine paper_solid
+
+    !> The rough surface of the physics tests: self-affine on an n^2 grid of the lcell^2 cell,
+    !> spectrum q0 .. n/4 q0, H = 0.8, realised rms slope 0.025, seed 5 (eps, alpha optional)
+    subroutine paper_rough(n, h, error, eps, alpha)
+        integer, intent(in) :: n
+        real(dp), intent(out) :: h(n, n)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: eps, alpha
+        type(psd_t) :: psd
+        type(grid_t) :: grid
+        real(dp) :: q0
+        q0 = two_pi/lcell
+        psd = psd_t(hurst=0.8_dp, q_low=q0, q_roll=q0, q_cut=q0*n/4)
+        if (present(eps)) psd%eccentricity = eps
+        if (present(alpha)) psd%alpha_rad = alpha
+        call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
+        call random_surface(grid, psd, 5_i8, 0.025_dp, 0.0_dp, h, error)
+    end subroutine paper_rough
 
     !> Speed at which the wavelength lcell/k sees the loss peak w = Einf/(E0 tau) of paper_solid
     pure real(dp) function peak_speed(ratio, k) result(v)

@@ -13,12 +13,12 @@ module test_veslide_persson
     use veslide_persson, only: persson_t, persson_estimate
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: square_grid
-    use reference_oracles, only: full_contact_force
+    use reference_oracles, only: paper_rough, paper_solid, peak_speed, full_contact_force, einf, tau, lcell
     implicit none
     private
     public :: collect_persson
 
-    real(dp), parameter :: einf = 1.0e8_dp, ratio = 11.0_dp, tau = 1.0e-2_dp, lcell = 1.0e-2_dp
+    real(dp), parameter :: ratio = 11.0_dp
     character(len=*), parameter :: prefix = "veslide:persson:persson_estimate: "
 
 contains
@@ -37,34 +37,6 @@ contains
                          expect="veslide:persson:persson_estimate: p_mean_pa must be positive") &
             ]
     end subroutine collect_persson
-
-    !> The paper's one-term solid (Einf = 1e8 Pa, Einf/E0 = 11, tau = 10 ms, nu = 0.5)
-    subroutine material(mat, error)
-        type(material_t), intent(out) :: mat
-        type(error_t), allocatable, intent(out) :: error
-        call new_one_term(mat, einf, ratio, tau, 0.5_dp, error)
-    end subroutine material
-
-    !> Speed at which the wavelength lcell/k sees the loss peak w = Einf/(E0 tau)
-    real(dp) function peak_speed(k) result(v)
-        real(dp), intent(in) :: k
-        v = ratio/tau/(two_pi*k/lcell)
-    end function peak_speed
-
-    !> Self-affine surface on n^2, q0..n/4 q0, H = 0.8, rms slope 0.025 (realised), seed 5
-    subroutine rough(n, h, error, eps, alpha)
-        integer, intent(in) :: n
-        real(dp), intent(out) :: h(n, n)
-        type(error_t), allocatable, intent(out) :: error
-        real(dp), intent(in), optional :: eps, alpha
-        type(psd_t) :: psd
-        real(dp) :: q0
-        q0 = two_pi/lcell
-        psd = psd_t(hurst=0.8_dp, q_low=q0, q_roll=q0, q_cut=q0*n/4)
-        if (present(eps)) psd%eccentricity = eps
-        if (present(alpha)) psd%alpha_rad = alpha
-        call random_surface(square_grid(h, lcell, lcell), psd, 5_i8, 0.025_dp, 0.0_dp, h, error)
-    end subroutine rough
 
     !> a_q: the r2c transform of h divided by nx*ny
     subroutine spectrum(h, hk, error)
@@ -122,7 +94,7 @@ contains
         type(persson_t) :: r1, rs
         real(dp) :: h(n, n), v(2), fe(2), amp, e1, es
         integer :: i, j
-        call rough(n, h, error, eps=0.5_dp, alpha=pi/6); if (allocated(error)) return
+        call paper_rough(n, h, error, eps=0.5_dp, alpha=pi/6); if (allocated(error)) return
         amp = 0.02_dp*rms_height(h)
         do j = 1, n
             do i = 1, n
@@ -131,8 +103,8 @@ contains
                                          + 0.5_dp*(-1.0_dp)**(i + j))
             end do
         end do
-        call material(m, error); if (allocated(error)) return
-        v = peak_speed(4.0_dp)*[cos(pi/9), sin(pi/9)]
+        call paper_solid(ratio, m, error); if (allocated(error)) return
+        v = peak_speed(ratio, 4.0_dp)*[cos(pi/9), sin(pi/9)]
         call estimate(h, m, v, 1.0e20_dp, r1, error); if (allocated(error)) return
         call estimate(h, m, v, 1.0e20_dp, rs, error, s_correction=.true.); if (allocated(error)) return
         ! the exact full-contact force of the boundary elements (the shared oracle)
@@ -164,11 +136,11 @@ contains
         type(material_t) :: m, e0, ei
         type(persson_t) :: rpk, rel, r0, re0, rfast, rei, rslow, robl
         real(dp) :: h(n, n), vpk, d0, di
-        call rough(n, h, error); if (allocated(error)) return
-        call material(m, error); if (allocated(error)) return
+        call paper_rough(n, h, error); if (allocated(error)) return
+        call paper_solid(ratio, m, error); if (allocated(error)) return
         call new_elastic(e0, einf/ratio, 0.5_dp, error); if (allocated(error)) return
         call new_elastic(ei, einf, 0.5_dp, error); if (allocated(error)) return
-        vpk = peak_speed(4.0_dp)
+        vpk = peak_speed(ratio, 4.0_dp)
         call estimate(h, m, [vpk, 0.0_dp], p0, rpk, error); if (allocated(error)) return
         call estimate(h, e0, vpk*[cos(pi/9), sin(pi/9)], p0, rel, error); if (allocated(error)) return
         call estimate(h, m, [0.0_dp, 0.0_dp], p0, r0, error); if (allocated(error)) return
@@ -225,7 +197,7 @@ contains
         type(fft2d_t) :: fft
         type(persson_t) :: r
         real(dp) :: h(n, n), mt(2, 2), s, estar, p0, alin, dev
-        call rough(n, h, error, eps=0.5_dp, alpha=pi/6); if (allocated(error)) return
+        call paper_rough(n, h, error, eps=0.5_dp, alpha=pi/6); if (allocated(error)) return
         call new_elastic(e, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
         estar = 1.0e7_dp/(1.0_dp - 0.25_dp)
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
@@ -263,11 +235,11 @@ contains
         real(dp) :: h(n, n), q(2), qn, v(2), p1, p0, pc, sc, eloss, fc1(2), fcs(2), beta, cross
         complex(dp) :: es
         integer :: kq
-        call material(m, error); if (allocated(error)) return
+        call paper_solid(ratio, m, error); if (allocated(error)) return
         beta = atan2(2.0_dp, 3.0_dp)
         q = two_pi/lcell*[3.0_dp, 2.0_dp]; qn = norm2(q)
         call cosine_surface(square_grid(h, lcell, lcell), h0, two_pi/qn, beta, h)
-        v = [peak_speed(3.6_dp), 0.0_dp]
+        v = [peak_speed(ratio, 3.6_dp), 0.0_dp]
         es = 1.0_dp/((1.0_dp - m%poisson**2)*m%compliance(dot_product(q, v)))
         eloss = aimag(es)
         p1 = qn*abs(es)*h0/2.0_dp
@@ -307,9 +279,9 @@ contains
         type(persson_t) :: r, rr, rm, rt
         real(dp) :: h(n, n), hm(n, n), ht(n, n), v(2), fn, erv, erm, ert
         integer :: i, j
-        call rough(n, h, error, eps=0.5_dp, alpha=pi/6); if (allocated(error)) return
-        call material(m, error); if (allocated(error)) return
-        v = peak_speed(4.0_dp)*[cos(pi/9), sin(pi/9)]
+        call paper_rough(n, h, error, eps=0.5_dp, alpha=pi/6); if (allocated(error)) return
+        call paper_solid(ratio, m, error); if (allocated(error)) return
+        v = peak_speed(ratio, 4.0_dp)*[cos(pi/9), sin(pi/9)]
         do j = 1, n
             do i = 1, n
                 hm(i, j) = h(i, mod(n - j + 1, n) + 1)     ! h(x, -y)
@@ -357,7 +329,7 @@ contains
         complex(dp), allocatable :: hk(:, :)
         call new_elastic(m, young, 0.5_dp, error); if (allocated(error)) return
         estar = young/0.75_dp
-        call rough(64, h, error); if (allocated(error)) return
+        call paper_rough(64, h, error); if (allocated(error)) return
         call spectrum(h, hk, error); if (allocated(error)) return
         call estimate_hk(64, 64, lcell, lcell, hk, m, [0.1_dp, 0.0_dp], p0, r, error)
         if (allocated(error)) return
@@ -436,9 +408,9 @@ contains
         complex(dp), allocatable :: hk(:, :), bad(:, :)
         type(grid_t) :: g9
         nan = ieee_value(1.0_dp, ieee_quiet_nan)
-        call rough(n, h, error); if (allocated(error)) return
+        call paper_rough(n, h, error); if (allocated(error)) return
         call spectrum(h, hk, error); if (allocated(error)) return
-        call material(m, error); if (allocated(error)) return
+        call paper_solid(ratio, m, error); if (allocated(error)) return
         call new_kernel(k, square_grid(h, lcell, lcell), m, [1.0_dp, 0.0_dp], KERNEL_SPECTRAL, error)
         if (allocated(error)) return
         call persson_estimate(k, hk, 1.0e4_dp, r, err)
@@ -487,8 +459,8 @@ contains
         type(persson_t), intent(out) :: r
         type(error_t), allocatable, intent(out) :: error
         type(material_t) :: m
-        call rough(size(h, 1), h, error); if (allocated(error)) return
-        call material(m, error); if (allocated(error)) return
+        call paper_rough(size(h, 1), h, error); if (allocated(error)) return
+        call paper_solid(ratio, m, error); if (allocated(error)) return
         call estimate(h, m, [1.0_dp, 0.0_dp], 0.0_dp, r, error)
     end subroutine estimate_zero
 

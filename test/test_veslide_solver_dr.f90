@@ -14,7 +14,7 @@ module test_veslide_solver_dr
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: solve_case, square_grid
     use dense_reference, only: influence_matrix, solve_dense
-    use reference_oracles, only: paper_solid, peak_speed, full_contact_force, einf, lcell
+    use reference_oracles, only: paper_rough, paper_solid, peak_speed, full_contact_force, einf, lcell
     implicit none
     private
     public :: collect_solver_dr
@@ -38,20 +38,6 @@ contains
             new_unittest("cylinder-friction-converges", test_cylinder_refinement) &
             ]
     end subroutine collect_solver_dr
-
-    subroutine rough(n, h, error, eps, alpha)
-        integer, intent(in) :: n
-        real(dp), intent(out) :: h(n, n)
-        type(error_t), allocatable, intent(out) :: error
-        real(dp), intent(in), optional :: eps, alpha
-        type(psd_t) :: psd
-        real(dp) :: q0
-        q0 = two_pi/lcell
-        psd = psd_t(hurst=0.8_dp, q_low=q0, q_roll=q0, q_cut=q0*n/4)
-        if (present(eps)) psd%eccentricity = eps
-        if (present(alpha)) psd%alpha_rad = alpha
-        call random_surface(square_grid(h, lcell, lcell), psd, 5_i8, 0.025_dp, 0.0_dp, h, error)
-    end subroutine rough
 
     !> FFT solver against the dense exact solution; max |dp|/max p <= 1e-9
     subroutine dense_compare(h, mat, v, p_mean, error, area)
@@ -82,7 +68,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         type(material_t) :: m
         real(dp) :: h(16, 16)
-        call rough(16, h, error); if (allocated(error)) return
+        call paper_rough(16, h, error); if (allocated(error)) return
         call new_elastic(m, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
         call dense_compare(h, m, [0.0_dp, 0.0_dp], 5.0e4_dp, error)
     end subroutine test_dense_16_elastic
@@ -91,7 +77,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         type(material_t) :: m
         real(dp) :: h(32, 32)
-        call rough(32, h, error); if (allocated(error)) return
+        call paper_rough(32, h, error); if (allocated(error)) return
         call paper_solid(100.0_dp, m, error); if (allocated(error)) return
         call dense_compare(h, m, [peak_speed(100.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
     end subroutine test_dense_32_visco
@@ -100,7 +86,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         type(material_t) :: m
         real(dp) :: h(32, 32)
-        call rough(32, h, error, eps=0.3_dp, alpha=pi/4); if (allocated(error)) return
+        call paper_rough(32, h, error, eps=0.3_dp, alpha=pi/4); if (allocated(error)) return
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
     end subroutine test_dense_32_aniso
@@ -114,7 +100,7 @@ contains
         type(fft2d_t) :: fft
         type(contact_state_t) :: s
         real(dp) :: h(n, n), f(2), fe(2)
-        call rough(n, h, error); if (allocated(error)) return
+        call paper_rough(n, h, error); if (allocated(error)) return
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         call solve_case(h, lcell, lcell, 2.0e7_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
                         kernel=k)
@@ -165,7 +151,7 @@ contains
         real(dp) :: h(n, n), f(2), fr(2), q(2), dw(n, n)
         complex(dp), allocatable :: wk(:, :)
         integer :: i, j, d
-        call rough(n, h, error, eps=0.5_dp, alpha=0.5_dp); if (allocated(error)) return
+        call paper_rough(n, h, error, eps=0.5_dp, alpha=0.5_dp); if (allocated(error)) return
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         call solve_case(h, lcell, lcell, 1.0e5_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
                         kernel=k)
@@ -202,7 +188,7 @@ contains
         complex(dp) :: kd(n/2 + 1, n)
         integer :: i, j
         real(dp) :: h(n, n), f(2), v
-        call rough(n, h, error); if (allocated(error)) return
+        call paper_rough(n, h, error); if (allocated(error)) return
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         call new_elastic(e0, einf/11.0_dp, 0.5_dp, error); if (allocated(error)) return
         call new_elastic(ei, einf, 0.5_dp, error); if (allocated(error)) return
@@ -249,7 +235,7 @@ contains
         type(contact_state_t) :: s, sm
         real(dp) :: h(n, n), hm(n, n), v
         integer :: i
-        call rough(n, h, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
+        call paper_rough(n, h, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         v = peak_speed(11.0_dp, 4.0_dp)
         do i = 1, n
@@ -274,7 +260,7 @@ contains
         type(contact_state_t) :: s, sr
         real(dp) :: h(n, n), hr(n, n), v
         integer :: i, j
-        call rough(n, h, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
+        call paper_rough(n, h, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         v = peak_speed(11.0_dp, 4.0_dp)
         do j = 1, n

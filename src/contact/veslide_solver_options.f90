@@ -1,6 +1,7 @@
 !> The knobs of the contact solvers and the names of the methods
 module veslide_solver_options
     use veslide_kinds, only: dp
+    use veslide_strings, only: name_index
     implicit none
     private
     public :: solver_options_t, solver_method_id, solver_method_names
@@ -27,11 +28,7 @@ contains
     !> SOLVER_* id from a method name; 0 when unknown
     pure integer function solver_method_id(name) result(id)
         character(len=*), intent(in) :: name
-        integer :: k
-        id = 0
-        do k = 1, size(solver_method_names)
-            if (trim(name) == trim(solver_method_names(k))) id = k
-        end do
+        id = name_index(name, solver_method_names)
     end function solver_method_id
 
 end module veslide_solver_options

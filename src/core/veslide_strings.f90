@@ -1,9 +1,19 @@
-!> Text helpers for messages: numbers as short strings, lower case
+!> Text helpers: numbers as short strings for messages, lower case, the index of a name in a
+!> table of names (the library's enumerations), and C strings (null-terminated, from C libraries)
 module veslide_strings
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_char, c_size_t, c_associated, c_f_pointer
     use veslide_kinds, only: dp, i8
     implicit none
     private
-    public :: str, lower
+    public :: str, lower, name_index, c_strlen, c_string
+
+    interface
+        !> strlen(3) of a null-terminated C string
+        integer(c_size_t) function c_strlen(s) bind(c, name='strlen')
+            import :: c_ptr, c_size_t
+            type(c_ptr), value :: s
+        end function c_strlen
+    end interface
 
     !> A number as the shortest readable text: integers with i0, reals with g0.6
     interface str
@@ -46,5 +56,34 @@ contains
             if (s(k:k) >= 'A' .and. s(k:k) <= 'Z') t(k:k) = achar(iachar(s(k:k)) + 32)
         end do
     end function lower
+
+    !> Position of `name` in `names` (trailing blanks ignored); 0 when absent
+    pure integer function name_index(name, names) result(id)
+        character(len=*), intent(in) :: name, names(:)
+        integer :: k
+        id = 0
+        do k = 1, size(names)
+            if (trim(name) == trim(names(k))) then
+                id = k; return
+            end if
+        end do
+    end function name_index
+
+    !> A copy of the null-terminated C string at `ptr` ('' for a null pointer)
+    function c_string(ptr) result(s)
+        type(c_ptr), intent(in) :: ptr
+        character(len=:), allocatable :: s
+        character(kind=c_char), pointer :: chars(:)
+        integer :: n, k
+        if (.not. c_associated(ptr)) then
+            s = ''; return
+        end if
+        n = int(c_strlen(ptr))
+        call c_f_pointer(ptr, chars, [n])
+        allocate (character(len=n) :: s)
+        do k = 1, n
+            s(k:k) = chars(k)
+        end do
+    end function c_string
 
 end module veslide_strings

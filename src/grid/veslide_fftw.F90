@@ -6,6 +6,7 @@
 module veslide_fftw
     use, intrinsic :: iso_c_binding
     use veslide_error, only: error_t, fatal_error
+    use veslide_strings, only: c_strlen
     implicit none
     private
 #include "fftw3.f03"
@@ -34,10 +35,6 @@ module veslide_fftw
     logical, save :: threads_ready = .false.
 
     interface
-        integer(c_size_t) function c_strlen(s) bind(c, name='strlen')
-            import :: c_ptr, c_size_t
-            type(c_ptr), value :: s
-        end function c_strlen
         subroutine c_free(p) bind(c, name='free')
             import :: c_ptr
             type(c_ptr), value :: p

@@ -2,6 +2,7 @@
 !> file, the group, the variable, the value and the allowed range.
 module veslide_config_common
     use veslide_error, only: error_t, fatal_error
+    use veslide_strings, only: name_index
     implicit none
     private
     public :: namelist_status, range_error, require, choices_text, is_one_of, max_list
@@ -56,11 +57,7 @@ contains
 
     pure logical function is_one_of(value, names) result(yes)
         character(len=*), intent(in) :: value, names(:)
-        integer :: k
-        yes = .false.
-        do k = 1, size(names)
-            if (trim(value) == trim(names(k))) yes = .true.
-        end do
+        yes = name_index(value, names) > 0
     end function is_one_of
 
 end module veslide_config_common

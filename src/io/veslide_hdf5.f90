@@ -8,10 +8,11 @@
 !> one in a call. Every write goes through one private routine per object kind (dataset,
 !> attribute), dispatched by the generic `write` and `writeattr`.
 module veslide_hdf5
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_size_t, c_f_pointer, c_associated
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_int
     use hdf5
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error
+    use veslide_strings, only: c_string
     implicit none
     private
     public :: h5file_t, hdf5_library_version
@@ -49,12 +50,8 @@ module veslide_hdf5
     logical, save :: lib_open = .false.
 
     interface
-        integer(c_size_t) function c_strlen(s) bind(c, name='strlen')
-            import :: c_ptr, c_size_t
-            type(c_ptr), value :: s
-        end function c_strlen
-        integer function c_h5free_memory(p) bind(c, name='H5free_memory')
-            import :: c_ptr
+        integer(c_int) function c_h5free_memory(p) bind(c, name='H5free_memory')
+            import :: c_ptr, c_int
             type(c_ptr), value :: p
         end function c_h5free_memory
     end interface
@@ -552,23 +549,6 @@ contains
         value = c_string(ptr)
         ie = c_h5free_memory(ptr)
     end subroutine h5_read_text
-
-    !> Copy of a null-terminated C string
-    function c_string(ptr) result(s)
-        type(c_ptr), intent(in) :: ptr
-        character(len=:), allocatable :: s
-        character(kind=c_char), pointer :: chars(:)
-        integer :: n, k
-        if (.not. c_associated(ptr)) then
-            s = ''; return
-        end if
-        n = int(c_strlen(ptr))
-        call c_f_pointer(ptr, chars, [n])
-        allocate (character(len=n) :: s)
-        do k = 1, n
-            s(k:k) = chars(k)
-        end do
-    end function c_string
 
     !> Shape of dataset `name` (rank 0..7); `rank` = -1 when absent
     subroutine h5_shape_of(self, name, dims, rank, is_double)

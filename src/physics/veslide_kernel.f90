@@ -24,6 +24,7 @@
 module veslide_kernel
     use veslide_kinds, only: dp, two_pi
     use veslide_error, only: error_t, fatal_error
+    use veslide_strings, only: name_index
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
     use veslide_material, only: material_t
@@ -71,11 +72,7 @@ contains
     !> KERNEL_* id from a variant name; 0 when unknown
     pure integer function kernel_variant_id(name) result(id)
         character(len=*), intent(in) :: name
-        integer :: k
-        id = 0
-        do k = 1, size(kernel_names)
-            if (trim(name) == trim(kernel_names(k))) id = k
-        end do
+        id = name_index(name, kernel_names)
     end function kernel_variant_id
 
     elemental real(dp) function sinc(z)
