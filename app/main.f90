@@ -5,21 +5,25 @@ program veslide_main
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_config, only: config_t, read_config
-    use veslide_output, only: prepare_output, commit_output, discard_output
+    use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_quantities, only: results_t
     use veslide_case, only: case_t, run_case, write_case, case_results
     use veslide_study, only: run_study, study_progress_t
     use veslide_version, only: version_string
+    use veslide_system, only: ignore_file_size_signal, exit_now
     implicit none
     type(config_t) :: cfg
     type(case_t) :: c
     type(error_t), allocatable :: error
     character(len=:), allocatable :: input, output, tmp, arg
-    logical :: overwrite, quiet
-    integer :: i, n
+    logical :: overwrite, quiet, output_given
+    integer :: i, n, lock
 
-    overwrite = .false.; quiet = .false.
-    allocate (character(len=0) :: input, output)
+    overwrite = .false.; quiet = .false.; lock = -1
+    call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
+    output = ''
+    allocate (character(len=0) :: input)
+    output_given = .false.
     i = 1
     do while (i <= command_argument_count())
         arg = argument(i)
@@ -31,7 +35,8 @@ program veslide_main
         case ('-o', '--output')
             i = i + 1
             if (i > command_argument_count()) call die("veslide: "//arg//" needs a file name")
-            output = argument(i)
+            output = argument(i); output_given = .true.
+            if (len(output) == 0) call die("veslide: "//arg//" needs a file name, got ''")
         case ('--overwrite')
             overwrite = .true.
         case ('-q', '--quiet')
@@ -49,9 +54,14 @@ program veslide_main
 
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
-    if (len(output) > 0) cfg%output%file = output
+    if (output_given) cfg%output%file = output
+    if (.not. quiet) then
+        do i = 1, size(cfg%warnings)
+            write (stderr, '(a)') cfg%warnings(i)%text
+        end do
+    end if
     if (overwrite) cfg%output%overwrite = .true.
-    call prepare_output(cfg%output%file, cfg%output%overwrite, tmp, error)
+    call prepare_output(cfg%output%file, cfg%output%overwrite, tmp, lock, error)
     if (allocated(error)) call die(error%message)
 
     if (cfg%sweep%is_study()) then
@@ -67,6 +77,7 @@ program veslide_main
             end if
             call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
             if (allocated(error)) call die(error%message)
+            call release_output(lock, cfg%output%file)
             if (.not. quiet) write (stdout, '(a)') "veslide: study written to "//cfg%output%file
             if (nfail > 0) then
                 write (stderr, '(a,i0,a)') "veslide: NOT CONVERGED in ", nfail, &
@@ -82,12 +93,13 @@ program veslide_main
     end if
     call write_case(tmp, cfg, c, error)
     if (allocated(error)) then
-        call discard_output(tmp); call die(error%message)
+        call discard_output(tmp)
+        call die("veslide: &output file '"//cfg%output%file//"' could not be written (disk full, file-size"// &
+                 " limit or I/O error; nothing was published): "//error%message)
     end if
     call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
-    if (allocated(error)) then
-        call discard_output(tmp); call die(error%message)
-    end if
+    if (allocated(error)) call die(error%message)
+    call release_output(lock, cfg%output%file)
 
     if (.not. quiet) call summary()
     if (.not. c%state%converged) then
@@ -107,10 +119,13 @@ contains
         call get_command_argument(k, a)
     end function argument
 
+    !> One line on stderr and exit status 1 (no backtrace; library exit handlers skipped, since
+    !> after a failed write HDF5's own may crash)
     subroutine die(message)
         character(len=*), intent(in) :: message
         write (stderr, '(a)') message
-        stop 1, quiet=.true.
+        if (allocated(cfg%output%file)) call release_output(lock, cfg%output%file)
+        call exit_now(1)
     end subroutine die
 
     subroutine usage()

@@ -12,7 +12,7 @@ program veslide_bench
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_case, only: case_t, run_case, write_case
-    use veslide_output, only: prepare_output, commit_output
+    use veslide_output, only: prepare_output, release_output, commit_output
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION, &
                               KERNEL_COLLOCATION_ALIAS, KERNEL_GALERKIN
@@ -127,7 +127,7 @@ contains
         character(len=:), allocatable :: tmp, out
         character(len=16) :: buf
         real(dp) :: tpair, t(3)
-        integer :: k, r, threads
+        integer :: k, r, threads, lock
         character(len=16) :: env
         integer :: nenv, stat
         threads = 1
@@ -152,9 +152,10 @@ contains
                 t(r) = c%solve_seconds
             end do
             c%solve_seconds = median(t)
-            call prepare_output(cfg%output%file, .true., tmp, error); call check(error)
+            call prepare_output(cfg%output%file, .true., tmp, lock, error); call check(error)
             call write_case(tmp, cfg, c, error); call check(error)
             call commit_output(tmp, cfg%output%file, .true., error); call check(error)
+            call release_output(lock, cfg%output%file)
             write (stdout, '("| ",i0," | ",f8.3," | ",f8.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f8.5," | ",f8.5," |")') &
                 sizes(k), 1e3*tpair, median(t), c%state%iterations, c%state%operator_applications, &
                 1e3*median(t)/c%state%iterations, median(t)/c%state%iterations/tpair, &

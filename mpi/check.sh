@@ -28,7 +28,7 @@ import sys
 import h5py
 import numpy as np
 skip = ("seconds", "iterations", "operator_applications", "residual", "penetration", "complementarity",
-        "negative_pressure", "load_error")
+        "negative_pressure", "load_error", "memory_peak")
 worst = 0.0
 with h5py.File(sys.argv[1]) as a, h5py.File(sys.argv[2]) as b:
     nrows = len(a["/summary"])

@@ -5,7 +5,7 @@ module test_veslide_case
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t
     use veslide_hdf5, only: h5file_t
-    use veslide_output, only: prepare_output, commit_output
+    use veslide_output, only: prepare_output, release_output, commit_output
     use veslide_quantities, only: results_t
     use veslide_case, only: case_t, run_case, write_case, case_results
     use testsuite, only: error_t, unittest_t, new_unittest, check
@@ -37,15 +37,16 @@ contains
         character(len=40) :: paths(12)
         real(dp) :: a
         integer(i8) :: its
-        integer :: k, u
+        integer :: k, u, lock
         out = unique_name('contract.h5')
         call read_text('contract', "&grid nx = 32, ny = 32 / &surface k_cut = 8 / &solver fft_planner='estimate' /"// &
                        " &output file = '"//out//"' / &analysis anisotropy = .true., patches = .true. /", cfg, error)
         if (allocated(error)) return
-        call prepare_output(cfg%output%file, .false., tmp, error); if (allocated(error)) return
+        call prepare_output(cfg%output%file, .false., tmp, lock, error); if (allocated(error)) return
         call run_case(cfg, c, error); if (allocated(error)) return
         call write_case(tmp, cfg, c, error); if (allocated(error)) return
         call commit_output(tmp, out, .false., error); if (allocated(error)) return
+        call release_output(lock, out)
         paths = [character(len=40) :: '/scalars/contact_area_fraction', '/scalars/mean_separation_m', &
                  '/scalars/rms_height_m', '/scalars/max_pressure_pa', '/scalars/iterations', '/scalars/converged', &
                  '/scalars/residual', '/fields/height_m', '/fields/pressure_pa', '/fields/displacement_m', &

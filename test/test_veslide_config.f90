@@ -24,7 +24,13 @@ contains
             new_unittest("k-cut-below-the-grid-nyquist", test_kcut_nyquist), &
             new_unittest("non-periodic-wave", test_nonperiodic_wave), &
             new_unittest("pk-refused-for-sliding-viscoelastic", test_pk_visco), &
-            new_unittest("sweep-angles-need-a-random-surface", test_sweep_kind) &
+            new_unittest("sweep-angles-need-a-random-surface", test_sweep_kind), &
+            new_unittest("group-given-twice", test_duplicate_group), &
+            new_unittest("text-outside-groups", test_text_outside), &
+            new_unittest("binary-file", test_binary), &
+            new_unittest("no-group-at-all", test_no_group), &
+            new_unittest("default-k-cut-above-nyquist-says-default", test_default_kcut), &
+            new_unittest("no-op-inputs-warn", test_warnings) &
             ]
     end subroutine collect_config
 
@@ -33,7 +39,9 @@ contains
         tests = [ &
             new_unittest("nx-out-of-range", test_grid_nx), &
             new_unittest("ly-default-keeps-cells-square", test_grid_ly), &
-            new_unittest("unknown-variable", test_unknown_variable) &
+            new_unittest("unknown-variable", test_unknown_variable), &
+            new_unittest("type-error-names-the-variable", test_type_error), &
+            new_unittest("cell-size-absurd", test_grid_absurd) &
             ]
     end subroutine collect_config_grid
 
@@ -51,7 +59,8 @@ contains
         tests = [ &
             new_unittest("poisson-out-of-range", test_material_poisson), &
             new_unittest("ratio-must-exceed-one", test_material_ratio), &
-            new_unittest("prony-lists-without-gaps", test_material_prony) &
+            new_unittest("prony-lists-without-gaps", test_material_prony), &
+            new_unittest("infinite-prony-time", test_material_infinite) &
             ]
     end subroutine collect_config_material
 
@@ -87,13 +96,17 @@ contains
         tests = [ &
             new_unittest("log-range-expanded", test_sweep_range), &
             new_unittest("range-needs-two-speeds", test_sweep_bad_range), &
-            new_unittest("n-seeds-from-the-surface-seed", test_sweep_seeds) &
+            new_unittest("n-seeds-from-the-surface-seed", test_sweep_seeds), &
+            new_unittest("range-without-n-speeds", test_sweep_range_no_n), &
+            new_unittest("list-with-a-gap", test_sweep_gap), &
+            new_unittest("most-negative-double-is-a-value", test_sweep_sentinel) &
             ]
     end subroutine collect_config_sweep
 
     subroutine collect_config_output(tests)
         type(unittest_t), allocatable, intent(out) :: tests(:)
-        tests = [new_unittest("file-not-empty", test_output_file)]
+        tests = [new_unittest("file-not-empty", test_output_file), &
+                 new_unittest("file-name-too-long", test_output_long)]
     end subroutine collect_config_output
 
     !> Read `text` as a namelist file; return the error (if any) in `error`
@@ -277,7 +290,7 @@ contains
     subroutine test_solver_tolerance(error)
         type(error_t), allocatable, intent(out) :: error
         call expect_message('tol', "&solver tolerance = 1e-20 /", [character(len=24) :: "&solver tolerance", &
-                            "1e-15 to 1e-2"], error)
+                            "1e-13 to 1e-2"], error)
     end subroutine test_solver_tolerance
 
     subroutine test_kernel_name(error)
@@ -331,5 +344,105 @@ contains
         call expect_message('outfile', "&output file = '' /", [character(len=24) :: "&output file", "a file path"], &
                             error)
     end subroutine test_output_file
+
+    subroutine test_duplicate_group(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('dup', "&grid nx = 32 / &load mean_pressure_pa = 1e4 / &grid nx = 64 /", &
+                            [character(len=24) :: "&grid", "given twice", "line 1"], error)
+    end subroutine test_duplicate_group
+
+    subroutine test_text_outside(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('outside', "&grid nx = 32 /"//new_line('a')//"nx: 64"//new_line('a'), &
+                            [character(len=32) :: "text outside any namelist group", "line 2", "nx:"], error)
+        if (allocated(error)) return
+        call expect_message('yaml', "grid:"//new_line('a')//"  nx: 64"//new_line('a'), &
+                            [character(len=32) :: "text outside any namelist group", "line 1"], error)
+    end subroutine test_text_outside
+
+    subroutine test_binary(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('binary', "&grid nx = 32 /"//achar(0)//achar(7), &
+                            [character(len=24) :: "not a text file"], error)
+    end subroutine test_binary
+
+    subroutine test_no_group(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('nogroup', "! only a comment"//new_line('a'), &
+                            [character(len=32) :: "no namelist group found"], error)
+    end subroutine test_no_group
+
+    !> k_cut left at its default (64) on a 64^2 grid: the message says it is the default and what to set
+    subroutine test_default_kcut(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('defkcut', "&grid nx = 64, ny = 64 /", &
+                            [character(len=32) :: "k_cut = 64", "(the default)", "set &surface k_cut below 32"], error)
+    end subroutine test_default_kcut
+
+    subroutine test_warnings(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        call read_text('warn', "&grid nx = 32, ny = 32 / &surface k_cut = 8 / &motion speed_m_s = 0.5 /"// &
+                       " &sweep speeds_m_s = 0.1, 1.0, alphas_deg = 0, 45 /", cfg, error)
+        if (allocated(error)) return
+        call check(error, size(cfg%warnings) == 3, "three warnings (elastic sweep, isotropic angles, speed replaced)")
+        if (allocated(error)) return
+        call check(error, index(cfg%warnings(1)%text, "elastic") > 0 .and. index(cfg%warnings(2)%text, "isotropic") &
+                   > 0 .and. index(cfg%warnings(3)%text, "replaced") > 0, "warning texts")
+    end subroutine test_warnings
+
+    subroutine test_type_error(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('type1', "&grid nx = 'abc' /", [character(len=24) :: "&grid nx = 'abc'", "an integer"], &
+                            error)
+        if (allocated(error)) return
+        call expect_message('type2', "&grid ny = 32, nx = 32.5 /", [character(len=24) :: "&grid nx = 32.5", &
+                            "an integer"], error)
+        if (allocated(error)) return
+        call expect_message('type3', "&output fields = maybe /", [character(len=24) :: "&output fields = maybe", &
+                            "a logical"], error)
+        if (allocated(error)) return
+        call expect_message('type4', "&grid nz = 4 /", [character(len=32) :: "&grid nz", "no such variable", &
+                            "nx, ny, lx_m, ly_m"], error)
+    end subroutine test_type_error
+
+    subroutine test_grid_absurd(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('absurd1', "&grid lx_m = 1e300 /", [character(len=24) :: "&grid lx_m", "1e-9 to 1e3"], error)
+        if (allocated(error)) return
+        call expect_message('absurd2', "&grid lx_m = 1e-300 /", [character(len=24) :: "&grid lx_m", "1e-9 to 1e3"], error)
+    end subroutine test_grid_absurd
+
+    subroutine test_material_infinite(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('inf', "&material model='creep', e0_pa=1e6, creep_c_per_pa=1e-7, creep_tau_s=Infinity /", &
+                            [character(len=24) :: "&material creep_tau_s", "not finite"], error)
+    end subroutine test_material_infinite
+
+    subroutine test_sweep_range_no_n(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('rangenon', "&sweep speed_min_m_s = 1e-3, speed_max_m_s = 10 /", &
+                            [character(len=40) :: "&sweep speed_min_m_s/speed_max_m_s need n_speeds"], error)
+    end subroutine test_sweep_range_no_n
+
+    subroutine test_sweep_gap(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('gap', "&sweep speeds_m_s(1) = 0.1, speeds_m_s(3) = 1.0 /", &
+                            [character(len=24) :: "&sweep speeds_m_s", "has a gap"], error)
+    end subroutine test_sweep_gap
+
+    !> The most negative double is a value like any other (refused here as a negative speed), not
+    !> a marker of an unset entry
+    subroutine test_sweep_sentinel(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('sentinel', "&sweep speeds_m_s = 0.1, -1.7976931348623157e308 /", &
+                            [character(len=24) :: "&sweep speeds_m_s(2)", "0 to 1e12"], error)
+    end subroutine test_sweep_sentinel
+
+    subroutine test_output_long(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('long', "&output file = '"//repeat('a', 1100)//".h5' /", &
+                            [character(len=32) :: "&output file", "longer than 1023 characters"], error)
+    end subroutine test_output_long
 
 end module test_veslide_config

@@ -4,7 +4,7 @@ module test_veslide_output
     use veslide_kinds, only: i8
     use veslide_error, only: fatal_error
     use veslide_hdf5, only: h5file_t
-    use veslide_output, only: prepare_output, commit_output, discard_output, write_provenance
+    use veslide_output, only: prepare_output, release_output, commit_output, discard_output, write_provenance
     use veslide_version, only: veslide_version_number
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name, write_text
@@ -43,10 +43,11 @@ contains
     subroutine test_output_exists(error)
         type(error_t), allocatable, intent(out) :: error
         character(len=:), allocatable :: path, tmp
+        integer :: lock
         type(error_t), allocatable :: e
         path = unique_name('exists.h5')
         call write_text(path, 'earlier result')
-        call prepare_output(path, .false., tmp, e)
+        call prepare_output(path, .false., tmp, lock, e)
         call check(error, allocated(e), "existing output accepted"); if (allocated(error)) return
         call check(error, index(e%message, "overwrite") > 0, "message does not say how: "//e%message)
         if (allocated(error)) return
@@ -58,7 +59,8 @@ contains
         type(error_t), allocatable, intent(out) :: error
         character(len=:), allocatable :: tmp
         type(error_t), allocatable :: e
-        call prepare_output('/nonexistent-dir/out.h5', .true., tmp, e)
+        integer :: lock
+        call prepare_output('/nonexistent-dir/out.h5', .true., tmp, lock, e)
         call check(error, allocated(e), "unwritable path accepted"); if (allocated(error)) return
         call check(error, index(e%message, "/nonexistent-dir/out.h5") > 0, "message lacks the path: "//e%message)
     end subroutine test_output_unwritable
@@ -68,10 +70,11 @@ contains
     subroutine test_publish_no_replace(error)
         type(error_t), allocatable, intent(out) :: error
         character(len=:), allocatable :: path, tmp
+        integer :: lock
         type(error_t), allocatable :: e
         logical :: exists
         path = unique_name('race.h5')
-        call prepare_output(path, .false., tmp, error); if (allocated(error)) return
+        call prepare_output(path, .false., tmp, lock, error); if (allocated(error)) return
         call write_text(tmp, 'this run')
         call write_text(path, 'the other run')
         call commit_output(tmp, path, .false., e)
@@ -82,21 +85,23 @@ contains
         if (allocated(error)) return
         inquire (file=tmp, exist=exists)
         call check(error, exists, "this run's result was lost")
-        call remove(path); call discard_output(tmp)
+        call remove(path); call discard_output(tmp); call release_output(lock, path)
     end subroutine test_publish_no_replace
 
     subroutine test_publish_overwrite(error)
         type(error_t), allocatable, intent(out) :: error
         character(len=:), allocatable :: path, tmp
+        integer :: lock
         logical :: exists
         path = unique_name('replace.h5')
         call write_text(path, 'old')
-        call prepare_output(path, .true., tmp, error); if (allocated(error)) return
+        call prepare_output(path, .true., tmp, lock, error); if (allocated(error)) return
         call write_text(tmp, 'new')
         call commit_output(tmp, path, .true., error); if (allocated(error)) return
         call check(error, first_line(path) == 'new', "not replaced"); if (allocated(error)) return
         inquire (file=tmp, exist=exists)
         call check(error, .not. exists, "part file left behind")
+        call release_output(lock, path)
         call remove(path)
     end subroutine test_publish_overwrite
 

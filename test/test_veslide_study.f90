@@ -27,7 +27,10 @@ contains
             new_unittest("cases-equal-single-runs", test_sweep), &
             new_unittest("study-over-height-file", test_sweep_file), &
             new_unittest("seed-statistics-axial", test_seed_statistics), &
-            new_unittest("rank-parts-join-into-the-serial-study", test_merge) &
+            new_unittest("rank-parts-join-into-the-serial-study", test_merge), &
+            new_unittest("stopped-study-resumes-to-the-same-result", test_resume), &
+            new_unittest("part-file-of-another-input-refused", test_resume_other, should_fail=.true., &
+                         expect="part file of another input") &
             ]
     end subroutine collect_study
 
@@ -192,6 +195,71 @@ contains
         call remove(serial); call remove(part0); call remove(part1); call remove(merged)
     end subroutine test_merge
 
+    !> A study stopped after 3 of its 8 cases (as if killed mid-chain) and run again from its part
+    !> file ends with the same /summary and /ensemble as a study run in one go, warm starts restored
+    !> (so the same iteration counts), and no resume file left
+    subroutine test_resume(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(h5file_t) :: f
+        character(len=:), allocatable :: whole, part
+        character(len=64), allocatable :: ca(:), cb(:)
+        logical, allocatable :: ia(:), ib(:)
+        integer(i8), allocatable :: ra(:, :), rb(:, :)
+        integer :: nfail, j, jt
+        logical :: exists
+        character(len=*), parameter :: study = base//" &sweep speeds_m_s = 0.01, 0.1, 1.0, 10.0, n_seeds = 2 /"// &
+            " &output fields = .false. /"
+        whole = unique_name('whole.h5'); part = unique_name('resumed.h5')
+        call read_text('resume', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, whole, nfail, error); if (allocated(error)) return
+        call read_text('resume', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, part, nfail, error, stop_after=3); if (allocated(error)) return
+        call f%open(part, 'r', error); if (allocated(error)) return
+        call f%read_table('/summary', cb, ib, rb, error); if (allocated(error)) return
+        call f%close()
+        call check(error, size(rb, 2) == 3 .and. .not. f%exists('/ensemble'), "stopped after 3 cases")
+        if (allocated(error)) return
+        call read_text('resume', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, part, nfail, error); if (allocated(error)) return
+        inquire (file=part//'.resume', exist=exists)
+        call check(error, .not. exists, "resume file left behind"); if (allocated(error)) return
+        do j = 1, 2
+            call f%open(whole, 'r', error); if (allocated(error)) return
+            call f%read_table(trim(merge('/summary ', '/ensemble', j == 1)), ca, ia, ra, error); if (allocated(error)) return
+            call f%close()
+            call f%open(part, 'r', error); if (allocated(error)) return
+            call f%read_table(trim(merge('/summary ', '/ensemble', j == 1)), cb, ib, rb, error); if (allocated(error)) return
+            call f%close()
+            call check(error, all(ca == cb) .and. all(shape(ra) == shape(rb)), "columns and rows"); if (allocated(error)) return
+            call check(error, count_differences(ca, ia, ra, rb), 0, "cells differ from the uninterrupted study")
+            if (allocated(error)) return
+        end do
+        ! a cold start of the resumed case costs more iterations; OpenMP sums may move a count by one
+        jt = findloc(ca, 'mean_iterations', dim=1)
+        call report("iterations, whole", sum(transfer(ra(jt, :), 0.0_dp, size(ra, 2))))
+        call report("iterations, resumed", sum(transfer(rb(jt, :), 0.0_dp, size(rb, 2))))
+        call check(error, sum(transfer(rb(jt, :), 0.0_dp, size(rb, 2))), sum(transfer(ra(jt, :), 0.0_dp, size(ra, 2))), &
+                   "iterations: warm starts not restored", rel=0.02_dp)
+        call remove(whole); call remove(part)
+    end subroutine test_resume
+
+    !> A part file left by another input is not resumed, nor replaced: refused, naming it
+    subroutine test_resume_other(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=:), allocatable :: part
+        integer :: nfail
+        part = unique_name('other.h5')
+        call read_text('other1', base//" &sweep speeds_m_s = 0.01, 0.1 / &output fields = .false. /", cfg, error)
+        if (allocated(error)) return
+        call run_study(cfg, part, nfail, error, stop_after=1); if (allocated(error)) return
+        call read_text('other2', base//" &sweep speeds_m_s = 0.02, 0.1 / &output fields = .false. /", cfg, error)
+        if (allocated(error)) return
+        call run_study(cfg, part, nfail, error)
+        call remove(part)
+    end subroutine test_resume_other
+
     !> Cells that differ: integers exactly (work counts aside), reals beyond 1e-9 relative (timings
     !> aside). OpenMP sums combine in any order, so two solves of one case agree to round-off.
     integer function count_differences(columns, is_int, a, b) result(n)
@@ -200,8 +268,9 @@ contains
         integer(i8), intent(in) :: a(:, :), b(:, :)
         integer :: i, j
         real(dp) :: x, y
-        character(len=*), parameter :: skip(8) = [character(len=24) :: 'seconds', 'iterations', &
-            'operator_applications', 'residual', 'penetration', 'complementarity', 'negative_pressure', 'load_error']
+        character(len=*), parameter :: skip(9) = [character(len=24) :: 'seconds', 'iterations', &
+            'operator_applications', 'residual', 'penetration', 'complementarity', 'negative_pressure', 'load_error', &
+            'memory_peak']
         n = 0
         do j = 1, size(columns)
             if (any([(index(columns(j), trim(skip(i))) > 0, i = 1, size(skip))])) cycle

@@ -9,7 +9,7 @@ program veslide_batch
     use mpi_f08
     use veslide_error, only: error_t
     use veslide_config, only: config_t, read_config
-    use veslide_output, only: prepare_output, commit_output, discard_output
+    use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_study, only: run_study, merge_study_parts, study_progress_t
     implicit none
     type(config_t) :: cfg
@@ -17,7 +17,7 @@ program veslide_batch
     character(len=:), allocatable :: input, out, tmp, mine
     character(len=512) :: arg
     character(len=:), allocatable :: parts(:)
-    integer :: rank, nranks, nfail, total, k, n, status, failed
+    integer :: rank, nranks, nfail, total, k, n, status, failed, lock
     logical :: overwrite, quiet
 
     call MPI_Init()
@@ -39,7 +39,7 @@ program veslide_batch
     out = cfg%output%file
     status = 0
     if (rank == 0) then
-        call prepare_output(out, overwrite .or. cfg%output%overwrite, tmp, error)
+        call prepare_output(out, overwrite .or. cfg%output%overwrite, tmp, lock, error)
         if (allocated(error)) status = 1
     end if
     call agree(status); if (status /= 0) call die(error_text())
@@ -60,7 +60,9 @@ program veslide_batch
     call MPI_Reduce(nfail, total, 1, MPI_INTEGER, MPI_SUM, 0, MPI_COMM_WORLD)
     if (failed > 0) then
         call discard_output(mine)
-        if (rank == 0) call discard_output(tmp)
+        if (rank == 0) then
+            call discard_output(tmp); call release_output(lock, out)
+        end if
         call MPI_Finalize(); stop 1, quiet=.true.
     end if
     if (rank == 0) then
@@ -70,7 +72,9 @@ program veslide_batch
         if (allocated(error)) then
             write (stderr, '(a)') error%message
             call discard_output(tmp); status = 1
+            call release_output(lock, out)
         else
+            call release_output(lock, out)
             do k = 1, nranks
                 call discard_output(trim(parts(k)))
             end do

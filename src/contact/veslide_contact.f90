@@ -16,6 +16,7 @@ module veslide_contact
     use veslide_error, only: error_t, fatal_error
     use veslide_grid, only: grid_t
     use veslide_kernel, only: kernel_t
+    use veslide_fftw, only: fft2d_t
     implicit none
     private
     public :: contact_problem_t, contact_state_t, new_contact_problem, residual_measures
@@ -30,6 +31,7 @@ module veslide_contact
         procedure :: grid => problem_grid
         procedure :: residuals => problem_residuals
         procedure :: start => problem_start
+        procedure :: confirm => problem_confirm
     end type contact_problem_t
 
     !> A candidate or final solution with its residuals and the work spent
@@ -110,6 +112,19 @@ contains
         state%load_error = abs(sum_p/n - p_mean)/p_mean
         state%residual = max(state%penetration, state%complementarity, state%negative_pressure, state%load_error)
     end subroutine residual_measures
+
+    !> The verdict on a solver's result, on the number reported: u = K p computed afresh, the
+    !> residual measured, and converged exactly when that residual is <= tolerance (one FFT pair)
+    subroutine problem_confirm(self, fft, state, tolerance)
+        class(contact_problem_t), intent(in) :: self
+        type(fft2d_t), intent(inout) :: fft
+        type(contact_state_t), intent(inout) :: state
+        real(dp), intent(in) :: tolerance
+        call self%kernel%apply(fft, state%p, state%u)
+        state%operator_applications = state%operator_applications + 1
+        call self%residuals(state)
+        state%converged = state%residual <= tolerance
+    end subroutine problem_confirm
 
     !> Residuals of a candidate (p, u = K p): fills d (the contact-set mean of h - u), g and the
     !> four measures of `state`

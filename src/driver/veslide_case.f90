@@ -1,9 +1,10 @@
 !> One case from a configuration: surface, material, kernel, contact problem, solve, derived
 !> quantities, and its results (the list the output, the study rows and the summary read).
 module veslide_case
-    use veslide_kinds, only: dp, pi
-    use veslide_error, only: error_t, add_context
+    use veslide_kinds, only: dp, i8, pi
+    use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
+    use veslide_strings, only: str
     use veslide_config, only: config_t
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
@@ -19,13 +20,15 @@ module veslide_case
     use veslide_analysis, only: contact_area_fraction, mean_separation, slope_force
     use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta, patch_stats_t, contact_patches, percolates
     use veslide_quantities, only: results_t, add_force_quantities, add_solver_quantities
-    use veslide_topography, only: read_topography
+    use veslide_topography, only: read_topography, topography_shape
+    use veslide_memory, only: memory_estimate_bytes, format_gib
+    use veslide_system, only: available_memory_bytes, peak_memory_bytes
     use veslide_hdf5, only: h5file_t
     use veslide_output, only: write_provenance, write_results, write_field
     implicit none
     private
     public :: case_t, build_surface, build_material, build_kernel, case_grid, run_case, solve_prepared, &
-              case_results, write_case, write_case_group, velocity_of
+              case_results, write_case, write_case_group, velocity_of, size_and_check_memory
 
     !> Everything one solve produced
     type :: case_t
@@ -38,6 +41,7 @@ module veslide_case
         real(dp) :: force_pa(2) = 0.0_dp          !! <p grad w>, solid on rigid surface [Pa]
         real(dp) :: slope_force_pa(2) = 0.0_dp    !! <p grad h> [Pa] (check)
         real(dp) :: kernel_seconds = 0.0_dp, solve_seconds = 0.0_dp, surface_seconds = 0.0_dp
+        integer(i8) :: memory_estimate_bytes = 0    !! estimated peak of the run, before allocating [bytes]
         ! &analysis anisotropy
         logical :: have_anisotropy = .false.
         real(dp) :: band_q(2) = 0.0_dp                    !! [zeta1, zeta2] q0 [1/m]
@@ -148,6 +152,34 @@ contains
         seconds = wall_seconds() - t0
     end subroutine build_kernel
 
+    !> Before anything is allocated: the grid of a measured topography (from the file's shape), and
+    !> the memory the run will need against what the process may use; refused in one line naming
+    !> &grid nx, ny (or the file) when it does not fit. Returns the estimate.
+    subroutine size_and_check_memory(cfg, estimate, error)
+        type(config_t), intent(inout) :: cfg
+        integer(i8), intent(out) :: estimate
+        type(error_t), allocatable, intent(out) :: error
+        integer(i8) :: available
+        integer :: n
+        character(len=:), allocatable :: what
+        what = "&grid nx, ny = "
+        if (cfg%surface%kind == 'file') then
+            call topography_shape(cfg%surface%file, cfg%surface%dataset, n, error)
+            call add_context(error, "veslide: "//cfg%path//": &surface ")
+            if (allocated(error)) return
+            cfg%grid%nx = n; cfg%grid%ny = n
+            what = "&surface file '"//cfg%surface%file//"' of "
+        end if
+        estimate = memory_estimate_bytes(cfg)
+        available = available_memory_bytes()
+        if (available >= 0 .and. estimate > available) then
+            what = what//str(cfg%grid%nx)//" x "//str(cfg%grid%ny)
+            call fatal_error(error, "veslide: "//cfg%path//": "//what//" needs about "//format_gib(estimate)// &
+                " of memory, and "//format_gib(available)//" is available to this process (free memory,"// &
+                " ulimit and cgroup limits): choose a smaller &grid nx, ny or run where more memory is free")
+        end if
+    end subroutine size_and_check_memory
+
     !> Build and solve one case
     subroutine run_case(cfg, c, error)
         type(config_t), intent(inout) :: cfg
@@ -155,6 +187,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         type(fft2d_t) :: fft
         real(dp) :: t0
+        call size_and_check_memory(cfg, c%memory_estimate_bytes, error); if (allocated(error)) return
         t0 = wall_seconds()
         call build_surface(cfg, c%h, error); if (allocated(error)) return
         c%surface_seconds = wall_seconds() - t0
@@ -198,6 +231,7 @@ contains
         t0 = wall_seconds()
         call solve_contact(problem, fft, solver_options(cfg), c%state, error, p_init=p_init, g_init=g_init)
         if (allocated(error)) return
+        call problem%confirm(fft, c%state, cfg%solver%tolerance)     ! the reported residual decides
         c%solve_seconds = wall_seconds() - t0
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)
         call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)
@@ -278,6 +312,8 @@ contains
         call r%add('kernel_alias_error', c%kernel%alias_error, '-')
         call r%add('kernel_alias_zones', real(c%kernel%alias_zones, dp), '-', is_integer=.true.)
         call r%add('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
+        call r%add('memory_estimate_bytes', real(c%memory_estimate_bytes, dp), 'B', is_integer=.true.)
+        call r%add('memory_peak_bytes', real(peak_memory_bytes(), dp), 'B', is_integer=.true.)
         call r%add('surface_seconds', c%surface_seconds, 's')
         call r%add('kernel_seconds', c%kernel_seconds, 's')
         call r%add('solve_seconds', c%solve_seconds, 's')

@@ -20,10 +20,12 @@ module veslide_study
     use veslide_kernel, only: kernel_t
     use veslide_material, only: material_t
     use veslide_hdf5, only: h5file_t
-    use veslide_output, only: write_provenance
+    use veslide_output, only: write_provenance, discard_output
+    use veslide_system, only: path_kind, PATH_REGULAR
+    use veslide_version, only: version_string
     use veslide_quantities, only: results_t, axial_of, AXIAL_NONE, AXIAL_HALF_TURN
     use veslide_case, only: case_t, build_surface, build_material, build_kernel, case_grid, solve_prepared, &
-                            case_results, write_case_group
+                            case_results, write_case_group, size_and_check_memory
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
@@ -114,13 +116,16 @@ contains
     !> Run the study of `cfg` into the (temporary) HDF5 file `path`; `nfail` counts cases that
     !> did not converge. `part` = [rank, nranks] runs only the chains whose index is rank modulo
     !> nranks, with global case numbers (a rank file of a distributed study: no /ensemble).
-    subroutine run_study(cfg, path, nfail, error, progress, part)
+    subroutine run_study(cfg, path, nfail, error, progress, part, stop_after)
         type(config_t), intent(inout) :: cfg
         character(len=*), intent(in) :: path
         integer, intent(out) :: nfail
         type(error_t), allocatable, intent(out) :: error
         procedure(progress_callback), optional :: progress
         integer, intent(in), optional :: part(2)
+        !> stop after this many new cases, leaving the part file as a killed run would (the next
+        !> run resumes from it); a study that stops early writes no /ensemble
+        integer, intent(in), optional :: stop_after
         type(study_plan_t) :: plan
         type(grid_t) :: grid
         type(kernel_t), allocatable :: kernels(:)
@@ -136,7 +141,8 @@ contains
         type(study_progress_t) :: info
         integer :: ic, iv, k, rank, nranks, nmine, nrow
         integer, allocatable :: keep(:)
-        integer(i8) :: surface_seed
+        logical, allocatable :: done(:)
+        integer(i8) :: surface_seed, estimate
         real(dp) :: surface_ecc, surface_alpha, t_start, t_case
         logical :: have_surface
 
@@ -148,6 +154,7 @@ contains
         call plan_study(cfg, plan)
         nmine = count([(modulo(ic - 1, nranks) == rank, ic = 1, size(plan%chains))])*size(plan%speeds)
 
+        call size_and_check_memory(cfg, estimate, error); if (allocated(error)) return
         call build_material(cfg, mat, error); if (allocated(error)) return
         ! a measured topography fixes the grid and the cell size, which the kernels need
         have_surface = .false.
@@ -161,13 +168,19 @@ contains
             cfg%motion%speed_m_s = plan%speeds(iv)
             call build_kernel(cfg, grid, mat, kernels(iv), kernel_seconds(iv), error); if (allocated(error)) return
         end do
-        call f%open(path, 'w', error); if (allocated(error)) return
-        call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true.); if (allocated(error)) return
+        allocate (done(plan%ncase)); done = .false.
+        nrow = 0
+        if (path_kind(path) == PATH_REGULAR) then
+            call resume_part(error); if (allocated(error)) return
+        else
+            call f%open(path, 'w', error); if (allocated(error)) return
+            call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true.); if (allocated(error)) return
+        end if
         call fft%init(grid%nx, grid%ny, error, planner=cfg%solver%fft_planner, nthreads=cfg%solver%threads)
         if (allocated(error)) return
 
         t_start = wall_seconds()
-        info%total = nmine; nrow = 0
+        info%total = nmine - count(done)
         surface_seed = -huge(1_i8); surface_ecc = -1.0_dp; surface_alpha = -huge(1.0_dp)
         do ic = 1, size(plan%chains)
             if (modulo(ic - 1, nranks) /= rank) cycle
@@ -182,10 +195,18 @@ contains
                 end if
                 do iv = 1, size(plan%speeds)
                     k = chain%first_case + iv - 1
+                    if (done(k)) cycle
+                    if (present(stop_after)) then
+                        if (info%done >= stop_after) then
+                            call f%close(error); return
+                        end if
+                    end if
+                    if (iv > 1 .and. .not. allocated(p_prev)) call restore_warm_start(k - 1)
                     cfg%motion%speed_m_s = plan%speeds(iv)
                     c%h = h; c%mat = mat; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
+                    c%memory_estimate_bytes = estimate
                     t_case = wall_seconds()
-                    if (iv > 1 .and. cfg%sweep%warm_start) then
+                    if (iv > 1 .and. cfg%sweep%warm_start .and. allocated(p_prev)) then
                         call solve_prepared(cfg, fft, c, error, p_init=p_prev, g_init=g_prev)
                     else
                         call solve_prepared(cfg, fft, c, error)
@@ -195,8 +216,12 @@ contains
                     if (.not. c%state%converged) nfail = nfail + 1
                     call case_results(cfg, c, r)
                     call write_row(k, chain, plan%speeds(iv), error); if (allocated(error)) return
+                    if (iv < size(plan%speeds) .and. cfg%sweep%warm_start) then
+                        call save_warm_start(k, error); if (allocated(error)) return
+                    end if
+                    info%done = info%done + 1
                     if (present(progress)) then
-                        info%done = info%done + 1; info%elapsed_s = wall_seconds() - t_start
+                        info%elapsed_s = wall_seconds() - t_start
                         info%case_s = wall_seconds() - t_case; info%case_number = k
                         info%seed = chain%seed; info%eccentricity = chain%eccentricity
                         info%alpha_deg = chain%alpha_deg; info%pressure_pa = chain%pressure_pa
@@ -208,8 +233,10 @@ contains
                         call progress(info)
                     end if
                 end do
+                if (allocated(p_prev)) deallocate (p_prev, g_prev)
             end associate
         end do
+        call discard_output(path//'.resume')
         if (size(plan%seeds) > 1 .and. nranks == 1) then
             call write_ensemble(f, columns, units, is_int, table(:, 1:nrow), size(plan%seeds), error)
             if (allocated(error)) return
@@ -218,6 +245,79 @@ contains
         call fft%destroy()
 
     contains
+
+        !> Continue the part file of a killed run of the same study: it must hold the same input
+        !> text and come from the same veslide version; its finished cases (the rows of /summary)
+        !> are kept, a case group left half-written is removed
+        subroutine resume_part(error)
+            type(error_t), allocatable, intent(out) :: error
+            character(len=:), allocatable :: text, version
+            integer(i8), allocatable :: rows(:, :)
+            integer :: kk
+            character(len=16) :: tag
+            call f%open(path, 'rw', error)
+            if (allocated(error)) then
+                error%message = "veslide: '"//path//"' is left by an earlier run but is not a readable HDF5 file:"// &
+                                " remove it to start afresh"; return
+            end if
+            call f%read_text('/input/namelist', text, error)
+            if (.not. allocated(error)) call f%read_attr_text('/', 'veslide_version', version, error)
+            if (allocated(error)) then
+                error%message = "veslide: '"//path//"' is left by an earlier run but holds no study input:"// &
+                                " remove it to start afresh"; return
+            end if
+            if (text /= cfg%text .or. version /= version_string()) then
+                call fatal_error(error, "veslide: '"//path//"' is the part file of another input or veslide version"// &
+                    " (it cannot be resumed by this run): rerun its own input, or remove it to start afresh"); return
+            end if
+            if (f%exists('/summary')) then
+                call f%read_table('/summary', columns, is_int, rows, error); if (allocated(error)) return
+                allocate (units(size(columns)))
+                call f%read_attr_text_list('/summary', 'units', units, error); if (allocated(error)) return
+                allocate (table(size(columns), nmine))
+                do kk = 1, size(rows, 2)
+                    done(int(rows(1, kk))) = .true.
+                    nrow = nrow + 1
+                    table(:, nrow) = rows(:, kk)
+                end do
+            end if
+            do kk = 1, plan%ncase
+                write (tag, '("/cases/",i6.6)') kk
+                if (.not. done(kk)) call f%delete(trim(tag))
+            end do
+        end subroutine resume_part
+
+        !> The pressure and gap of case k, from which the chain's next speed starts if the run is
+        !> killed now (a small file beside the part file, removed when the study completes)
+        subroutine save_warm_start(k, error)
+            integer, intent(in) :: k
+            type(error_t), allocatable, intent(out) :: error
+            type(h5file_t) :: w
+            call w%open(path//'.resume', 'w', error); if (allocated(error)) return
+            call w%write('/pressure_pa', c%state%p, error); if (allocated(error)) return
+            call w%write('/gap_m', c%state%g, error); if (allocated(error)) return
+            call w%write('/case', int(k, i8), error); if (allocated(error)) return
+            call w%close(error)
+        end subroutine save_warm_start
+
+        !> The warm start of case k + 1 after a resume: case k's pressure and gap when the file
+        !> holds them, otherwise none (the chain continues from a cold start)
+        subroutine restore_warm_start(k)
+            integer, intent(in) :: k
+            type(h5file_t) :: w
+            type(error_t), allocatable :: e
+            integer(i8) :: kr
+            if (path_kind(path//'.resume') /= PATH_REGULAR) return
+            call w%open(path//'.resume', 'r', e); if (allocated(e)) return
+            call w%read_i0('/case', kr, e)
+            if (.not. allocated(e) .and. kr == k) then
+                allocate (p_prev(grid%nx, grid%ny), g_prev(grid%nx, grid%ny))
+                call w%read_r2('/pressure_pa', p_prev, e)
+                if (.not. allocated(e)) call w%read_r2('/gap_m', g_prev, e)
+                if (allocated(e)) deallocate (p_prev, g_prev)
+            end if
+            call w%close()
+        end subroutine restore_warm_start
 
         !> /cases/NNNNNN and the /summary row of case k
         subroutine write_row(k, chain, speed, error)
@@ -235,9 +335,9 @@ contains
             call f%writeattr(trim(tag)//'/parameters', 'columns', &
                              'case, seed, eccentricity, alpha_deg, pressure_pa, speed_m_s', error)
             if (allocated(error)) return
+            ! every scalar of the case, except those that repeat a parameter column (speed_m_s)
+            if (.not. allocated(keep)) keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names), j = 1, r%n)])
             if (.not. allocated(table)) then
-                ! every scalar of the case, except those that repeat a parameter column (speed_m_s)
-                keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names), j = 1, r%n)])
                 allocate (columns(nparam + size(keep)), units(nparam + size(keep)), is_int(nparam + size(keep)))
                 allocate (table(nparam + size(keep), nmine))
                 columns(1:nparam) = param_names; units(1:nparam) = param_units

@@ -7,8 +7,8 @@
 module veslide_config
     use veslide_kinds, only: dp, pi
     use veslide_error, only: error_t, fatal_error
-    use veslide_strings, only: str, lower
-    use veslide_config_common, only: require
+    use veslide_strings, only: str
+    use veslide_config_common, only: require, group_text_t, scan_namelist, get_group
     use veslide_config_grid, only: grid_config_t, read_grid_config
     use veslide_config_surface, only: surface_config_t, read_surface_config
     use veslide_config_material, only: material_config_t, read_material_config
@@ -20,11 +20,21 @@ module veslide_config
     use veslide_config_output, only: output_config_t, read_output_config
     implicit none
     private
-    public :: config_t, read_config, read_text_file, default_config, complete_config
+    public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config
+
+    !> The groups of a namelist file, in the order of the README
+    character(len=*), parameter :: group_names(9) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
+                                                     'motion', 'solver', 'analysis', 'sweep', 'output']
+
+    !> One line of warning: an input that runs but does less than it seems to ask for
+    type :: warning_t
+        character(len=:), allocatable :: text
+    end type warning_t
 
     type :: config_t
         character(len=:), allocatable :: path        !! namelist file
         character(len=:), allocatable :: text        !! its text, verbatim
+        type(warning_t), allocatable :: warnings(:)  !! inputs that run but change nothing
         type(grid_config_t) :: grid
         type(surface_config_t) :: surface
         type(material_config_t) :: material
@@ -66,34 +76,23 @@ contains
         character(len=*), intent(in) :: path
         type(config_t), intent(out) :: cfg
         type(error_t), allocatable, intent(out) :: error
-        integer :: u, stat
-        character(len=512) :: msg
+        type(group_text_t), allocatable :: groups(:)
 
         cfg%path = path
         call read_text_file(path, cfg%text, error); if (allocated(error)) return
-        call check_group_names(path, cfg%text, error); if (allocated(error)) return
-        open (newunit=u, file=path, status='old', action='read', iostat=stat, iomsg=msg)
-        if (stat /= 0) then
-            call fatal_error(error, "veslide: cannot open '"//path//"': "//trim(msg)); return
-        end if
-        call read_groups(); close (u)
+        call scan_namelist(path, cfg%text, group_names, groups, error); if (allocated(error)) return
+        call read_grid_config(cfg%grid, get_group(groups, 'grid'), path, error); if (allocated(error)) return
+        call read_surface_config(cfg%surface, get_group(groups, 'surface'), path, error); if (allocated(error)) return
+        call read_material_config(cfg%material, get_group(groups, 'material'), path, error)
         if (allocated(error)) return
+        call read_load_config(cfg%load, get_group(groups, 'load'), path, error); if (allocated(error)) return
+        call read_motion_config(cfg%motion, get_group(groups, 'motion'), path, error); if (allocated(error)) return
+        call read_solver_config(cfg%solver, get_group(groups, 'solver'), path, error); if (allocated(error)) return
+        call read_analysis_config(cfg%analysis, get_group(groups, 'analysis'), path, error)
+        if (allocated(error)) return
+        call read_sweep_config(cfg%sweep, get_group(groups, 'sweep'), path, error); if (allocated(error)) return
+        call read_output_config(cfg%output, get_group(groups, 'output'), path, error); if (allocated(error)) return
         call complete_config(cfg, error)
-
-    contains
-
-        subroutine read_groups()
-            call read_grid_config(cfg%grid, u, path, error); if (allocated(error)) return
-            call read_surface_config(cfg%surface, u, path, error); if (allocated(error)) return
-            call read_material_config(cfg%material, u, path, error); if (allocated(error)) return
-            call read_load_config(cfg%load, u, path, error); if (allocated(error)) return
-            call read_motion_config(cfg%motion, u, path, error); if (allocated(error)) return
-            call read_solver_config(cfg%solver, u, path, error); if (allocated(error)) return
-            call read_analysis_config(cfg%analysis, u, path, error); if (allocated(error)) return
-            call read_sweep_config(cfg%sweep, u, path, error); if (allocated(error)) return
-            call read_output_config(cfg%output, u, path, error)
-        end subroutine read_groups
-
     end subroutine read_config
 
     !> Every default, for programs that build cases in code (benchmarks, scenes, tests): set what
@@ -111,6 +110,7 @@ contains
         allocate (cfg%sweep%speeds(0), cfg%sweep%alphas(0), cfg%sweep%eccentricities(0), cfg%sweep%pressures(0))
         allocate (cfg%sweep%seeds(0))
         cfg%output%file = 'veslide.h5'
+        allocate (cfg%warnings(0))
     end subroutine default_config
 
     !> Defaults that depend on other groups, and the checks across groups
@@ -125,8 +125,14 @@ contains
         select case (cfg%surface%kind)
         case ('self_affine')
             nyq = 0.5_dp*min(real(cfg%grid%nx, dp), cfg%grid%ny*cfg%grid%lx_m/cfg%grid%ly_m)
-            call require(error, cfg%surface%k_cut < nyq, p, 'surface', 'k_cut', str(cfg%surface%k_cut), &
-                         ">= k_roll and below the Nyquist wavenumber "//str(nyq)//" of the grid")
+            if (cfg%surface%k_cut_given) then
+                call require(error, cfg%surface%k_cut < nyq, p, 'surface', 'k_cut', str(cfg%surface%k_cut), &
+                             ">= k_roll and below the Nyquist wavenumber "//str(nyq)//" of the grid")
+            else if (.not. cfg%surface%k_cut < nyq) then
+                call fatal_error(error, "veslide: "//p//": &surface k_cut = "//str(cfg%surface%k_cut)// &
+                    " (the default) is not below the Nyquist wavenumber "//str(nyq)//" of the &grid: set &surface"// &
+                    " k_cut below "//str(nyq)//", or a larger &grid nx, ny")
+            end if
         case ('cosine', 'bisinusoid')
             call require(error, periodic_wave(cfg), p, 'surface', 'wavelength_m/direction_deg', &
                          str(cfg%surface%wavelength_m)//"/"//str(cfg%surface%direction_deg), &
@@ -147,7 +153,29 @@ contains
                      "only with &surface kind = 'self_affine'")
         if (allocated(error)) return
         if (cfg%sweep%n_seeds > 0) cfg%sweep%seeds = [(cfg%surface%seed + k, k = 0, cfg%sweep%n_seeds - 1)]
+        call collect_warnings(cfg)
     end subroutine complete_config
+
+    !> Inputs that run but change nothing, one line each
+    subroutine collect_warnings(cfg)
+        type(config_t), intent(inout) :: cfg
+        if (allocated(cfg%warnings)) deallocate (cfg%warnings)
+        allocate (cfg%warnings(0))
+        if (size(cfg%sweep%speeds) > 1 .and. cfg%material%model == 'elastic') &
+            call warn("&sweep speeds on an elastic &material: the solution and the zero friction are the same"// &
+                      " at every speed")
+        if (size(cfg%sweep%alphas) > 1 .and. size(cfg%sweep%eccentricities) == 0 .and. &
+            cfg%surface%eccentricity == 1.0_dp) &
+            call warn("&sweep alphas_deg with &surface eccentricity = 1: the spectrum is isotropic, every angle"// &
+                      " gives the same surface")
+        if (size(cfg%sweep%speeds) > 0 .and. cfg%motion%speed_m_s /= 0.0_dp) &
+            call warn("&motion speed_m_s = "//str(cfg%motion%speed_m_s)//" is replaced by the &sweep speeds")
+    contains
+        subroutine warn(text)
+            character(len=*), intent(in) :: text
+            cfg%warnings = [cfg%warnings, warning_t("veslide: "//cfg%path//": warning: "//text)]
+        end subroutine warn
+    end subroutine collect_warnings
 
     !> Fill unset cell lengths: lx from `lx_default`, ly from lx*ny/nx (square cells)
     subroutine default_lengths(cfg, lx_default)
@@ -172,46 +200,5 @@ contains
              abs(kx) < 0.5_dp*cfg%grid%nx .and. abs(ky) < max(0.5_dp*cfg%grid%ny, 0.5_dp)
     end function periodic_wave
 
-    !> Every '&name' that opens a group must be one veslide reads (a misspelt group would be
-    !> skipped silently by the namelist reads); comments and quoted strings are ignored
-    subroutine check_group_names(path, text, error)
-        character(len=*), intent(in) :: path, text
-        type(error_t), allocatable, intent(out) :: error
-        character(len=*), parameter :: known(9) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
-                                                   'motion', 'solver', 'analysis', 'sweep', 'output']
-        character(len=1) :: quote
-        integer :: i, j
-        logical :: comment
-        quote = ' '; comment = .false.
-        i = 1
-        do while (i <= len(text))
-            if (text(i:i) == new_line('a')) then
-                comment = .false.
-            else if (comment) then
-                continue
-            else if (quote /= ' ') then
-                if (text(i:i) == quote) quote = ' '
-            else if (text(i:i) == '"' .or. text(i:i) == "'") then
-                quote = text(i:i)
-            else if (text(i:i) == '!') then
-                comment = .true.
-            else if (text(i:i) == '&') then
-                j = i + 1
-                do while (j <= len(text))
-                    if (index('abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_', text(j:j)) == 0) exit
-                    j = j + 1
-                end do
-                if (j > i + 1) then
-                    if (all(lower(text(i + 1:j - 1)) /= known) .and. lower(text(i + 1:j - 1)) /= 'end') then
-                        call fatal_error(error, "veslide: "//path//": unknown namelist group &"//text(i + 1:j - 1)// &
-                            " (known: &grid, &surface, &material, &load, &motion, &solver, &analysis, &sweep,"// &
-                            " &output)"); return
-                    end if
-                end if
-                i = j - 1
-            end if
-            i = i + 1
-        end do
-    end subroutine check_group_names
 
 end module veslide_config

@@ -3,7 +3,7 @@ module veslide_config_load
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_strings, only: str
-    use veslide_config_common, only: namelist_status, require
+    use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, finite_in
     implicit none
     private
     public :: load_config_t, read_load_config
@@ -12,23 +12,39 @@ module veslide_config_load
         real(dp) :: mean_pressure_pa = 32.0e3_dp   !! nominal pressure (load control) [Pa]
     end type load_config_t
 
+    character(len=*), parameter :: names(1) = [character(len=16) :: 'mean_pressure_pa']
+    character(len=*), parameter :: kinds(1) = [character(len=13) :: 'a real number']
+
 contains
 
-    subroutine read_load_config(self, u, path, error)
+    subroutine read_load_config(self, g, path, error)
         type(load_config_t), intent(out) :: self
-        integer, intent(in) :: u
+        type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
         real(dp) :: mean_pressure_pa
         integer :: stat
         character(len=512) :: msg
+        character(len=:), allocatable :: lines(:)
         namelist /load/ mean_pressure_pa
         mean_pressure_pa = self%mean_pressure_pa
-        rewind (u); read (u, nml=load, iostat=stat, iomsg=msg)
-        call namelist_status(stat, msg, path, 'load', error); if (allocated(error)) return
+        call split_lines(g%text, lines)
+        read (lines, nml=load, iostat=stat, iomsg=msg)
+        if (read_failed(stat)) then
+            call diagnose_read(stat, msg, path, 'load', g%body, names, kinds, try, error); return
+        end if
         self%mean_pressure_pa = mean_pressure_pa
-        call require(error, mean_pressure_pa > 0.0_dp .and. mean_pressure_pa < huge(1.0_dp), path, 'load', &
-                     'mean_pressure_pa', str(mean_pressure_pa), "> 0 [Pa]")
+        call require(error, finite_in(mean_pressure_pa, 0.0_dp, 1.0e12_dp, open_low=.true.), path, 'load', &
+                     'mean_pressure_pa', str(mean_pressure_pa), "> 0 and <= 1e12 [Pa]")
+    contains
+        subroutine try(lines, stat, msg)
+            character(len=*), intent(in) :: lines(:)
+            integer, intent(out) :: stat
+            character(len=*), intent(out) :: msg
+            real(dp) :: mean_pressure_pa
+            namelist /load/ mean_pressure_pa
+            read (lines, nml=load, iostat=stat, iomsg=msg)
+        end subroutine try
     end subroutine read_load_config
 
 end module veslide_config_load

@@ -3,7 +3,8 @@ module veslide_config_material
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
     use veslide_strings, only: str
-    use veslide_config_common, only: namelist_status, require, choices_text, is_one_of, max_list
+    use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
+                                     finite_in, max_list, unset_real, list_length, check_list
     use veslide_material, only: material_model_names
     implicit none
     private
@@ -21,30 +22,46 @@ module veslide_config_material
         real(dp), allocatable :: prony_time_s(:)         !! tau_k or rho_j [s]
     end type material_config_t
 
-    real(dp), parameter :: unset = -huge(1.0_dp)
+    character(len=*), parameter :: names(11) = [character(len=14) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
+        'ratio', 'tau_s', 'e0_pa', 'creep_c_per_pa', 'creep_tau_s', 'relax_e_pa', 'relax_rho_s']
+    character(len=*), parameter :: kinds(11) = [character(len=40) :: "a quoted text ('one_term')", &
+        'a real number', 'a real number', 'a real number', 'a real number', 'a real number', 'a real number', &
+        'a list of real numbers', 'a list of real numbers', 'a list of real numbers', 'a list of real numbers']
+    !> Largest modulus and time accepted [Pa], [s]: beyond them double precision loses the physics
+    real(dp), parameter :: max_modulus = 1.0e15_dp, max_time = 1.0e15_dp
 
 contains
 
-    !> Read &material from the open namelist file `u` (absent: defaults) and check it
-    subroutine read_material_config(self, u, path, error)
+    !> Read &material from its text (absent: defaults) and check it
+    subroutine read_material_config(self, g, path, error)
         type(material_config_t), intent(out) :: self
-        integer, intent(in) :: u
+        type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
         character(len=16) :: model
-        real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, big
+        real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
         real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
         integer :: stat
         character(len=512) :: msg
+        character(len=:), allocatable :: lines(:)
         namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, creep_tau_s, &
             relax_e_pa, relax_rho_s
         model = 'elastic'; young_pa = self%young_pa; poisson = self%poisson; einf_pa = self%einf_pa
         ratio = self%ratio; tau_s = self%tau_s; e0_pa = self%e0_pa
-        creep_c_per_pa = unset; creep_tau_s = unset; relax_e_pa = unset; relax_rho_s = unset
-        rewind (u); read (u, nml=material, iostat=stat, iomsg=msg)
-        call namelist_status(stat, msg, path, 'material', error); if (allocated(error)) return
+        creep_c_per_pa = unset_real(); creep_tau_s = unset_real(); relax_e_pa = unset_real()
+        relax_rho_s = unset_real()
+        call split_lines(g%text, lines)
+        read (lines, nml=material, iostat=stat, iomsg=msg)
+        if (read_failed(stat)) then
+            call diagnose_read(stat, msg, path, 'material', g%body, names, kinds, try, error); return
+        end if
         self%model = trim(model); self%young_pa = young_pa; self%poisson = poisson; self%einf_pa = einf_pa
         self%ratio = ratio; self%tau_s = tau_s; self%e0_pa = e0_pa
+        call check_list(error, creep_c_per_pa, path, 'material', 'creep_c_per_pa')
+        call check_list(error, creep_tau_s, path, 'material', 'creep_tau_s')
+        call check_list(error, relax_e_pa, path, 'material', 'relax_e_pa')
+        call check_list(error, relax_rho_s, path, 'material', 'relax_rho_s')
+        if (allocated(error)) return
         select case (self%model)
         case ('creep')
             call take_series('creep_c_per_pa', creep_c_per_pa, 'creep_tau_s', creep_tau_s)
@@ -55,25 +72,25 @@ contains
         end select
         if (allocated(error)) return
 
-        big = huge(1.0_dp)
-        call require(error, poisson >= 0.0_dp .and. poisson <= 0.5_dp, path, 'material', 'poisson', str(poisson), &
-                     "0 to 0.5")
+        call require(error, finite_in(poisson, 0.0_dp, 0.5_dp), path, 'material', 'poisson', str(poisson), "0 to 0.5")
         call require(error, is_one_of(self%model, material_model_names), path, 'material', 'model', &
                      "'"//self%model//"'", choices_text(material_model_names))
         if (allocated(error)) return
         select case (self%model)
         case ('elastic')
-            call require(error, young_pa > 0.0_dp .and. young_pa < big, path, 'material', 'young_pa', str(young_pa), &
-                         "> 0 [Pa]")
+            call require(error, finite_in(young_pa, 0.0_dp, max_modulus, open_low=.true.), path, 'material', &
+                         'young_pa', str(young_pa), "> 0 and <= 1e15 [Pa]")
         case ('one_term')
-            call require(error, einf_pa > 0.0_dp .and. einf_pa < big, path, 'material', 'einf_pa', str(einf_pa), &
-                         "> 0 [Pa]")
-            call require(error, ratio > 1.0_dp .and. ratio < big, path, 'material', 'ratio', str(ratio), "> 1 (Einf/E0)")
-            call require(error, tau_s > 0.0_dp .and. tau_s < big, path, 'material', 'tau_s', str(tau_s), "> 0 [s]")
+            call require(error, finite_in(einf_pa, 0.0_dp, max_modulus, open_low=.true.), path, 'material', &
+                         'einf_pa', str(einf_pa), "> 0 and <= 1e15 [Pa]")
+            call require(error, finite_in(ratio, 1.0_dp, 1.0e12_dp, open_low=.true.), path, 'material', 'ratio', &
+                         str(ratio), "> 1 and <= 1e12 (Einf/E0)")
+            call require(error, finite_in(tau_s, 0.0_dp, max_time, open_low=.true.), path, 'material', 'tau_s', &
+                         str(tau_s), "> 0 and <= 1e15 [s]")
         case ('creep', 'relaxation')
-            call require(error, e0_pa > 0.0_dp .and. e0_pa < big, path, 'material', 'e0_pa', str(e0_pa), "> 0 [Pa]")
-            call require(error, all(self%prony_coef > 0.0_dp) .and. all(self%prony_time_s > 0.0_dp), path, &
-                         'material', 'Prony terms', "", "every coefficient and time > 0")
+            call require(error, finite_in(e0_pa, 0.0_dp, max_modulus, open_low=.true.), path, 'material', 'e0_pa', &
+                         str(e0_pa), "> 0 and <= 1e15 [Pa]")
+            call check_terms(); if (allocated(error)) return
             if (self%model == 'creep') &
                 call require(error, sum(self%prony_coef) < 1.0_dp/e0_pa, path, 'material', 'creep_c_per_pa', &
                              "sum "//str(sum(self%prony_coef)), &
@@ -86,13 +103,39 @@ contains
             character(len=*), intent(in) :: name_c, name_t
             real(dp), intent(in) :: c(:), t(:)
             integer :: nc, nt
-            nc = count(c /= unset); nt = count(t /= unset)
-            if (nc == 0 .or. nc /= nt .or. any(c(1:nc) == unset) .or. any(t(1:nt) == unset)) then
-                call fatal_error(error, "veslide: "//path//": &material: "//name_c//" and "//name_t// &
-                    " must list the same number (1 to 64) of terms, without gaps"); return
+            nc = list_length(c); nt = list_length(t)
+            if (nc == 0 .or. nc /= nt) then
+                call fatal_error(error, "veslide: "//path//": &material "//name_c//" and "//name_t// &
+                    " must list the same number (1 to 64) of terms, got "//str(nc)//" and "//str(nt)); return
             end if
             self%prony_coef = c(1:nc); self%prony_time_s = t(1:nt)
         end subroutine take_series
+
+        !> Every Prony term positive and finite, named by its list and index
+        subroutine check_terms()
+            integer :: k
+            character(len=:), allocatable :: cn, tn
+            cn = merge('creep_c_per_pa', 'relax_e_pa    ', self%model == 'creep')
+            tn = merge('creep_tau_s', 'relax_rho_s', self%model == 'creep')
+            do k = 1, size(self%prony_coef)
+                call require(error, finite_in(self%prony_coef(k), 0.0_dp, max_modulus, open_low=.true.), path, &
+                             'material', trim(cn)//"("//str(k)//")", str(self%prony_coef(k)), "> 0 and finite")
+                call require(error, finite_in(self%prony_time_s(k), 0.0_dp, max_time, open_low=.true.), path, &
+                             'material', tn//"("//str(k)//")", str(self%prony_time_s(k)), "> 0 and <= 1e15 [s]")
+            end do
+        end subroutine check_terms
+
+        subroutine try(lines, stat, msg)
+            character(len=*), intent(in) :: lines(:)
+            integer, intent(out) :: stat
+            character(len=*), intent(out) :: msg
+            character(len=16) :: model
+            real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
+            real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
+            namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, &
+                creep_tau_s, relax_e_pa, relax_rho_s
+            read (lines, nml=material, iostat=stat, iomsg=msg)
+        end subroutine try
 
     end subroutine read_material_config
 

@@ -1,7 +1,7 @@
 !> &output: where the result goes and what it holds
 module veslide_config_output
     use veslide_error, only: error_t
-    use veslide_config_common, only: namelist_status, require
+    use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, check_text_length, max_text
     implicit none
     private
     public :: output_config_t, read_output_config
@@ -12,23 +12,42 @@ module veslide_config_output
         logical :: overwrite = .false.             !! replace an existing file
     end type output_config_t
 
+    character(len=*), parameter :: names(3) = [character(len=9) :: 'file', 'fields', 'overwrite']
+    character(len=*), parameter :: kinds(3) = [character(len=32) :: "a quoted text ('out.h5')", &
+                                               'a logical (.true. or .false.)', 'a logical (.true. or .false.)']
+
 contains
 
-    subroutine read_output_config(self, u, path, error)
+    subroutine read_output_config(self, g, path, error)
         type(output_config_t), intent(out) :: self
-        integer, intent(in) :: u
+        type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        character(len=1024) :: file
+        character(len=max_text + 1) :: file
         logical :: fields, overwrite
         integer :: stat
         character(len=512) :: msg
+        character(len=:), allocatable :: lines(:)
         namelist /output/ file, fields, overwrite
         file = 'veslide.h5'; fields = self%fields; overwrite = self%overwrite
-        rewind (u); read (u, nml=output, iostat=stat, iomsg=msg)
-        call namelist_status(stat, msg, path, 'output', error); if (allocated(error)) return
+        call split_lines(g%text, lines)
+        read (lines, nml=output, iostat=stat, iomsg=msg)
+        if (read_failed(stat)) then
+            call diagnose_read(stat, msg, path, 'output', g%body, names, kinds, try, error); return
+        end if
+        call check_text_length(error, file, path, 'output', 'file'); if (allocated(error)) return
         self%file = trim(file); self%fields = fields; self%overwrite = overwrite
         call require(error, len(self%file) > 0, path, 'output', 'file', "''", "a file path")
+    contains
+        subroutine try(lines, stat, msg)
+            character(len=*), intent(in) :: lines(:)
+            integer, intent(out) :: stat
+            character(len=*), intent(out) :: msg
+            character(len=max_text + 1) :: file
+            logical :: fields, overwrite
+            namelist /output/ file, fields, overwrite
+            read (lines, nml=output, iostat=stat, iomsg=msg)
+        end subroutine try
     end subroutine read_output_config
 
 end module veslide_config_output

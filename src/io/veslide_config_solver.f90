@@ -3,7 +3,8 @@ module veslide_config_solver
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_strings, only: str
-    use veslide_config_common, only: namelist_status, require, choices_text, is_one_of
+    use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
+                                     finite_in
     use veslide_solver_options, only: solver_method_names
     use veslide_kernel, only: kernel_names
     use veslide_fftw, only: fft_planner_names
@@ -24,12 +25,22 @@ module veslide_config_solver
         real(dp) :: balance_ratio = 10.0_dp, balance_factor = 3.0_dp
     end type solver_config_t
 
+    character(len=*), parameter :: names(12) = [character(len=15) :: 'method', 'tolerance', 'max_iterations', &
+        'kernel', 'alias_tol', 'alias_max', 'fft_planner', 'threads', 'anderson_memory', 'balance_every', &
+        'balance_ratio', 'balance_factor']
+    character(len=*), parameter :: kinds(12) = [character(len=24) :: "a quoted text ('auto')", 'a real number', &
+        'an integer', "a quoted text ('spectral')", 'a real number', 'an integer', "a quoted text ('measure')", &
+        'an integer', 'an integer', 'an integer', 'a real number', 'a real number']
+    !> The smallest tolerance double precision reaches: K p is computed to about 1e-15 relative,
+    !> and the residual's measures sum over the grid
+    real(dp), parameter :: min_tolerance = 1.0e-13_dp
+
 contains
 
-    !> Read &solver from the open namelist file `u` (absent: defaults) and check it
-    subroutine read_solver_config(self, u, path, error)
+    !> Read &solver from its text (absent: defaults) and check it
+    subroutine read_solver_config(self, g, path, error)
         type(solver_config_t), intent(out) :: self
-        integer, intent(in) :: u
+        type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
         character(len=16) :: method, fft_planner
@@ -37,14 +48,18 @@ contains
         real(dp) :: tolerance, alias_tol, balance_ratio, balance_factor
         integer :: max_iterations, alias_max, threads, anderson_memory, balance_every, stat
         character(len=512) :: msg
+        character(len=:), allocatable :: lines(:)
         namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &
             anderson_memory, balance_every, balance_ratio, balance_factor
         method = 'auto'; tolerance = self%tolerance; max_iterations = self%max_iterations; kernel = 'spectral'
         alias_tol = self%alias_tol; alias_max = self%alias_max; fft_planner = 'measure'; threads = self%threads
         anderson_memory = self%anderson_memory; balance_every = self%balance_every
         balance_ratio = self%balance_ratio; balance_factor = self%balance_factor
-        rewind (u); read (u, nml=solver, iostat=stat, iomsg=msg)
-        call namelist_status(stat, msg, path, 'solver', error); if (allocated(error)) return
+        call split_lines(g%text, lines)
+        read (lines, nml=solver, iostat=stat, iomsg=msg)
+        if (read_failed(stat)) then
+            call diagnose_read(stat, msg, path, 'solver', g%body, names, kinds, try, error); return
+        end if
         self%method = trim(method); self%tolerance = tolerance; self%max_iterations = max_iterations
         self%kernel = trim(kernel); self%alias_tol = alias_tol; self%alias_max = alias_max
         self%fft_planner = trim(fft_planner); self%threads = threads
@@ -53,13 +68,13 @@ contains
 
         call require(error, is_one_of(self%method, solver_method_names), path, 'solver', 'method', &
                      "'"//self%method//"'", choices_text(solver_method_names))
-        call require(error, tolerance >= 1.0e-15_dp .and. tolerance <= 1.0e-2_dp, path, 'solver', 'tolerance', &
-                     str(tolerance), "1e-15 to 1e-2")
+        call require(error, finite_in(tolerance, min_tolerance, 1.0e-2_dp), path, 'solver', 'tolerance', &
+                     str(tolerance), "1e-13 to 1e-2 (smaller residuals are below the round-off of double precision)")
         call require(error, max_iterations >= 1 .and. max_iterations <= 10000000, path, 'solver', 'max_iterations', &
                      str(max_iterations), "1 to 10000000")
         call require(error, is_one_of(self%kernel, kernel_names), path, 'solver', 'kernel', "'"//self%kernel//"'", &
                      choices_text(kernel_names))
-        call require(error, alias_tol > 0.0_dp .and. alias_tol <= 0.1_dp, path, 'solver', 'alias_tol', &
+        call require(error, finite_in(alias_tol, 0.0_dp, 0.1_dp, open_low=.true.), path, 'solver', 'alias_tol', &
                      str(alias_tol), "0 < alias_tol <= 0.1")
         call require(error, alias_max >= 2 .and. alias_max <= 1024, path, 'solver', 'alias_max', str(alias_max), &
                      "2 to 1024")
@@ -69,11 +84,24 @@ contains
                      str(anderson_memory), "0 (off) to 50")
         call require(error, balance_every >= 1 .and. balance_every <= 100000, path, 'solver', 'balance_every', &
                      str(balance_every), "1 to 100000")
-        call require(error, balance_ratio >= 1.0_dp .and. balance_ratio <= 1.0e6_dp, path, 'solver', &
+        call require(error, finite_in(balance_ratio, 1.0_dp, 1.0e6_dp), path, 'solver', &
                      'balance_ratio', str(balance_ratio), "1 to 1e6")
-        call require(error, balance_factor > 1.0_dp .and. balance_factor <= 100.0_dp, path, 'solver', &
+        call require(error, finite_in(balance_factor, 1.0_dp, 100.0_dp, open_low=.true.), path, 'solver', &
                      'balance_factor', str(balance_factor), "> 1 and <= 100")
         call require(error, threads >= 1 .and. threads <= 1024, path, 'solver', 'threads', str(threads), "1 to 1024")
+    contains
+        subroutine try(lines, stat, msg)
+            character(len=*), intent(in) :: lines(:)
+            integer, intent(out) :: stat
+            character(len=*), intent(out) :: msg
+            character(len=16) :: method, fft_planner
+            character(len=24) :: kernel
+            real(dp) :: tolerance, alias_tol, balance_ratio, balance_factor
+            integer :: max_iterations, alias_max, threads, anderson_memory, balance_every
+            namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &
+                anderson_memory, balance_every, balance_ratio, balance_factor
+            read (lines, nml=solver, iostat=stat, iomsg=msg)
+        end subroutine try
     end subroutine read_solver_config
 
 end module veslide_config_solver

@@ -3,7 +3,8 @@ module veslide_config_sweep
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error
     use veslide_strings, only: str
-    use veslide_config_common, only: namelist_status, require, max_list
+    use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, finite_in, max_list, &
+                                     unset_real, is_unset, list_length, check_list
     implicit none
     private
     public :: sweep_config_t, read_sweep_config
@@ -20,7 +21,12 @@ module veslide_config_sweep
         procedure :: is_study => sweep_is_study
     end type sweep_config_t
 
-    real(dp), parameter :: unset = -huge(1.0_dp)
+    character(len=*), parameter :: names(10) = [character(len=14) :: 'speeds_m_s', 'speed_min_m_s', &
+        'speed_max_m_s', 'n_speeds', 'alphas_deg', 'eccentricities', 'pressures_pa', 'seeds', 'n_seeds', 'warm_start']
+    character(len=*), parameter :: kinds(10) = [character(len=29) :: 'a list of real numbers', 'a real number', &
+        'a real number', 'an integer', 'a list of real numbers', 'a list of real numbers', 'a list of real numbers', &
+        'a list of integers', 'an integer', 'a logical (.true. or .false.)']
+    integer(i8), parameter :: unset_seed = -huge(1_i8)
 
 contains
 
@@ -31,37 +37,57 @@ contains
               size(self%seeds) + self%n_seeds > 0
     end function sweep_is_study
 
-    !> Read &sweep from the open namelist file `u` (absent: no study) and check it
-    subroutine read_sweep_config(self, u, path, error)
+    !> Read &sweep from its text (absent: no study) and check it
+    subroutine read_sweep_config(self, g, path, error)
         type(sweep_config_t), intent(out) :: self
-        integer, intent(in) :: u
+        type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
         real(dp) :: speeds_m_s(max_list), alphas_deg(max_list), eccentricities(max_list), pressures_pa(max_list)
-        real(dp) :: speed_min_m_s, speed_max_m_s, big
-        integer :: n_speeds, n_seeds, stat, k
+        real(dp) :: speed_min_m_s, speed_max_m_s
+        integer :: n_speeds, n_seeds, stat, k, ns
         integer(i8) :: seeds(max_list)
         logical :: warm_start
         character(len=512) :: msg
+        character(len=:), allocatable :: lines(:)
         namelist /sweep/ speeds_m_s, speed_min_m_s, speed_max_m_s, n_speeds, alphas_deg, eccentricities, &
             pressures_pa, seeds, n_seeds, warm_start
-        speeds_m_s = unset; alphas_deg = unset; eccentricities = unset; pressures_pa = unset
-        seeds = -huge(1_i8); speed_min_m_s = 0; speed_max_m_s = 0; n_speeds = 0; n_seeds = 0
+        speeds_m_s = unset_real(); alphas_deg = unset_real(); eccentricities = unset_real()
+        pressures_pa = unset_real(); seeds = unset_seed
+        speed_min_m_s = unset_real(); speed_max_m_s = unset_real(); n_speeds = 0; n_seeds = 0
         warm_start = self%warm_start
-        rewind (u); read (u, nml=sweep, iostat=stat, iomsg=msg)
-        call namelist_status(stat, msg, path, 'sweep', error); if (allocated(error)) return
+        call split_lines(g%text, lines)
+        read (lines, nml=sweep, iostat=stat, iomsg=msg)
+        if (read_failed(stat)) then
+            call diagnose_read(stat, msg, path, 'sweep', g%body, names, kinds, try, error); return
+        end if
         self%warm_start = warm_start
-        self%speeds = pack(speeds_m_s, speeds_m_s /= unset)
-        self%alphas = pack(alphas_deg, alphas_deg /= unset)
-        self%eccentricities = pack(eccentricities, eccentricities /= unset)
-        self%pressures = pack(pressures_pa, pressures_pa /= unset)
-        self%seeds = pack(seeds, seeds /= -huge(1_i8))
-        if (n_speeds /= 0) then
+        call check_list(error, speeds_m_s, path, 'sweep', 'speeds_m_s')
+        call check_list(error, alphas_deg, path, 'sweep', 'alphas_deg')
+        call check_list(error, eccentricities, path, 'sweep', 'eccentricities')
+        call check_list(error, pressures_pa, path, 'sweep', 'pressures_pa')
+        if (allocated(error)) return
+        ns = count(seeds /= unset_seed)
+        if (any(seeds(1:ns) == unset_seed) .or. any(seeds(ns + 1:) /= unset_seed)) then
+            call fatal_error(error, "veslide: "//path//": &sweep seeds has a gap: give a contiguous list"); return
+        end if
+        self%speeds = speeds_m_s(1:list_length(speeds_m_s))
+        self%alphas = alphas_deg(1:list_length(alphas_deg))
+        self%eccentricities = eccentricities(1:list_length(eccentricities))
+        self%pressures = pressures_pa(1:list_length(pressures_pa))
+        self%seeds = seeds(1:ns)
+        if (n_speeds /= 0 .or. .not. is_unset(speed_min_m_s) .or. .not. is_unset(speed_max_m_s)) then
+            if (n_speeds == 0) then
+                call fatal_error(error, "veslide: "//path//": &sweep speed_min_m_s/speed_max_m_s need n_speeds"// &
+                    " (allowed: 2 <= n_speeds <= 1000 speeds from speed_min_m_s to speed_max_m_s)"); return
+            end if
             if (size(self%speeds) > 0 .or. n_speeds < 2 .or. n_speeds > 1000 .or. &
-                .not. (speed_min_m_s > 0.0_dp .and. speed_max_m_s > speed_min_m_s)) then
-                call fatal_error(error, "veslide: "//path//": &sweep n_speeds, speed_min_m_s, speed_max_m_s"// &
-                    " are out of range (allowed: 2 <= n_speeds <= 1000, 0 < speed_min_m_s < speed_max_m_s,"// &
-                    " and no speeds_m_s list)"); return
+                .not. (finite_in(speed_min_m_s, 0.0_dp, 1.0e12_dp, open_low=.true.) .and. &
+                       finite_in(speed_max_m_s, 0.0_dp, 1.0e12_dp) .and. speed_max_m_s > speed_min_m_s)) then
+                call fatal_error(error, "veslide: "//path//": &sweep n_speeds, speed_min_m_s, speed_max_m_s = "// &
+                    str(n_speeds)//", "//value_or_unset(speed_min_m_s)//", "//value_or_unset(speed_max_m_s)// &
+                    " are out of range (allowed: 2 <= n_speeds <= 1000, 0 < speed_min_m_s < speed_max_m_s"// &
+                    " <= 1e12, and no speeds_m_s list)"); return
             end if
             self%speeds = [(speed_min_m_s*(speed_max_m_s/speed_min_m_s)**(real(k, dp)/(n_speeds - 1)), &
                             k = 0, n_speeds - 1)]
@@ -73,15 +99,45 @@ contains
             end if
             self%n_seeds = n_seeds
         end if
-        big = huge(1.0_dp)
-        call require(error, all(self%speeds >= 0.0_dp .and. self%speeds < big), path, 'sweep', 'speeds_m_s', "", &
-                     "every speed >= 0 [m/s]")
-        call require(error, all(abs(self%alphas) <= 360.0_dp), path, 'sweep', 'alphas_deg', "", &
-                     "every angle -360 to 360 [degrees]")
-        call require(error, all(self%eccentricities > 0.0_dp .and. self%eccentricities <= 1.0_dp), path, 'sweep', &
-                     'eccentricities', "", "every value 0 < eccentricity <= 1")
-        call require(error, all(self%pressures > 0.0_dp .and. self%pressures < big), path, 'sweep', 'pressures_pa', &
-                     "", "every pressure > 0 [Pa]")
+        do k = 1, size(self%speeds)
+            call require(error, finite_in(self%speeds(k), 0.0_dp, 1.0e12_dp), path, 'sweep', &
+                         'speeds_m_s('//str(k)//')', str(self%speeds(k)), "0 to 1e12 [m/s]")
+        end do
+        do k = 1, size(self%alphas)
+            call require(error, finite_in(self%alphas(k), -360.0_dp, 360.0_dp), path, 'sweep', &
+                         'alphas_deg('//str(k)//')', str(self%alphas(k)), "-360 to 360 [degrees]")
+        end do
+        do k = 1, size(self%eccentricities)
+            call require(error, finite_in(self%eccentricities(k), 0.0_dp, 1.0_dp, open_low=.true.), path, 'sweep', &
+                         'eccentricities('//str(k)//')', str(self%eccentricities(k)), "0 < eccentricity <= 1")
+        end do
+        do k = 1, size(self%pressures)
+            call require(error, finite_in(self%pressures(k), 0.0_dp, 1.0e12_dp, open_low=.true.), path, 'sweep', &
+                         'pressures_pa('//str(k)//')', str(self%pressures(k)), "> 0 and <= 1e12 [Pa]")
+        end do
+    contains
+        function value_or_unset(x) result(s)
+            real(dp), intent(in) :: x
+            character(len=:), allocatable :: s
+            if (is_unset(x)) then
+                s = '(unset)'
+            else
+                s = str(x)
+            end if
+        end function value_or_unset
+        subroutine try(lines, stat, msg)
+            character(len=*), intent(in) :: lines(:)
+            integer, intent(out) :: stat
+            character(len=*), intent(out) :: msg
+            real(dp) :: speeds_m_s(max_list), alphas_deg(max_list), eccentricities(max_list), pressures_pa(max_list)
+            real(dp) :: speed_min_m_s, speed_max_m_s
+            integer :: n_speeds, n_seeds
+            integer(i8) :: seeds(max_list)
+            logical :: warm_start
+            namelist /sweep/ speeds_m_s, speed_min_m_s, speed_max_m_s, n_speeds, alphas_deg, eccentricities, &
+                pressures_pa, seeds, n_seeds, warm_start
+            read (lines, nml=sweep, iostat=stat, iomsg=msg)
+        end subroutine try
     end subroutine read_sweep_config
 
 end module veslide_config_sweep

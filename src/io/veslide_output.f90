@@ -1,9 +1,11 @@
 !> The result file at the edge: provenance written into it, and its atomic publication.
 !>
-!> A run writes to `OUT.part-PID` and publishes it under `OUT` only when complete: with link(2)
-!> then unlink(2), which fails if `OUT` appeared meanwhile (so two runs never silently replace
-!> each other's result), or with rename(2) when overwriting was asked. A failed run removes its
-!> part file and leaves any earlier result untouched.
+!> A run takes its output with an advisory lock (`OUT.lock`: a second run on the same output is
+!> refused while the first lives), writes to `OUT.part` and publishes it under `OUT` only when
+!> complete: with link(2) then unlink(2), which fails if `OUT` appeared meanwhile (so two runs never
+!> silently replace each other's result), or with rename(2) when overwriting was asked. A failed
+!> run removes its part file and leaves any earlier result untouched; a killed study leaves its
+!> part file, from which the same command resumes.
 module veslide_output
     use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
     use veslide_kinds, only: dp, i8
@@ -11,9 +13,11 @@ module veslide_output
     use veslide_hdf5, only: h5file_t, hdf5_library_version
     use veslide_quantities, only: results_t
     use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
+    use veslide_system, only: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, lock_file, unlock_file, LOCK_BUSY
     implicit none
     private
-    public :: prepare_output, commit_output, discard_output, write_provenance, process_id, write_results, write_field
+    public :: prepare_output, release_output, commit_output, discard_output, write_provenance, process_id, &
+              write_results, write_field
 
     !> How a 2-D field is laid out, for readers in other languages
     character(len=*), parameter :: field_layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
@@ -43,30 +47,69 @@ contains
         pid = int(c_getpid())
     end function process_id
 
-    !> Check that the result can be written, before any work: refuses an existing file unless
-    !> `overwrite`, and creates (then removes) the temporary file it will write to
-    subroutine prepare_output(path, overwrite, tmp, error)
+    !> Check that the result can be written, before any work, and take the output: refuses an
+    !> existing file unless `overwrite` (and anything but a regular file always), and refuses while
+    !> another run holds the output's lock (`OUT.lock`, an advisory lock that dies with its process).
+    !> The run writes to `tmp` = `OUT.part`; a part file left by a killed run is kept (a study
+    !> resumes from it). `lock` is released by release_output.
+    subroutine prepare_output(path, overwrite, tmp, lock, error)
         character(len=*), intent(in) :: path
         logical, intent(in) :: overwrite
         character(len=:), allocatable, intent(out) :: tmp
+        !> the lock's descriptor (>= 0) while the output is taken
+        integer, intent(out) :: lock
         type(error_t), allocatable, intent(out) :: error
-        logical :: exists
         integer :: u, stat
         character(len=512) :: msg
-        character(len=16) :: pid
-        inquire (file=path, exist=exists)
-        if (exists .and. .not. overwrite) then
-            call fatal_error(error, "veslide: &output file '"//path//"' exists; "// &
-                "set &output overwrite = .true. or pass --overwrite to replace it"); return
+        lock = -1
+        select case (path_kind(path))
+        case (PATH_MISSING)
+        case (PATH_REGULAR)
+            if (.not. overwrite) then
+                call fatal_error(error, "veslide: &output file '"//path//"' exists; "// &
+                    "set &output overwrite = .true. or pass --overwrite to replace it"); return
+            end if
+        case (PATH_DIRECTORY)
+            call fatal_error(error, "veslide: &output file '"//path//"' is a directory; give a file name"); return
+        case default
+            call fatal_error(error, "veslide: &output file '"//path//"' exists and is not a regular file"// &
+                " (a FIFO, device or socket); veslide replaces only regular files"); return
+        end select
+        tmp = path//'.part'
+        if (path_kind(tmp) /= PATH_MISSING .and. path_kind(tmp) /= PATH_REGULAR) then
+            call fatal_error(error, "veslide: '"//tmp//"' (the output's part file) is not a regular file"); return
         end if
-        write (pid, '(i0)') process_id()
-        tmp = path//'.part-'//trim(pid)
-        open (newunit=u, file=tmp, status='replace', action='write', iostat=stat, iomsg=msg)
+        lock = lock_file(path//'.lock')
+        if (lock == LOCK_BUSY) then
+            call fatal_error(error, "veslide: another veslide run is writing &output file '"//path// &
+                "' (it holds '"//path//".lock'); wait for it or choose another output"); return
+        else if (lock < 0) then
+            call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: cannot create '"// &
+                             path//".lock' in its directory"); return
+        end if
+        if (path_kind(tmp) == PATH_MISSING) then
+            open (newunit=u, file=tmp, status='new', action='write', iostat=stat, iomsg=msg)
+            if (stat == 0) close (u, status='delete')
+        else
+            open (newunit=u, file=tmp, status='old', action='readwrite', iostat=stat, iomsg=msg)
+            if (stat == 0) close (u)
+        end if
         if (stat /= 0) then
+            call release_output(lock, path)
             call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: "//trim(msg)); return
         end if
-        close (u, status='delete')
     end subroutine prepare_output
+
+    !> Give the output back: the lock released and its file removed
+    subroutine release_output(lock, path)
+        integer, intent(inout) :: lock
+        character(len=*), intent(in) :: path
+        integer(c_int) :: stat
+        if (lock < 0) return
+        stat = c_unlink(path//'.lock'//c_null_char)
+        call unlock_file(lock)
+        lock = -1
+    end subroutine release_output
 
     !> Publish the finished temporary file under its final name: without replacing anything
     !> (link + unlink) unless `overwrite` (rename)
@@ -75,6 +118,10 @@ contains
         logical, intent(in) :: overwrite
         type(error_t), allocatable, intent(out) :: error
         integer(c_int) :: stat
+        if (path_kind(path) /= PATH_MISSING .and. path_kind(path) /= PATH_REGULAR) then
+            call fatal_error(error, "veslide: &output file '"//path//"' is no longer a regular file; the result"// &
+                " stays in '"//tmp//"'"); return
+        end if
         if (overwrite) then
             if (c_rename(tmp//c_null_char, path//c_null_char) /= 0) &
                 call fatal_error(error, "veslide: cannot rename '"//tmp//"' to '"//path//"'")

@@ -1,0 +1,90 @@
+!> The operating system, through a small C file (veslide_posix.c): the kind of a path, an
+!> advisory lock, SIGXFSZ made an ordinary write error, and the memory a process may use
+module veslide_system
+    use, intrinsic :: iso_c_binding, only: c_int, c_long_long, c_char, c_null_char
+    use veslide_kinds, only: i8
+    implicit none
+    private
+    public :: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, PATH_OTHER
+    public :: lock_file, unlock_file, LOCK_BUSY, ignore_file_size_signal
+    public :: available_memory_bytes, peak_memory_bytes, resident_memory_bytes, exit_now
+
+    integer, parameter :: PATH_MISSING = -1, PATH_REGULAR = 0, PATH_DIRECTORY = 1, PATH_OTHER = 2
+    !> lock_file's result when another process holds the lock
+    integer, parameter :: LOCK_BUSY = -2
+
+    interface
+        integer(c_int) function c_path_kind(path) bind(c, name='veslide_path_kind')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+        end function c_path_kind
+        integer(c_int) function c_lock(path) bind(c, name='veslide_lock')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+        end function c_lock
+        subroutine c_unlock(fd) bind(c, name='veslide_unlock')
+            import :: c_int
+            integer(c_int), value :: fd
+        end subroutine c_unlock
+        subroutine ignore_file_size_signal() bind(c, name='veslide_ignore_sigxfsz')
+        end subroutine ignore_file_size_signal
+        subroutine c_exit(status) bind(c, name='veslide_exit')
+            import :: c_int
+            integer(c_int), value :: status
+        end subroutine c_exit
+        integer(c_long_long) function c_available() bind(c, name='veslide_available_bytes')
+            import :: c_long_long
+        end function c_available
+        integer(c_long_long) function c_peak() bind(c, name='veslide_peak_rss_bytes')
+            import :: c_long_long
+        end function c_peak
+        integer(c_long_long) function c_rss() bind(c, name='veslide_rss_bytes')
+            import :: c_long_long
+        end function c_rss
+    end interface
+
+contains
+
+    !> End the process with `status` after flushing Fortran's units, without running the exit
+    !> handlers of libraries (a controlled exit after an I/O failure, whatever state HDF5 is in)
+    subroutine exit_now(status)
+        use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+        integer, intent(in) :: status
+        flush (output_unit); flush (error_unit)
+        call c_exit(int(status, c_int))
+    end subroutine exit_now
+
+    !> PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY or PATH_OTHER (FIFO, device, socket)
+    integer function path_kind(path) result(kind)
+        character(len=*), intent(in) :: path
+        kind = int(c_path_kind(path//c_null_char))
+    end function path_kind
+
+    !> An exclusive advisory lock on `path`, held until unlock_file or the end of the process:
+    !> a descriptor >= 0, LOCK_BUSY when another process holds it, -1 on another failure
+    integer function lock_file(path) result(fd)
+        character(len=*), intent(in) :: path
+        fd = int(c_lock(path//c_null_char))
+    end function lock_file
+
+    subroutine unlock_file(fd)
+        integer, intent(in) :: fd
+        call c_unlock(int(fd, c_int))
+    end subroutine unlock_file
+
+    !> Bytes the process may still allocate (machine, rlimits, cgroup); -1 when unknown
+    integer(i8) function available_memory_bytes() result(b)
+        b = int(c_available(), i8)
+    end function available_memory_bytes
+
+    !> Peak resident set size of the process so far [bytes]
+    integer(i8) function peak_memory_bytes() result(b)
+        b = int(c_peak(), i8)
+    end function peak_memory_bytes
+
+    !> Resident set size now [bytes]
+    integer(i8) function resident_memory_bytes() result(b)
+        b = int(c_rss(), i8)
+    end function resident_memory_bytes
+
+end module veslide_system

@@ -1,0 +1,62 @@
+!> The memory a case or a study will need, estimated before anything is allocated, so that a grid
+!> too large for the machine is refused in one line instead of failing at an allocation or in the
+!> out-of-memory killer.
+!>
+!> The estimate is the largest of the phases of a run, in bytes per grid cell (N = nx ny), plus a
+!> fixed allowance for the libraries, the FFTW plans and the output. Resident during a solve: the
+!> heights (8), the FFT buffers (16), the case's kernel (8), the contact problem's copy of the
+!> kernel and its heights (16), the solution p, u, g (24); then per solver: splitting 48 for its
+!> five fields (z, y, f, the transform of h, the resolvent) and 16 (m + 1) for Anderson with memory
+!> m; Polonsky-Keer 16 (t and one influence column). Surface generation is transient (16 for its
+!> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
+!> kernels hold 32 while they are summed. Analyses after the solve:
+!> slope force 8, patches 32, Persson 24. A study adds one kernel per speed (8 each), the previous
+!> speed's p and g (16) and the case's copies of heights and kernel (16).
+module veslide_memory
+    use veslide_kinds, only: dp, i8
+    use veslide_config, only: config_t
+    implicit none
+    private
+    public :: memory_estimate_bytes, format_gib
+
+    !> Libraries, FFTW plans, HDF5 buffers and the program itself [bytes]
+    integer(i8), parameter :: fixed_bytes = 16_i8*1024*1024
+
+contains
+
+    !> Peak memory of the case or study of `cfg` on its grid [bytes]
+    pure integer(i8) function memory_estimate_bytes(cfg) result(bytes)
+        type(config_t), intent(in) :: cfg
+        real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
+        n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
+        solve = 8 + 16 + 8 + 16 + 24
+        if (cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
+            size(cfg%sweep%speeds) == 0) .or. cfg%solver%method == 'pk') then
+            solver = 16
+        else
+            solver = 48 + 16*(cfg%solver%anderson_memory + 1)
+        end if
+        if (cfg%solver%method == 'auto' .and. size(cfg%sweep%speeds) > 0) &
+            solver = max(solver, 48 + 16*(cfg%solver%anderson_memory + 1.0_dp))
+        analysis = 8
+        if (cfg%analysis%patches) analysis = analysis + 32
+        if (cfg%analysis%persson) analysis = analysis + 24
+        kernel_build = 8 + 16
+        if (cfg%solver%kernel == 'collocation-alias' .or. cfg%solver%kernel == 'galerkin') kernel_build = 8 + 32
+        study = 0
+        if (cfg%sweep%is_study()) study = 8*max(1, size(cfg%sweep%speeds)) + 16 + 16
+        per_cell = solve + max(solver, analysis, kernel_build, 16.0_dp) + study
+        bytes = fixed_bytes + int(per_cell*n, i8)
+    end function memory_estimate_bytes
+
+    !> "12.34 GiB"
+    pure function format_gib(bytes) result(s)
+        integer(i8), intent(in) :: bytes
+        character(len=:), allocatable :: s
+        character(len=32) :: buf
+        write (buf, '(f0.2," GiB")') real(bytes, dp)/1024.0_dp**3
+        s = trim(buf)
+        if (s(1:1) == '.') s = '0'//s
+    end function format_gib
+
+end module veslide_memory
