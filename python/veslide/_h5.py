@@ -26,7 +26,7 @@ def open_file(path):
         return h5py.File(path, "r")
 
 
-def retry(fn, partial, attempts=40, pause=0.05):
+def retry(fn, partial, attempts=100, pause=0.05):
     """fn() once for a finished file; for a part file being written, again after a short pause
     when a read raced the writer's flush (a half-written group or table)."""
     if not partial:
