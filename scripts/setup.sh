@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install what veslide needs on Debian 12, idempotently: apt packages, then a project-local
-# Python venv (.venv) holding fpm and the post-processing packages. Fast when nothing is missing.
+# Python venv (.venv) holding fpm, the post-processing and test packages, and this checkout's
+# Python package (python/, editable). Fast when nothing is missing.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
@@ -18,12 +19,28 @@ if ((${#missing[@]})); then
     DEBIAN_FRONTEND=noninteractive $sudo_ apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-py_pkgs=(fpm==0.12.0 numpy h5py matplotlib)
+py_pkgs=(fpm==0.12.0 numpy h5py matplotlib pandas xarray f90nml pytest)
 if [ ! -x .venv/bin/python ]; then
     echo "veslide setup: creating .venv"
     /usr/bin/python3 -m venv .venv
 fi
-if ! .venv/bin/python -c "import numpy, h5py, matplotlib" 2>/dev/null || [ ! -x .venv/bin/fpm ]; then
+# One interpreter start, no imports (find_spec only): 0 all present, 1 packages missing,
+# 2 the Python package veslide missing or installed from another checkout (the venv may be shared).
+state=0
+.venv/bin/python - "$root/python" <<'PY' 2>/dev/null || state=$?
+import importlib.util, pathlib, sys
+if not all(importlib.util.find_spec(m) for m in ("numpy", "h5py", "matplotlib", "pandas", "xarray", "f90nml", "pytest")):
+    sys.exit(1)
+spec = importlib.util.find_spec("veslide")
+here = pathlib.Path(sys.argv[1]).resolve()
+sys.exit(0 if spec and spec.origin and pathlib.Path(spec.origin).resolve().parent.parent == here else 2)
+PY
+if [ "$state" = 1 ] || [ ! -x .venv/bin/fpm ]; then
     echo "veslide setup: installing ${py_pkgs[*]} into .venv"
     .venv/bin/pip install -q --disable-pip-version-check "${py_pkgs[@]}"
+    state=2
+fi
+if [ "$state" != 0 ]; then
+    echo "veslide setup: installing the Python package python/ (editable) into .venv"
+    .venv/bin/pip install -q --disable-pip-version-check --no-deps -e python
 fi

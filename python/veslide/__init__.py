@@ -1,0 +1,27 @@
+"""veslide from Python: run steady sliding contacts, read their HDF5 results, plot them.
+
+    import veslide
+    r = veslide.run({"grid": {"nx": 64, "ny": 64}, "motion": {"speed_m_s": 0.1}})
+    r.scalars["friction_coefficient"], r.fields.pressure_pa.sel(x=0.005, y=0.002, method="nearest")
+    s = veslide.read("study.h5"); s.summary, s.ensemble, s.cases[3].fields
+    veslide.read_running("study.h5")          # a study still being written (its part file)
+
+Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [iy, ix] in h5py).
+"""
+from .results import Arrays, Cases, Result, Scalars, read, read_running
+from .runner import ConvergenceWarning, InputError, VeslideError, find_executable, namelist, run, write_namelist
+from .topography import major_axis_deg, psd_2d, psd_radial, read_topography, slope_tensor, write_topography
+
+__version__ = "0.1.0"
+
+__all__ = ["read", "read_running", "run", "write_topography", "read_topography", "find_executable",
+           "namelist", "write_namelist", "psd_2d", "psd_radial", "slope_tensor", "major_axis_deg",
+           "Result", "Scalars", "Arrays", "Cases", "InputError", "VeslideError", "ConvergenceWarning"]
+
+
+def __getattr__(name):
+    # veslide.plot without importing matplotlib until it is used
+    if name == "plot":
+        import importlib
+        return importlib.import_module(".plot", __name__)
+    raise AttributeError("module 'veslide' has no attribute %r" % name)

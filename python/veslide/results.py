@@ -1,0 +1,286 @@
+"""Reading veslide results: a single case, a study, or a study still being written."""
+import glob
+from collections.abc import Mapping
+from pathlib import Path
+
+import f90nml
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from ._h5 import PART_RE, open_file, part_pid, pid_alive, published_name, python_value, retry, text
+
+FIELD_NAMES = ("height_m", "pressure_pa", "displacement_m", "gap_m")
+_LONG_NAMES = {"height_m": "height h", "pressure_pa": "pressure p", "displacement_m": "displacement w",
+               "gap_m": "gap g"}
+
+
+class Scalars(dict):
+    """The scalars of a case: name -> value (int or float), with `.units` (name -> unit string) and
+    `.attrs` (the attributes of the group, e.g. solver_method, kernel_variant)."""
+
+    def __init__(self, values=(), units=None, attrs=None):
+        super().__init__(values)
+        self.units = dict(units or {})
+        self.attrs = dict(attrs or {})
+
+
+class Arrays(dict):
+    """The datasets of a group (/anisotropy, /patches, /persson): name -> numpy array, with
+    `.units` and `.attrs` (name -> that dataset's other attributes, e.g. layout)."""
+
+    def __init__(self, values=(), units=None, attrs=None):
+        super().__init__(values)
+        self.units = dict(units or {})
+        self.attrs = dict(attrs or {})
+
+
+def _group_values(g, cls):
+    values, units, attrs = {}, {}, {}
+    for name, ds in g.items():
+        if not hasattr(ds, "dtype"):
+            continue
+        values[name] = python_value(ds[()])
+        a = {k: python_value(v) for k, v in ds.attrs.items()}
+        units[name] = a.pop("units", "")
+        if a:
+            attrs[name] = a
+    out = cls(values, units)
+    out.attrs = attrs if cls is Arrays else {k: python_value(v) for k, v in g.attrs.items()}
+    return out
+
+
+def _table(ds):
+    """A compound table (/summary, /ensemble) as a DataFrame; int64 columns stay int64, the
+    `units` attribute goes to df.attrs['units'] (column -> unit)."""
+    data = ds[()]
+    names = data.dtype.names
+    df = pd.DataFrame({n: np.asarray(data[n]) for n in names}, columns=list(names))
+    units = [text(u) for u in np.atleast_1d(ds.attrs.get("units", []))]
+    df.attrs["units"] = dict(zip(names, units)) if len(units) == len(names) else {}
+    return df
+
+
+def _fields(g, scalars):
+    """/fields as an xarray Dataset with dims (x, y): values[ix, iy], coordinates in metres."""
+    names = [n for n in FIELD_NAMES if n in g] + [n for n in g if n not in FIELD_NAMES]
+    first = g[names[0]]
+    ny, nx = first.shape
+    lx = scalars.get("length_x_m", 1.0)
+    ly = scalars.get("length_y_m", lx * ny / nx)
+    coords = {"x": ("x", np.arange(nx) * (lx / nx), {"units": "m", "long_name": "x"}),
+              "y": ("y", np.arange(ny) * (ly / ny), {"units": "m", "long_name": "y"})}
+    data = {}
+    for n in names:
+        ds = g[n]
+        attrs = {"units": text(ds.attrs.get("units", "")), "long_name": _LONG_NAMES.get(n, n)}
+        data[n] = (("x", "y"), np.ascontiguousarray(ds[()].T), attrs)   # file [iy, ix] -> [ix, iy]
+    return xr.Dataset(data, coords=coords, attrs={"length_x_m": lx, "length_y_m": ly, "nx": nx, "ny": ny})
+
+
+class Cases(Mapping):
+    """A study's cases, read when first asked for: case number -> Result of /cases/NNNNNN."""
+
+    def __init__(self, parent, numbers):
+        self._parent = parent
+        self._numbers = list(numbers)
+        self._cache = {}
+
+    def __getitem__(self, k):
+        k = int(k)
+        if k not in self._numbers:
+            raise KeyError(k)
+        if k not in self._cache:
+            self._cache[k] = Result(self._parent.path, group="/cases/%06d" % k, parent=self._parent)
+        return self._cache[k]
+
+    def __iter__(self):
+        return iter(self._numbers)
+
+    def __len__(self):
+        return len(self._numbers)
+
+    def __repr__(self):
+        if not self._numbers:
+            return "Cases()"
+        return "Cases(%d: %d..%d)" % (len(self._numbers), self._numbers[0], self._numbers[-1])
+
+
+class Result:
+    """A veslide result file (or one case group of a study), read with `veslide.read`.
+
+    Attributes read at once: `scalars`, `summary`, `ensemble`, `input`, `input_text`,
+    `provenance`, `anisotropy`, `patches`, `persson`, `parameters`; read when first used:
+    `fields`, `cases`. `partial` is True for a part file OUT.part-PID (a study being written or
+    interrupted), `running` when its writer was alive at reading time. `returncode`, `log` and
+    `stderr` are set by `veslide.run`."""
+
+    def __init__(self, path, group="/", parent=None):
+        self.path = Path(path)
+        self.group = group
+        self.parent = parent
+        pid = part_pid(self.path)
+        self.partial = pid is not None
+        self.running = self.partial and pid_alive(pid)
+        self.returncode = None
+        self.log = None
+        self.stderr = None
+        self._fields = None
+        self._cases = None
+        retry(self._load, self.partial)
+
+    # -- reading -----------------------------------------------------------------------------
+    def _open(self):
+        """The file, or, for a part file published meanwhile, the published one (the same data:
+        publication links the part file under its final name)."""
+        if not self.path.exists() and self.partial:
+            final = published_name(self.path)
+            if final is not None and final.exists():
+                return open_file(final)
+        return open_file(self.path)
+
+    def _load(self):
+        with self._open() as f:
+            if self.group not in f:
+                raise KeyError("%s: no group %s" % (self.path, self.group))
+            g = f[self.group]
+            self.scalars = _group_values(g["scalars"], Scalars) if "scalars" in g else None
+            self.anisotropy = _group_values(g["anisotropy"], Arrays) if "anisotropy" in g else None
+            self.patches = _group_values(g["patches"], Arrays) if "patches" in g else None
+            self.persson = _group_values(g["persson"], Arrays) if "persson" in g else None
+            self.has_fields = "fields" in g and len(g["fields"]) > 0
+            self.parameters = None
+            if "parameters" in g:
+                p = g["parameters"]
+                cols = [c.strip() for c in text(p.attrs.get("columns", "")).split(",")]
+                vals = p[()]
+                self.parameters = {c: (int(v) if c in ("case", "seed") else float(v)) for c, v in zip(cols, vals)}
+            self.summary = _table(g["summary"]) if "summary" in g else None
+            self.ensemble = _table(g["ensemble"]) if "ensemble" in g else None
+            numbers = sorted(int(k) for k in g["cases"]) if "cases" in g else []
+            if self.partial and self.summary is not None:
+                done = set(int(c) for c in self.summary["case"])   # a row is written after its case
+                numbers = [k for k in numbers if k in done]
+            elif self.partial:
+                numbers = []
+            self._case_numbers = numbers
+            self.is_study = "summary" in g or "cases" in g or (self.group == "/" and "seeds" in f.attrs)
+            if self.parent is None:
+                self.provenance = {k: python_value(v) for k, v in f.attrs.items()}
+                self.input_text = text(f["input/namelist"][()]) if "input/namelist" in f else None
+            else:
+                self.provenance = self.parent.provenance
+                self.input_text = self.parent.input_text
+        self.input = f90nml.reads(self.input_text) if self.input_text is not None else None
+
+    @property
+    def fields(self):
+        """The 2-D fields as an xarray Dataset (dims x, y; coordinates in metres; `units`
+        attributes), or None when the run wrote no fields. Values are indexed [ix, iy]:
+        `fields.pressure_pa.sel(x=..., y=...)`, `fields.height_m.values[ix, iy]`."""
+        if not self.has_fields:
+            return None
+        if self._fields is None:
+            def load():
+                with self._open() as f:
+                    return _fields(f[self.group]["fields"], self.scalars or {})
+            self._fields = retry(load, self.partial)
+        return self._fields
+
+    @property
+    def cases(self):
+        """A study's cases: a mapping case number (1-based, as /summary's `case`) -> Result,
+        each read when first accessed. Empty for a single case."""
+        if self._cases is None:
+            self._cases = Cases(self, self._case_numbers)
+        return self._cases
+
+    # -- convenience -------------------------------------------------------------------------
+    @property
+    def converged(self):
+        """A case: /scalars/converged == 1. A study: every /summary row converged (None before
+        the first row of a running study)."""
+        if self.scalars is not None and "converged" in self.scalars:
+            return bool(self.scalars["converged"])
+        if self.summary is not None and len(self.summary):
+            return bool((self.summary["converged"] == 1).all())
+        return None
+
+    @property
+    def residual(self):
+        """A case: its final residual. A study: the largest over its cases."""
+        if self.scalars is not None and "residual" in self.scalars:
+            return self.scalars["residual"]
+        if self.summary is not None and len(self.summary):
+            return float(self.summary["residual"].max())
+        return None
+
+    def refresh(self):
+        """Read the file again (for a running study: the rows and cases written since; once it
+        is published, the published file)."""
+        if self.parent is not None:
+            return Result(self.path, self.group, self.parent.refresh())
+        if self.partial and not self.path.exists():
+            final = published_name(self.path)
+            if final is not None and final.exists():
+                return Result(final)
+        return Result(self.path)
+
+    def __repr__(self):
+        what = "study" if self.is_study else "case"
+        bits = ["%s %s%s" % (what, self.path, "" if self.group == "/" else ":" + self.group)]
+        if self.partial:
+            bits.append("partial (writer %s)" % ("running" if self.running else "gone"))
+        if self.summary is not None:
+            bits.append("%d rows" % len(self.summary))
+        if self.scalars is not None:
+            for k in ("contact_area_fraction", "friction_coefficient"):
+                if k in self.scalars:
+                    bits.append("%s=%.6g" % (k, self.scalars[k]))
+        if self.converged is False:
+            bits.append("NOT CONVERGED (residual %.3g)" % self.residual)
+        return "<veslide.Result %s>" % ", ".join(bits)
+
+
+def read(path):
+    """Read a veslide HDF5 result (a case, a study, or a part file OUT.part-PID of a study that
+    is running or was interrupted) into a `Result`."""
+    path = Path(path)
+    if not path.exists():
+        parts = _part_files(path)
+        hint = (" (a running study writes %s: use veslide.read_running(%r))" % (parts[-1].name, str(path))
+                if parts else "")
+        raise FileNotFoundError("%s: no such file%s" % (path, hint))
+    return Result(path)
+
+
+def _part_files(path):
+    path = Path(path)
+    found = [p for p in path.parent.glob(glob.escape(path.name) + ".part-*")
+             if PART_RE.match(p.name) and PART_RE.match(p.name).group("final") == path.name]
+    def mtime(p):
+        try:
+            return p.stat().st_mtime
+        except FileNotFoundError:
+            return 0.0
+    return sorted(found, key=mtime)
+
+
+def read_running(path):
+    """Read a study that may still be running: `path` is its final name OUT (as in &output file
+    or --output). Reads OUT.part-PID while the study runs (the one whose writer is alive, else the
+    newest: an interrupted study), and OUT once it has been published. The Result has
+    `partial` (read from a part file) and `running` (its writer alive); `refresh()` re-reads."""
+    path = Path(path)
+    if part_pid(path) is not None:
+        return read(path)
+    parts = _part_files(path)
+    alive = [p for p in parts if pid_alive(part_pid(p))]
+    for p in reversed(alive or parts):
+        try:
+            return Result(p)
+        except FileNotFoundError:    # published (or removed) between the listing and the read
+            continue
+    if path.exists():
+        return Result(path)
+    raise FileNotFoundError("%s: no such file and no %s.part-PID" % (path, path.name))

@@ -1,0 +1,136 @@
+"""Height files for `&surface kind='file'`, and the spectral measures of a surface (PSD, slope
+tensor). Heights are indexed [ix, iy] throughout (numpy's and SurfaceTopography's order)."""
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from ._h5 import open_file
+
+LAYOUT = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
+
+
+def _as_xy(heights):
+    """heights as a float64 array indexed [ix, iy]; an xarray DataArray is put in (x, y) order by
+    its dimension names, so that a (y, x) array cannot be written transposed."""
+    dims = getattr(heights, "dims", None)
+    if dims is not None and set(dims) == {"x", "y"}:
+        heights = heights.transpose("x", "y")
+    elif dims is not None and len(dims) == 2 and not isinstance(heights, np.ndarray):
+        raise ValueError("heights has dimensions %s: name them x and y (or pass a numpy array "
+                         "indexed [ix, iy])" % (tuple(dims),))
+    h = np.asarray(getattr(heights, "values", heights), dtype=np.float64)
+    if h.ndim != 2:
+        raise ValueError("heights must be a 2-D array indexed [ix, iy], got %d dimensions" % h.ndim)
+    return h
+
+
+def write_topography(path, heights, length_m, dataset="/height_m", *, overwrite=False):
+    """Write heights [m] for `&surface kind='file', file=path, dataset=dataset`.
+
+    heights   2-D, indexed [ix, iy] (x first; an xarray DataArray with dims x and y in any order);
+              square (the solver reads square grids).
+    length_m  the cell side [m], stored as the dataset's attribute `length_m` (the solver uses it
+              unless &grid lx_m is set).
+    The solver reads a Fortran (nx, ny) array h(ix, iy): HDF5 stores it with dims (ny, nx), so the
+    array written by h5py is the transpose, heights.T, with a `layout` attribute saying so.
+    The file is created or appended to; an existing dataset is replaced only with overwrite=True."""
+    h = _as_xy(heights)
+    nx, ny = h.shape
+    if nx != ny or nx < 2:
+        raise ValueError("heights must be square (the solver reads nx = ny >= 2), got %d x %d" % (nx, ny))
+    if not np.all(np.isfinite(h)):
+        raise ValueError("heights contain NaN or infinite values")
+    length_m = float(length_m)
+    if not (length_m > 0 and np.isfinite(length_m)):
+        raise ValueError("length_m must be > 0, got %r" % length_m)
+    path = Path(path)
+    with h5py.File(path, "a") as f:
+        if dataset in f:
+            if not overwrite:
+                raise FileExistsError("%s: dataset %s exists (overwrite=True replaces it)" % (path, dataset))
+            del f[dataset]
+        ds = f.create_dataset(dataset, data=np.ascontiguousarray(h.T))   # [iy, ix] on disk
+        ds.attrs["length_m"] = length_m
+        ds.attrs["units"] = "m"
+        ds.attrs["layout"] = LAYOUT
+    return path
+
+
+def read_topography(path, dataset="/height_m"):
+    """(heights indexed [ix, iy], length_m or None) from a height file as the solver reads it."""
+    with open_file(path) as f:
+        ds = f[dataset]
+        h = np.ascontiguousarray(ds[()].T)
+        length = ds.attrs.get("length_m")
+    return h, (float(length) if length is not None else None)
+
+
+def _heights_and_sizes(heights, length_x_m, length_y_m):
+    h = _as_xy(heights)
+    nx, ny = h.shape
+    lx = float(length_x_m)
+    ly = float(length_y_m) if length_y_m is not None else lx * ny / nx
+    return h, lx, ly
+
+
+def _wavevectors(nx, ny, lx, ly):
+    qx = 2 * np.pi * np.fft.fftfreq(nx, d=lx / nx)
+    qy = 2 * np.pi * np.fft.fftfreq(ny, d=ly / ny)
+    return qx, qy
+
+
+def psd_2d(heights, length_x_m, length_y_m=None):
+    """(qx [1/m], qy [1/m], C [m^4]) with C[ix, iy] the 2-D power spectral density of the heights
+    [ix, iy] in the normalisation <h^2> = sum C(q) dq^2 (dq^2 = (2 pi)^2 / (Lx Ly)), i.e.
+    C(q) = Lx Ly / (2 pi)^2 |h_q|^2 with h_q = fft(h)/N. Arrays in fft order (np.fft.fftshift to plot)."""
+    h, lx, ly = _heights_and_sizes(heights, length_x_m, length_y_m)
+    nx, ny = h.shape
+    hq = np.fft.fft2(h) / (nx * ny)
+    qx, qy = _wavevectors(nx, ny, lx, ly)
+    return qx, qy, lx * ly / (2 * np.pi) ** 2 * np.abs(hq) ** 2
+
+
+def psd_radial(heights, length_x_m, length_y_m=None):
+    """(q [1/m], C(q) [m^4]): the 2-D PSD averaged over shells of width q0 = 2 pi/max(Lx, Ly)
+    centred on multiples of q0 (q = 0 excluded; empty shells dropped)."""
+    qx, qy, c = psd_2d(heights, length_x_m, length_y_m)
+    q = np.hypot(*np.meshgrid(qx, qy, indexing="ij"))
+    h, lx, ly = _heights_and_sizes(heights, length_x_m, length_y_m)
+    q0 = 2 * np.pi / max(lx, ly)
+    shell = np.rint(q / q0).astype(int).ravel()
+    counts = np.bincount(shell)
+    sums = np.bincount(shell, weights=c.ravel())
+    k = np.nonzero(counts)[0]
+    k = k[k > 0]
+    return k * q0, sums[k] / counts[k]
+
+
+def slope_tensor(heights, length_x_m, length_y_m=None, q_min=None, q_max=None):
+    """The slope tensor M_ij = <d_i h d_j h> (2 x 2) of heights [ix, iy] from their spectrum,
+    optionally over the band q_min <= |q| <= q_max [1/m]; Nyquist lines carry no slope (as in the
+    solver). Its major axis: 0.5 * atan2(2 M_xy, M_xx - M_yy)."""
+    qx, qy, c = psd_2d(heights, length_x_m, length_y_m)
+    h, lx, ly = _heights_and_sizes(heights, length_x_m, length_y_m)
+    nx, ny = h.shape
+    kx, ky = np.meshgrid(qx, qy, indexing="ij")
+    if nx % 2 == 0:
+        kx[nx // 2, :] = 0.0
+    if ny % 2 == 0:
+        ky[:, ny // 2] = 0.0
+    w = c * (2 * np.pi) ** 2 / (lx * ly)     # |h_q|^2
+    q = np.hypot(*np.meshgrid(qx, qy, indexing="ij"))
+    band = np.ones_like(q, dtype=bool)
+    if q_min is not None:
+        band &= q >= q_min * (1 - 1e-12)
+    if q_max is not None:
+        band &= q <= q_max * (1 + 1e-12)
+    w = np.where(band, w, 0.0)
+    mxx, myy, mxy = (w * kx * kx).sum(), (w * ky * ky).sum(), (w * kx * ky).sum()
+    return np.array([[mxx, mxy], [mxy, myy]])
+
+
+def major_axis_deg(tensor):
+    """Direction [deg, 0..180) of the major axis of a symmetric 2 x 2 tensor."""
+    t = np.asarray(tensor)
+    return np.degrees(0.5 * np.arctan2(2 * t[0, 1], t[0, 0] - t[1, 1])) % 180.0
