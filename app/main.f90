@@ -67,13 +67,17 @@ program veslide_main
     if (cfg%sweep%is_study()) then
         block
             integer :: nfail
+            logical :: resuming
+            ! a part file left by a killed run of this study is resumed, and kept if this run fails
+            inquire (file=tmp, exist=resuming)
             if (quiet) then
                 call run_study(cfg, tmp, nfail, error)
             else
                 call run_study(cfg, tmp, nfail, error, progress=print_progress)
             end if
             if (allocated(error)) then
-                call discard_output(tmp); call die(error%message)
+                if (.not. resuming) call discard_output(tmp)
+                call die(error%message)
             end if
             call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
             if (allocated(error)) call die(error%message)

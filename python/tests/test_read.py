@@ -129,6 +129,6 @@ def test_cases_are_read_lazily_and_match_the_summary(study):
 
 
 def test_missing_file_names_the_running_reader(tmp_path):
-    (tmp_path / "s.h5.part-12345").write_bytes(b"")
+    (tmp_path / "s.h5.part").write_bytes(b"")
     with pytest.raises(FileNotFoundError, match="read_running"):
         veslide.read(tmp_path / "s.h5")

@@ -7,8 +7,9 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-# OUT.part-PID: the file a running (or interrupted) run writes before publishing it as OUT
-PART_RE = re.compile(r"^(?P<final>.+)\.part-(?P<pid>\d+)$")
+# OUT.part: the file a running (or interrupted) run writes before publishing it as OUT; the
+# writer holds an advisory lock on OUT.lock for as long as it lives
+PART_RE = re.compile(r"^(?P<final>.+)\.part$")
 
 
 def open_file(path):
@@ -42,25 +43,27 @@ def retry(fn, partial, attempts=100, pause=0.05):
             time.sleep(pause)
 
 
-def pid_alive(pid):
+def writer_alive(final):
+    """Is a veslide run writing the output `final` now? (it holds the lock on `final`.lock)"""
+    import fcntl
+    lock = Path(str(final) + ".lock")
     try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
+        fd = os.open(lock, os.O_RDONLY)
+    except FileNotFoundError:
         return False
-    except PermissionError:
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+    except BlockingIOError:
         return True
-    return True
+    finally:
+        os.close(fd)
+    return False
 
 
 def published_name(path):
-    """OUT for OUT.part-PID, else None."""
+    """OUT for OUT.part, else None."""
     m = PART_RE.match(str(path))
     return Path(m.group("final")) if m else None
-
-
-def part_pid(path):
-    m = PART_RE.match(str(path))
-    return int(m.group("pid")) if m else None
 
 
 def text(value):

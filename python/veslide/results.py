@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ._h5 import PART_RE, open_file, part_pid, pid_alive, published_name, python_value, retry, text
+from ._h5 import open_file, published_name, python_value, retry, text, writer_alive
 
 FIELD_NAMES = ("height_m", "pressure_pa", "displacement_m", "gap_m")
 _LONG_NAMES = {"height_m": "height h", "pressure_pa": "pressure p", "displacement_m": "displacement w",
@@ -111,7 +111,7 @@ class Result:
 
     Attributes read at once: `scalars`, `summary`, `ensemble`, `input`, `input_text`,
     `provenance`, `anisotropy`, `patches`, `persson`, `parameters`; read when first used:
-    `fields`, `cases`. `partial` is True for a part file OUT.part-PID (a study being written or
+    `fields`, `cases`. `partial` is True for a part file OUT.part (a study being written or
     interrupted), `running` when its writer was alive at reading time. `returncode`, `log` and
     `stderr` are set by `veslide.run`."""
 
@@ -119,9 +119,9 @@ class Result:
         self.path = Path(path)
         self.group = group
         self.parent = parent
-        pid = part_pid(self.path)
-        self.partial = pid is not None
-        self.running = self.partial and pid_alive(pid)
+        final = published_name(self.path)
+        self.partial = final is not None
+        self.running = self.partial and writer_alive(final)
         self.returncode = None
         self.log = None
         self.stderr = None
@@ -243,7 +243,7 @@ class Result:
 
 
 def read(path):
-    """Read a veslide HDF5 result (a case, a study, or a part file OUT.part-PID of a study that
+    """Read a veslide HDF5 result (a case, a study, or a part file OUT.part of a study that
     is running or was interrupted) into a `Result`."""
     path = Path(path)
     if not path.exists():
@@ -255,32 +255,23 @@ def read(path):
 
 
 def _part_files(path):
-    path = Path(path)
-    found = [p for p in path.parent.glob(glob.escape(path.name) + ".part-*")
-             if PART_RE.match(p.name) and PART_RE.match(p.name).group("final") == path.name]
-    def mtime(p):
-        try:
-            return p.stat().st_mtime
-        except FileNotFoundError:
-            return 0.0
-    return sorted(found, key=mtime)
+    part = Path(str(path) + ".part")
+    return [part] if part.exists() else []
 
 
 def read_running(path):
     """Read a study that may still be running: `path` is its final name OUT (as in &output file
-    or --output). Reads OUT.part-PID while the study runs (the one whose writer is alive, else the
-    newest: an interrupted study), and OUT once it has been published. The Result has
-    `partial` (read from a part file) and `running` (its writer alive); `refresh()` re-reads."""
+    or --output). Reads OUT.part while the study runs (or after it was interrupted: the same
+    command resumes it), and OUT once it has been published. The Result has `partial` (read from
+    the part file) and `running` (a veslide run holds OUT.lock); `refresh()` re-reads."""
     path = Path(path)
-    if part_pid(path) is not None:
+    if published_name(path) is not None:
         return read(path)
-    parts = _part_files(path)
-    alive = [p for p in parts if pid_alive(part_pid(p))]
-    for p in reversed(alive or parts):
+    for p in _part_files(path):
         try:
             return Result(p)
         except FileNotFoundError:    # published (or removed) between the listing and the read
-            continue
+            pass
     if path.exists():
         return Result(path)
-    raise FileNotFoundError("%s: no such file and no %s.part-PID" % (path, path.name))
+    raise FileNotFoundError("%s: no such file and no %s.part" % (path, path.name))

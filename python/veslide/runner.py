@@ -134,7 +134,7 @@ def run(params, output=None, threads=None, exe=None, *, overwrite=False, quiet=F
     Exit status 1 raises `InputError` with the program's one-line message; exit status 2 (not
     converged) returns the result with `result.converged` False, `result.residual`, and issues a
     `ConvergenceWarning`. An interrupt (KeyboardInterrupt) stops the program; a study leaves its
-    part file OUT.part-PID with the finished cases (`veslide.read_running(OUT)`)."""
+    part file OUT.part with the finished cases (`veslide.read_running(OUT)`)."""
     program = find_executable(exe)
     scratch = None
     if isinstance(params, (str, os.PathLike)):

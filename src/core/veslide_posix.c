@@ -117,12 +117,26 @@ long long veslide_available_bytes(void)
     return avail;
 }
 
-/* Peak resident set size of this process so far [bytes] */
+/* Peak resident set size of this process so far [bytes]: VmHWM of /proc/self/status, the
+ * high-water mark of this program's own address space (getrusage's ru_maxrss also keeps the
+ * peak of the process before exec, e.g. of a large Python parent that started this program) */
 long long veslide_peak_rss_bytes(void)
 {
-    struct rusage ru;
-    if (getrusage(RUSAGE_SELF, &ru) != 0) return -1;
-    return (long long)ru.ru_maxrss * 1024;     /* Linux reports kilobytes */
+    char line[256];
+    long long kb = -1;
+    FILE *f = fopen("/proc/self/status", "r");
+    if (f) {
+        while (fgets(line, sizeof line, f)) {
+            if (sscanf(line, "VmHWM: %lld kB", &kb) == 1) break;
+        }
+        fclose(f);
+    }
+    if (kb < 0) {
+        struct rusage ru;
+        if (getrusage(RUSAGE_SELF, &ru) != 0) return -1;
+        kb = ru.ru_maxrss;
+    }
+    return kb * 1024;
 }
 
 /* Resident set size now [bytes] */
