@@ -60,7 +60,7 @@ contains
                 call fatal_error(error, "no units on "//trim(paths(k))); return
             end if
         end do
-        call f%read_r0('/scalars/contact_area_fraction', a, error); if (allocated(error)) return
+        call f%read_r0('/scalars/contact_area_fraction_cells', a, error); if (allocated(error)) return
         call f%read_i0('/scalars/iterations', its, error); if (allocated(error)) return
         call f%close()
         open (newunit=u, file=out); close (u, status='delete')

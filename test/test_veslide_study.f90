@@ -81,7 +81,7 @@ contains
         if (allocated(error)) return
         call check(error, is_int(1) .and. is_int(2) .and. .not. is_int(3), "case and seed are integer columns")
         if (allocated(error)) return
-        jf = findloc(columns, 'friction_coefficient', dim=1); ja = findloc(columns, 'contact_area_fraction', dim=1)
+        jf = findloc(columns, 'friction_coefficient', dim=1); ja = findloc(columns, 'contact_area_fraction_cells', dim=1)
         worst = 0
         do k = 1, 12, 5
             fric = transfer(rows(jf, k), 0.0_dp); area = transfer(rows(ja, k), 0.0_dp)

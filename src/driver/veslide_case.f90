@@ -17,7 +17,7 @@ module veslide_case
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
     use veslide_solver_options, only: solver_options_t, solver_method_id
     use veslide_solver, only: solve_contact
-    use veslide_analysis, only: contact_area_fraction, mean_separation, slope_force
+    use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation, slope_force
     use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta, patch_stats_t, contact_patches, percolates
     use veslide_quantities, only: results_t, add_force_quantities, add_solver_quantities
     use veslide_topography, only: read_topography, topography_shape
@@ -293,7 +293,8 @@ contains
         type(results_t), intent(out) :: r
         real(dp) :: along, across, d
         integer :: j
-        call r%add('contact_area_fraction', contact_area_fraction(c%state%p), '-')
+        call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g), '-')
+        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p), '-')
         call r%add('mean_separation_m', mean_separation(c%state%g), 'm')
         call r%add('rms_height_m', rms_height(c%h), 'm')
         call r%add('max_pressure_pa', maxval(c%state%p), 'Pa')
