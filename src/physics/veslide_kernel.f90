@@ -291,10 +291,16 @@ contains
     subroutine kernel_apply_buffer(self, fft)
         class(kernel_t), intent(in) :: self
         type(fft2d_t), intent(inout) :: fft
-        real(dp) :: n
-        n = self%grid%cells()
+        real(dp) :: inv_n
+        integer :: i, j
+        inv_n = 1.0_dp/self%grid%cells()
         call fft%forward()
-        fft%k = fft%k*(self%kd/n)
+        ! one fused pass (an array expression here made a temporary of K_d/N on every call)
+        do j = 1, size(fft%k, 2)
+            do i = 1, size(fft%k, 1)
+                fft%k(i, j) = fft%k(i, j)*(self%kd(i, j)*inv_n)
+            end do
+        end do
         call fft%backward_unscaled()
     end subroutine kernel_apply_buffer
 
