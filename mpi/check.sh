@@ -16,6 +16,11 @@ cat > "$work/study.nml" <<NML
 &output file = '$work/mpi.h5', fields = .false. /
 NML
 sed "s#$work/mpi.h5#$work/serial.h5#" "$work/study.nml" > "$work/serial.nml"
+# the distributed grid: FFTW's MPI transforms, halos, ordered sums on 1 to 4 ranks (uneven shares)
+mpirun_=(mpirun --oversubscribe); [ "$(id -u)" -eq 0 ] && mpirun_+=(--allow-run-as-root)
+for np in 1 2 3 4; do
+    OMP_NUM_THREADS=1 bash "$root/mpi/build.sh" test --runner "${mpirun_[*]} -n $np" 2>&1 | grep -E "FAIL|checks on"
+done
 (cd "$root" && fpm build --profile release >/dev/null)
 serial=$(cd "$root" && fpm run --profile release veslide --runner echo 2>/dev/null | tail -1)
 (cd "$root" && OMP_NUM_THREADS=1 "$serial" "$work/serial.nml" --quiet)

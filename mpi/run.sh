@@ -9,8 +9,7 @@ np=2
 if [ "${1:-}" = "-n" ]; then np=$2; shift 2; fi
 [ $# -ge 1 ] || { echo "usage: bash mpi/run.sh [-n N] STUDY.nml [--overwrite] [--quiet]" >&2; exit 2; }
 nml=$(realpath "$1"); shift
-(cd "$root/mpi" && fpm build --profile release --compiler mpif90 >/dev/null)
-exe=$(cd "$root/mpi" && fpm run --profile release --compiler mpif90 --runner echo 2>/dev/null | tail -1)
+exe=$(bash "$root/mpi/build.sh")
 extra=()
 [ "$(id -u)" -eq 0 ] && extra=(--allow-run-as-root)
-OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} exec mpirun "${extra[@]}" --oversubscribe -n "$np" "$root/mpi/$exe" "$nml" "$@"
+OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} exec mpirun "${extra[@]}" --oversubscribe -n "$np" "$exe" "$nml" "$@"

@@ -7,7 +7,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
 apt_pkgs=(gfortran pkg-config make bc libfftw3-dev liblapack-dev libblas-dev libhdf5-dev hdf5-tools
-          libopenmpi-dev openmpi-bin python3-venv)
+          libopenmpi-dev openmpi-bin libfftw3-mpi-dev libhdf5-openmpi-dev python3-venv)
 missing=()
 for p in "${apt_pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -17,6 +17,16 @@ if ((${#missing[@]})); then
     sudo_=""; [ "$(id -u)" -ne 0 ] && sudo_="sudo"
     $sudo_ apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo_ apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# Installing the parallel HDF5 points Debian's pkg-config alias 'hdf5' at it (alternatives, auto mode);
+# the serial build resolves HDF5 through that alias, so it is pinned to the serial library (the
+# MPI build names the parallel one itself, mpi/pkgconfig). Only when it is not pinned already.
+serial_pc=/usr/lib/x86_64-linux-gnu/pkgconfig/hdf5-serial.pc
+if [ -e "$serial_pc" ] && [ "$(readlink -f /usr/lib/x86_64-linux-gnu/pkgconfig/hdf5.pc)" != "$serial_pc" ]; then
+    echo "veslide setup: pointing pkg-config's 'hdf5' at the serial HDF5 (update-alternatives)"
+    sudo_=""; [ "$(id -u)" -ne 0 ] && sudo_="sudo"
+    $sudo_ update-alternatives --quiet --set hdf5.pc "$serial_pc"
 fi
 
 py_pkgs=(fpm==0.12.0 numpy h5py matplotlib pandas xarray f90nml pytest)

@@ -1,28 +1,44 @@
-!> Two-dimensional real FFTs through FFTW 3's Fortran 2003 interface.
+!> Two-dimensional real FFTs through FFTW 3's Fortran 2003 interface, serial or distributed.
 !>
 !> One `fft2d_t` owns FFTW-aligned buffers `x` (nx, ny) and `k` (nx/2+1, ny) and the two plans
 !> between them, made once and reused. `forward` is x -> k, `backward` is k -> x divided by nx*ny,
 !> so backward(forward(x)) = x. Never assign an `fft2d_t`: the copy would share, then free, C memory.
+!>
+!> On a distributed grid (`distribute_grid`, the MPI build) the transforms are FFTW's MPI ones:
+!> `x` holds the process's rows (nx, ny_local) and `k` its half-spectrum rows in FFTW's transposed
+!> layout (ny, nq_local), so a Fourier multiplier costs one global transpose per transform; the
+!> transforms run in place in a padded buffer of their own, `x` is copied in and out of it.
 module veslide_fftw
     use, intrinsic :: iso_c_binding
     use veslide_error, only: error_t, fatal_error
     use veslide_strings, only: c_strlen
+    use veslide_grid, only: grid_t
+#ifdef VESLIDE_MPI
+    use mpi_f08, only: MPI_Comm, MPI_Comm_rank, MPI_Comm_size, MPI_Allgather, MPI_INTEGER
+#endif
     implicit none
     private
+#ifdef VESLIDE_MPI
+#include "fftw3-mpi.f03"
+#else
 #include "fftw3.f03"
-    public :: fft2d_t, fft_planner_flag, fft_planner_names
+#endif
+    public :: fft2d_t, fft_planner_flag, fft_planner_names, distribute_grid
 
     !> FFTW planner rigour by name (the namelist's `&solver fft_planner`)
     character(len=*), parameter :: fft_planner_names(3) = [character(len=8) :: 'estimate', 'measure', 'patient']
 
     type :: fft2d_t
         integer :: nx = 0, ny = 0
+        logical :: distributed = .false.       !! FFTW's MPI transforms on a distributed grid
         type(c_ptr), private :: plan_r2c = c_null_ptr, plan_c2r = c_null_ptr
         type(c_ptr), private :: p_x = c_null_ptr, p_k = c_null_ptr
-        !> real-space buffer, (nx, ny), FFTW-aligned
+        !> real-space buffer, (nx, ny) (distributed: (nx, ny_local)), FFTW-aligned
         real(c_double), pointer :: x(:, :) => null()
-        !> half-spectrum buffer, (nx/2+1, ny), FFTW-aligned
+        !> half-spectrum buffer, (nx/2+1, ny) (distributed: (ny, nq_local)), FFTW-aligned
         complex(c_double_complex), pointer :: k(:, :) => null()
+        !> distributed: the padded real view (2 (nx/2+1), ny_local) of the in-place buffer
+        real(c_double), pointer, private :: xr(:, :) => null()
     contains
         procedure :: init => fft_init
         procedure :: forward => fft_forward
@@ -32,7 +48,7 @@ module veslide_fftw
         final :: fft_finalize
     end type fft2d_t
 
-    logical, save :: threads_ready = .false.
+    logical, save :: threads_ready = .false., mpi_ready = .false.
 
     interface
         subroutine c_free(p) bind(c, name='free')
@@ -57,7 +73,9 @@ contains
     !> `isolated` plans FFTW_ESTIMATE without the process's accumulated wisdom (and leaves that
     !> wisdom as it was): a one-off transform whose rounding is the same in every run, whatever
     !> other plans the process made before (used by the surface generator).
-    subroutine fft_init(self, nx, ny, error, planner, nthreads, isolated)
+    !> Allocate buffers and plan both transforms (buffers are overwritten by planning); with a
+    !> distributed `grid`, FFTW's MPI transforms over its processes (collective)
+    subroutine fft_init(self, nx, ny, error, planner, nthreads, isolated, grid)
         class(fft2d_t), intent(inout) :: self
         !> grid size
         integer, intent(in) :: nx, ny
@@ -69,6 +87,8 @@ contains
         integer, intent(in), optional :: nthreads
         !> plan FFTW_ESTIMATE on one thread, ignoring wisdom (default .false.)
         logical, intent(in), optional :: isolated
+        !> the grid, when it may be distributed
+        type(grid_t), intent(in), optional :: grid
         integer :: flag, nthreads_
         logical :: isolated_
         type(c_ptr) :: saved
@@ -78,6 +98,11 @@ contains
         call self%destroy()
         if (nx < 1 .or. ny < 1) then
             call fatal_error(error, "veslide:fftw:init: grid size must be positive"); return
+        end if
+        if (present(grid)) then
+            if (grid%is_distributed()) then
+                call init_distributed(); return
+            end if
         end if
         flag = FFTW_MEASURE
         if (present(planner)) flag = fft_planner_flag(planner)
@@ -123,24 +148,127 @@ contains
         end if
         self%x = 0.0_c_double
         self%k = (0.0_c_double, 0.0_c_double)
+
+    contains
+
+        subroutine init_distributed()
+#ifdef VESLIDE_MPI
+            integer(c_intptr_t) :: alloc, ln0, l0s, ln1, l1s, n0, n1
+            integer :: nq
+            complex(c_double_complex), pointer :: kt(:, :)
+            flag = FFTW_MEASURE
+            if (present(planner)) flag = fft_planner_flag(planner)
+            isolated_ = .false.; if (present(isolated)) isolated_ = isolated
+            if (isolated_) flag = FFTW_ESTIMATE
+            nq = nx/2 + 1
+            n0 = ny; n1 = nq
+            alloc = fftw_mpi_local_size_2d_transposed(n0, n1, int(grid%comm, c_int32_t), ln0, l0s, ln1, l1s)
+            if (ln0 /= grid%ny_local .or. l0s /= grid%j0 .or. ln1 /= grid%nq_local .or. l1s /= grid%i0) then
+                call fatal_error(error, "veslide:fftw:init: the grid was distributed for another communicator"); return
+            end if
+            self%distributed = .true.
+            self%nx = nx; self%ny = ny
+            self%p_k = fftw_alloc_complex(max(alloc, 1_c_intptr_t))
+            self%p_x = fftw_alloc_real(max(1_c_size_t, int(nx, c_size_t)*int(ln0, c_size_t)))
+            if (.not. (c_associated(self%p_x) .and. c_associated(self%p_k))) then
+                call fatal_error(error, "veslide:fftw:init: cannot allocate FFT buffers"); return
+            end if
+            call c_f_pointer(self%p_x, self%x, [nx, int(ln0)])
+            call c_f_pointer(self%p_k, self%xr, [2*nq, int(ln0)])
+            call c_f_pointer(self%p_k, kt, [ny, int(ln1)])
+            self%k => kt
+            if (isolated_) then
+                saved = fftw_export_wisdom_to_string()
+                call fftw_forget_wisdom()
+            end if
+            self%plan_r2c = fftw_mpi_plan_dft_r2c_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), self%xr, kt, &
+                                                     int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_OUT))
+            self%plan_c2r = fftw_mpi_plan_dft_c2r_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), kt, self%xr, &
+                                                     int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_IN))
+            if (isolated_) then
+                call fftw_forget_wisdom()
+                if (c_associated(saved)) then
+                    call c_f_pointer(saved, chars, [c_strlen(saved) + 1])
+                    stat = fftw_import_wisdom_from_string(chars)
+                    call c_free(saved)
+                end if
+            end if
+            if (.not. (c_associated(self%plan_r2c) .and. c_associated(self%plan_c2r))) then
+                call fatal_error(error, "veslide:fftw:init: FFTW returned a null MPI plan"); return
+            end if
+            self%x = 0.0_c_double
+            self%xr = 0.0_c_double
+#else
+            call fatal_error(error, "veslide:fftw:init: a distributed grid needs the MPI build (mpi/)")
+#endif
+        end subroutine init_distributed
+
     end subroutine fft_init
+
+    !> Share `grid` among the processes of the MPI communicator `comm` (a Fortran handle), with
+    !> FFTW's slab decomposition: rows of real fields, transposed half-spectrum rows (collective)
+    subroutine distribute_grid(grid, comm, error)
+        type(grid_t), intent(inout) :: grid
+        integer, intent(in) :: comm
+        type(error_t), allocatable, intent(out) :: error
+#ifdef VESLIDE_MPI
+        integer(c_intptr_t) :: alloc, ln0, l0s, ln1, l1s
+        integer :: mine(2), ierr
+        integer, allocatable :: all(:, :)
+        type(MPI_Comm) :: c
+        if (.not. mpi_ready) then
+            call fftw_mpi_init()
+            mpi_ready = .true.
+        end if
+        c%MPI_VAL = comm
+        alloc = fftw_mpi_local_size_2d_transposed(int(grid%ny, c_intptr_t), int(grid%nx/2 + 1, c_intptr_t), &
+                                                  int(comm, c_int32_t), ln0, l0s, ln1, l1s)
+        grid%comm = comm
+        call MPI_Comm_rank(c, grid%rank, ierr)
+        call MPI_Comm_size(c, grid%ranks, ierr)
+        grid%j0 = int(l0s); grid%ny_local = int(ln0)
+        grid%transposed = .true.
+        grid%i0 = int(l1s); grid%nq_local = int(ln1)
+        mine = [grid%ny_local, grid%nq_local]
+        allocate (all(2, grid%ranks))
+        call MPI_Allgather(mine, 2, MPI_INTEGER, all, 2, MPI_INTEGER, c, ierr)
+        grid%rows_of = all(1, :); grid%spectral_of = all(2, :)
+        if (alloc < 0) call fatal_error(error, "veslide:fftw:distribute_grid: FFTW refused the grid")
+#else
+        call fatal_error(error, "veslide:fftw:distribute_grid: this build has no MPI (build mpi/ for distributed grids)")
+#endif
+    end subroutine distribute_grid
 
     !> x -> k (unnormalised forward transform, exp(-i q.x))
     subroutine fft_forward(self)
         class(fft2d_t), intent(inout) :: self
+        if (self%distributed) then
+#ifdef VESLIDE_MPI
+            self%xr(1:self%nx, :) = self%x
+            call fftw_mpi_execute_dft_r2c(self%plan_r2c, self%xr, self%k)
+#endif
+            return
+        end if
         call fftw_execute_dft_r2c(self%plan_r2c, self%x, self%k)
     end subroutine fft_forward
 
     !> k -> x, divided by nx*ny (the input k is destroyed, as FFTW's c2r does)
     subroutine fft_backward(self)
         class(fft2d_t), intent(inout) :: self
-        call fftw_execute_dft_c2r(self%plan_c2r, self%k, self%x)
-        self%x = self%x/real(self%nx*self%ny, c_double)
+        call self%backward_unscaled()
+        self%x = self%x/(real(self%nx, c_double)*real(self%ny, c_double))
     end subroutine fft_backward
 
     !> k -> x without the 1/(nx*ny) factor (for callers that fold it into a multiplier)
     subroutine fft_backward_unscaled(self)
         class(fft2d_t), intent(inout) :: self
+        if (self%distributed) then
+#ifdef VESLIDE_MPI
+            call fftw_mpi_execute_dft_c2r(self%plan_c2r, self%k, self%xr)
+            self%x = self%xr(1:self%nx, :)
+#endif
+            return
+        end if
         call fftw_execute_dft_c2r(self%plan_c2r, self%k, self%x)
     end subroutine fft_backward_unscaled
 
@@ -153,8 +281,8 @@ contains
         if (c_associated(self%p_k)) call fftw_free(self%p_k)
         self%plan_r2c = c_null_ptr; self%plan_c2r = c_null_ptr
         self%p_x = c_null_ptr; self%p_k = c_null_ptr
-        nullify (self%x, self%k)
-        self%nx = 0; self%ny = 0
+        nullify (self%x, self%k, self%xr)
+        self%nx = 0; self%ny = 0; self%distributed = .false.
     end subroutine fft_destroy
 
     subroutine fft_finalize(self)

@@ -10,6 +10,13 @@
 !>  - Nyquist lines (ki = nx/2 for even nx > 1, kj = ny/2 for even ny > 1) carry no derivative:
 !>    the sign of the wavenumber is undefined there, so d/dx (d/dy) gives zero on them;
 !>  - the q = 0 mode is the mean.
+!>
+!> Distribution over processes (veslide_fftw's `distribute_grid`; a serial grid owns everything):
+!> a process owns the rows j0+1 .. j0+ny_local of every real field, stored (nx, ny_local), and the
+!> half-spectrum rows i0+1 .. i0+nq_local of every transform, stored transposed as (ny, nq_local)
+!> (FFTW's MPI layout, which saves one global transpose per transform). `spectral_shape` and
+!> `spectral_index` translate storage positions (a, b) to half-spectrum entries (i, j), so every
+!> spectral loop is written once for both layouts. In both, storage (1, 1) is q = 0 where owned.
 module veslide_grid
     use veslide_kinds, only: dp, two_pi
     use veslide_error, only: error_t, fatal_error
@@ -21,6 +28,13 @@ module veslide_grid
     type :: grid_t
         integer :: nx = 0, ny = 0              !! points along x and y
         real(dp) :: lx_m = 0.0_dp, ly_m = 0.0_dp  !! cell side lengths [m]
+        ! the share of this process
+        integer :: comm = -1                   !! MPI communicator (Fortran handle); -1: not distributed
+        integer :: rank = 0, ranks = 1         !! this process and the number of processes
+        integer :: j0 = 0, ny_local = 0        !! real-space rows owned: j0+1 .. j0+ny_local
+        logical :: transposed = .false.        !! spectral storage (ny, nq_local) instead of (nx/2+1, ny)
+        integer :: i0 = 0, nq_local = 0        !! half-spectrum rows owned: i0+1 .. i0+nq_local
+        integer, allocatable :: rows_of(:), spectral_of(:)  !! ny_local and nq_local of every rank
     contains
         procedure :: nq => grid_nq
         procedure :: cells => grid_cells
@@ -32,6 +46,12 @@ module veslide_grid
         procedure :: is_nyquist_y => grid_is_nyquist_y
         procedure :: hermitian_weight => grid_hermitian_weight
         procedure :: q0 => grid_q0
+        procedure :: local_shape => grid_local_shape
+        procedure :: spectral_shape => grid_spectral_shape
+        procedure :: spectral_index => grid_spectral_index
+        procedure :: owns_mean_mode => grid_owns_mean_mode
+        procedure :: is_distributed => grid_is_distributed
+        procedure :: is_root => grid_is_root
     end type grid_t
 
 contains
@@ -49,7 +69,57 @@ contains
             call fatal_error(error, "veslide:grid:new_grid: lx_m and ly_m must be positive and finite"); return
         end if
         self%nx = nx; self%ny = ny; self%lx_m = lx_m; self%ly_m = ly_m
+        self%j0 = 0; self%ny_local = ny; self%i0 = 0; self%nq_local = nx/2 + 1
+        self%rows_of = [ny]; self%spectral_of = [nx/2 + 1]
     end subroutine new_grid
+
+    !> Shape of a real field on this process, (nx, ny_local)
+    pure function grid_local_shape(self) result(s)
+        class(grid_t), intent(in) :: self
+        integer :: s(2)
+        s = [self%nx, self%ny_local]
+    end function grid_local_shape
+
+    !> Shape of a half-spectrum on this process: (nx/2+1, ny), or (ny, nq_local) when transposed
+    pure function grid_spectral_shape(self) result(s)
+        class(grid_t), intent(in) :: self
+        integer :: s(2)
+        if (self%transposed) then
+            s = [self%ny, self%nq_local]
+        else
+            s = [self%nq(), self%ny]
+        end if
+    end function grid_spectral_shape
+
+    !> Half-spectrum entry (i, j) of storage position (a, b) on this process
+    pure function grid_spectral_index(self, a, b) result(ij)
+        class(grid_t), intent(in) :: self
+        integer, intent(in) :: a, b
+        integer :: ij(2)
+        if (self%transposed) then
+            ij = [self%i0 + b, a]
+        else
+            ij = [a, b]
+        end if
+    end function grid_spectral_index
+
+    !> Does this process hold the q = 0 mode (at storage position (1, 1))?
+    elemental logical function grid_owns_mean_mode(self) result(yes)
+        class(grid_t), intent(in) :: self
+        yes = self%i0 == 0 .and. self%nq_local > 0
+    end function grid_owns_mean_mode
+
+    !> Is the grid shared by several processes (an MPI communicator)?
+    elemental logical function grid_is_distributed(self) result(yes)
+        class(grid_t), intent(in) :: self
+        yes = self%comm /= -1
+    end function grid_is_distributed
+
+    !> Is this the first process (the one that prints)?
+    elemental logical function grid_is_root(self) result(yes)
+        class(grid_t), intent(in) :: self
+        yes = self%rank == 0
+    end function grid_is_root
 
     !> Rows of the half-spectrum, nx/2 + 1
     elemental integer function grid_nq(self) result(n)
