@@ -4,16 +4,24 @@ module veslide_analysis
     use veslide_kinds, only: dp
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
+    use veslide_collective, only: ordered_sum, halo_rows
+    use veslide_fields, only: field_count, field_mean, field_dot
     implicit none
     private
     public :: contact_area_fraction, contact_area_subcell, mean_separation, slope_force
 
 contains
 
-    !> Fraction of cells carrying pressure
-    pure real(dp) function contact_area_fraction(p) result(a)
+    !> Fraction of cells carrying pressure (over the whole grid when `grid` is given: the
+    !> process's rows of a distributed grid)
+    real(dp) function contact_area_fraction(p, grid) result(a)
         real(dp), intent(in) :: p(:, :)
-        a = real(count(p > 0.0_dp), dp)/real(size(p), dp)
+        type(grid_t), intent(in), optional :: grid
+        if (present(grid)) then
+            a = real(field_count(grid, p > 0.0_dp), dp)/grid%cells()
+        else
+            a = real(count(p > 0.0_dp), dp)/real(size(p), dp)
+        end if
     end function contact_area_fraction
 
     !> Contact area fraction to second order in the cell size. The contact boundary crosses every
@@ -26,55 +34,85 @@ contains
     !> through two values, or to the segment's midpoint where neither side has two values. The area
     !> is then the signed area of the polygons the crossings and the contact centres cut from
     !> every square of four neighbouring centres (marching squares). Cell counting errs by O(h)
-    !> along the perimeter; this estimate by O(h^2) (docs/validation.md).
-    pure real(dp) function contact_area_subcell(p, g) result(a)
+    !> along the perimeter; this estimate by O(h^2) (docs/validation.md). With `grid`, over the
+    !> whole grid (a distributed grid's neighbouring rows come from the other processes).
+    real(dp) function contact_area_subcell(p, g, grid) result(a)
         !> pressure and gap on the grid (p > 0 marks contact)
         real(dp), intent(in) :: p(:, :), g(:, :)
-        integer :: nx, ny, i, j, c, c2, m
+        type(grid_t), intent(in), optional :: grid
+        integer, parameter :: depth = 4       ! rows a square's crossings look beyond its own
+        real(dp), allocatable :: pe(:, :), ge(:, :)
+        real(dp) :: rows(1, size(p, 2)), t(1)
+        type(grid_t) :: serial
+        integer :: nx, j
+        nx = size(p, 1)
+        if (present(grid)) then
+            call halo_rows(grid, p, depth, pe); call halo_rows(grid, g, depth, ge)
+        else
+            serial%nx = nx; serial%ny = size(p, 2)       ! one process: periodic rows
+            call halo_rows(serial, p, depth, pe); call halo_rows(serial, g, depth, ge)
+        end if
+        !$omp parallel do
+        do j = 1, size(p, 2)
+            rows(1, j) = subcell_row(pe, ge, j, depth)
+        end do
+        !$omp end parallel do
+        if (present(grid)) then
+            call ordered_sum(grid, rows, t)
+            a = t(1)/grid%cells()
+        else
+            a = 0.0_dp
+            do j = 1, size(p, 2)
+                a = a + rows(1, j)
+            end do
+            a = a/(real(nx, dp)*size(p, 2))
+        end if
+    end function contact_area_subcell
+
+    !> Area (in cells) cut from the squares whose lower-left centre lies in row j of the extended
+    !> fields p, g (rows 1-depth .. n+depth; periodic along x)
+    pure real(dp) function subcell_row(p, g, j, depth) result(a)
+        integer, intent(in) :: j, depth
+        real(dp), intent(in) :: p(:, 1 - depth:), g(:, 1 - depth:)
+        integer :: nx, i, c, c2, m
         integer, parameter :: ci(4) = [0, 1, 1, 0], cj(4) = [0, 0, 1, 1]
         real(dp) :: xs(8), ys(8), t
         logical :: inside(4)
-        nx = size(p, 1); ny = size(p, 2)
-        if (count(p > 0.0_dp) == 0) then
-            a = 0.0_dp; return
-        end if
+        nx = size(p, 1)
         a = 0.0_dp
-        do j = 1, ny
-            do i = 1, nx
-                do c = 1, 4
-                    inside(c) = p(at(i + ci(c), nx), at(j + cj(c), ny)) > 0.0_dp
-                end do
-                if (all(inside)) then
-                    a = a + 1.0_dp; cycle
-                end if
-                if (.not. any(inside)) cycle
-                ! walk the square's corners counter-clockwise: inside corners and the crossings
-                m = 0
-                do c = 1, 4
-                    c2 = modulo(c, 4) + 1
-                    if (inside(c)) then
-                        m = m + 1; xs(m) = ci(c); ys(m) = cj(c)
-                    end if
-                    if (inside(c) .neqv. inside(c2)) then
-                        if (inside(c)) then
-                            t = crossing(i + ci(c), j + cj(c), ci(c2) - ci(c), cj(c2) - cj(c))
-                            m = m + 1; xs(m) = ci(c) + t*(ci(c2) - ci(c)); ys(m) = cj(c) + t*(cj(c2) - cj(c))
-                        else
-                            t = crossing(i + ci(c2), j + cj(c2), ci(c) - ci(c2), cj(c) - cj(c2))
-                            m = m + 1; xs(m) = ci(c2) + t*(ci(c) - ci(c2)); ys(m) = cj(c2) + t*(cj(c) - cj(c2))
-                        end if
-                    end if
-                end do
-                ! signed (counter-clockwise) area: a crossing beyond the contact centre (the last
-                ! contact cell lies outside the edge) takes area away
-                a = a + 0.5_dp*sum(xs(1:m)*cshift(ys(1:m), 1) - cshift(xs(1:m), 1)*ys(1:m))
+        do i = 1, nx
+            do c = 1, 4
+                inside(c) = p(at(i + ci(c)), j + cj(c)) > 0.0_dp
             end do
+            if (all(inside)) then
+                a = a + 1.0_dp; cycle
+            end if
+            if (.not. any(inside)) cycle
+            ! walk the square's corners counter-clockwise: inside corners and the crossings
+            m = 0
+            do c = 1, 4
+                c2 = modulo(c, 4) + 1
+                if (inside(c)) then
+                    m = m + 1; xs(m) = ci(c); ys(m) = cj(c)
+                end if
+                if (inside(c) .neqv. inside(c2)) then
+                    if (inside(c)) then
+                        t = crossing(i + ci(c), j + cj(c), ci(c2) - ci(c), cj(c2) - cj(c))
+                        m = m + 1; xs(m) = ci(c) + t*(ci(c2) - ci(c)); ys(m) = cj(c) + t*(cj(c2) - cj(c))
+                    else
+                        t = crossing(i + ci(c2), j + cj(c2), ci(c) - ci(c2), cj(c) - cj(c2))
+                        m = m + 1; xs(m) = ci(c2) + t*(ci(c) - ci(c2)); ys(m) = cj(c2) + t*(cj(c) - cj(c2))
+                    end if
+                end if
+            end do
+            ! signed (counter-clockwise) area: a crossing beyond the contact centre (the last
+            ! contact cell lies outside the edge) takes area away
+            a = a + 0.5_dp*sum(xs(1:m)*cshift(ys(1:m), 1) - cshift(xs(1:m), 1)*ys(1:m))
         end do
-        a = a/(real(nx, dp)*ny)
     contains
-        pure integer function at(k, n)
-            integer, intent(in) :: k, n
-            at = modulo(k - 1, n) + 1
+        pure integer function at(k)
+            integer, intent(in) :: k
+            at = modulo(k - 1, nx) + 1
         end function at
         !> Distance (in cells) from contact cell (i0, j0) to the boundary towards its free neighbour
         !> (i0 + di, j0 + dj)
@@ -87,8 +125,8 @@ contains
             est = 0.0_dp; nest = 0
             mm = 0
             do k = 1, 3
-                if (p(at(i0 + k*di, nx), at(j0 + k*dj, ny)) > 0.0_dp) exit
-                v = g(at(i0 + k*di, nx), at(j0 + k*dj, ny))
+                if (p(at(i0 + k*di), j0 + k*dj) > 0.0_dp) exit
+                v = g(at(i0 + k*di), j0 + k*dj)
                 if (.not. v > 0.0_dp) exit
                 mm = mm + 1; y(mm) = v**(2.0_dp/3.0_dp)
             end do
@@ -99,7 +137,7 @@ contains
             end if
             mm = 0
             do k = 0, 2
-                v = p(at(i0 - k*di, nx), at(j0 - k*dj, ny))
+                v = p(at(i0 - k*di), j0 - k*dj)
                 if (.not. v > 0.0_dp) exit
                 mm = mm + 1; y(mm) = v**2
             end do
@@ -111,7 +149,7 @@ contains
             off = 0.5_dp
             if (nest > 0) off = min(max(est/nest, -0.5_dp), 1.0_dp)
         end function crossing
-    end function contact_area_subcell
+    end function subcell_row
 
     !> The zero, nearest to the straight-line zero k1, of the polynomial through y(1..m) at
     !> k = 0, 1, (2) (a line for m = 2, a parabola for m = 3)
@@ -129,10 +167,15 @@ contains
         if (abs(k0 - k1) > 0.5_dp) k0 = k1              ! a parabola far from the line: keep the line
     end function zero_near
 
-    !> Mean gap over the whole cell (zero in contact) [m]
-    pure real(dp) function mean_separation(g) result(s)
+    !> Mean gap over the whole cell (zero in contact) [m] (over the whole grid when `grid` is given)
+    real(dp) function mean_separation(g, grid) result(s)
         real(dp), intent(in) :: g(:, :)
-        s = sum(g)/real(size(g), dp)
+        type(grid_t), intent(in), optional :: grid
+        if (present(grid)) then
+            s = field_mean(grid, g)
+        else
+            s = sum(g)/real(size(g), dp)
+        end if
     end function mean_separation
 
     !> The estimator <p grad h> [Pa] (in contact grad w = grad h); spectral derivative of h.
@@ -143,20 +186,21 @@ contains
         real(dp), intent(in) :: p(:, :), h(:, :)
         real(dp), intent(out) :: f(2)
         complex(dp), allocatable :: hk(:, :)
-        integer :: i, j, d
+        integer :: a, b, d, ij(2)
         real(dp) :: q(2)
         fft%x = h
         call fft%forward()
         hk = fft%k
         do d = 1, 2
-            do j = 1, grid%ny
-                do i = 1, grid%nq()
-                    q = grid%derivative_wavevector(i, j)
-                    fft%k(i, j) = cmplx(0.0_dp, q(d), dp)*hk(i, j)
+            do b = 1, size(hk, 2)
+                do a = 1, size(hk, 1)
+                    ij = grid%spectral_index(a, b)
+                    q = grid%derivative_wavevector(ij(1), ij(2))
+                    fft%k(a, b) = cmplx(0.0_dp, q(d), dp)*hk(a, b)
                 end do
             end do
             call fft%backward()
-            f(d) = sum(p*fft%x)/grid%cells()
+            f(d) = field_dot(grid, p, fft%x)/grid%cells()
         end do
     end subroutine slope_force
 

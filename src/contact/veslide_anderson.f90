@@ -6,11 +6,16 @@
 !> solving the m x m least-squares problem from its Gram matrix dF^T dF (LAPACK dposv, with a
 !> relative diagonal shift of 1e-10). A step costs one pass over the 2m columns and the grid;
 !> the Gram matrix is updated by one new row per step. Memory: 2 (m + 1) doubles per unknown.
+!> The unknowns are the rows of a grid's field (nx, ny_local), flattened: dot products are summed
+!> row by row and then over the rows in order (veslide_collective), so the step is the same for
+!> any number of threads or processes; every process solves the same small system.
 !> Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715; Fang & Saad, Numer. Linear Algebra Appl.
 !> 16 (2009) 197 (type II).
 module veslide_anderson
     use veslide_kinds, only: dp
     use veslide_lapack, only: dposv
+    use veslide_grid, only: grid_t
+    use veslide_collective, only: ordered_sum
     implicit none
     private
     public :: anderson_t
@@ -21,6 +26,8 @@ module veslide_anderson
         integer :: slot = 0              !! column written last
         logical :: have_prev = .false.   !! a previous (z, f) is held
         real(dp), allocatable :: df(:, :), gm(:, :), gram(:, :), zprev(:), fprev(:)
+        type(grid_t) :: grid             !! the grid whose rows the unknowns are (serial: one row)
+        integer :: row = 1               !! unknowns per row
     contains
         procedure :: init => anderson_init
         procedure :: reset => anderson_reset
@@ -30,11 +37,18 @@ module veslide_anderson
 
 contains
 
-    !> Set up for n unknowns and memory m (m = 0: no acceleration)
-    subroutine anderson_init(self, n, memory)
+    !> Set up for n unknowns and memory m (m = 0: no acceleration); with `grid`, the unknowns are
+    !> its rows (n = nx ny_local), otherwise one row of n
+    subroutine anderson_init(self, n, memory, grid)
         class(anderson_t), intent(inout) :: self
         integer, intent(in) :: n, memory
+        type(grid_t), intent(in), optional :: grid
         self%memory = max(0, memory)
+        if (present(grid)) then
+            self%grid = grid; self%row = grid%nx
+        else
+            self%grid = grid_t(); self%grid%nx = max(1, n); self%grid%ny = 1; self%row = max(1, n)
+        end if
         if (allocated(self%df)) deallocate (self%df, self%gm, self%gram, self%zprev, self%fprev)
         allocate (self%df(n, max(self%memory, 1)), self%gm(n, max(self%memory, 1)))
         allocate (self%gram(max(self%memory, 1), max(self%memory, 1)), self%zprev(n), self%fprev(n))
@@ -55,27 +69,35 @@ contains
         real(dp), intent(in) :: f(:)
         logical :: accelerated
         real(dp) :: gtmp(max(self%memory, 1), max(self%memory, 1)), coef(max(self%memory, 1))
-        real(dp) :: dots(max(self%memory, 1), 2), dfv, zn
-        integer :: i, k, n, mk, slot, info
+        real(dp) :: dots(max(self%memory, 1), 2), dfv, zn, part(2*max(self%memory, 1))
+        real(dp), allocatable :: rows(:, :)
+        integer :: i, k, n, mk, slot, info, j, nrow, rl
         n = size(z)
         accelerated = .false.
         if (self%memory > 0 .and. self%have_prev) then
             self%slot = modulo(self%slot, self%memory) + 1
             self%stored = min(self%stored + 1, self%memory)
             slot = self%slot; mk = self%stored
-            dots = 0.0_dp
-            ! new columns with the Gram row and the right-hand side, in one pass
-            !$omp parallel do private(dfv, k) reduction(+:dots)
-            do i = 1, n
-                dfv = f(i) - self%fprev(i)
-                self%df(i, slot) = dfv
-                self%gm(i, slot) = (z(i) - self%zprev(i)) + dfv
-                do k = 1, mk
-                    dots(k, 1) = dots(k, 1) + self%df(i, k)*dfv
-                    dots(k, 2) = dots(k, 2) + self%df(i, k)*f(i)
+            rl = self%row; nrow = n/rl
+            allocate (rows(2*mk, nrow))
+            ! new columns with the Gram row and the right-hand side, in one pass, row by row
+            !$omp parallel do private(i, dfv, k, part)
+            do j = 1, nrow
+                part(1:2*mk) = 0.0_dp
+                do i = (j - 1)*rl + 1, j*rl
+                    dfv = f(i) - self%fprev(i)
+                    self%df(i, slot) = dfv
+                    self%gm(i, slot) = (z(i) - self%zprev(i)) + dfv
+                    do k = 1, mk
+                        part(k) = part(k) + self%df(i, k)*dfv
+                        part(mk + k) = part(mk + k) + self%df(i, k)*f(i)
+                    end do
                 end do
+                rows(:, j) = part(1:2*mk)
             end do
             !$omp end parallel do
+            call ordered_sum(self%grid, rows, part(1:2*mk))
+            dots(1:mk, 1) = part(1:mk); dots(1:mk, 2) = part(mk + 1:2*mk)
             self%gram(1:mk, slot) = dots(1:mk, 1); self%gram(slot, 1:mk) = dots(1:mk, 1)
             gtmp(1:mk, 1:mk) = self%gram(1:mk, 1:mk)
             do k = 1, mk

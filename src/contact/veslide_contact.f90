@@ -11,12 +11,16 @@
 !> h_s = rms height (or the displacement scale p_mean*max|K| for a flat surface), always evaluated
 !> on a freshly computed K p before a solver reports convergence. A new contact law (adhesion, a
 !> different constraint) is a new projection in the solvers and new measures here.
+!> Fields are the process's rows (nx, ny_local) of the kernel's grid; every sum, extremum and
+!> count is over the whole grid (veslide_collective), so every process takes the same decisions.
 module veslide_contact
-    use veslide_kinds, only: dp
+    use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error
     use veslide_grid, only: grid_t
     use veslide_kernel, only: kernel_t
     use veslide_fftw, only: fft2d_t
+    use veslide_collective, only: ordered_sum, global_min, global_max, global_count, global_any
+    use veslide_fields, only: field_mean, field_dot, field_sum
     implicit none
     private
     public :: contact_problem_t, contact_state_t, new_contact_problem, residual_measures
@@ -58,19 +62,22 @@ contains
         real(dp), intent(in) :: h(:, :)
         real(dp), intent(in) :: p_mean
         type(error_t), allocatable, intent(out) :: error
-        if (size(h, 1) /= kernel%grid%nx .or. size(h, 2) /= kernel%grid%ny) then
+        logical :: nan
+        if (any(shape(h) /= kernel%grid%local_shape())) then
             call fatal_error(error, "veslide:contact:new_contact_problem: heights and kernel grids differ"); return
         end if
         if (.not. (p_mean > 0.0_dp)) then
             call fatal_error(error, "veslide:contact:new_contact_problem: the nominal pressure must be positive"); return
         end if
-        if (any(h /= h)) then
+        nan = any(h /= h)
+        call global_any(kernel%grid, nan)
+        if (nan) then
             call fatal_error(error, "veslide:contact:new_contact_problem: the heights contain NaN"); return
         end if
         self%kernel = kernel
         self%p_mean_pa = p_mean
-        self%hc = h - sum(h)/size(h)
-        self%height_scale_m = sqrt(sum(self%hc**2)/size(self%hc))
+        self%hc = h - field_mean(kernel%grid, h)
+        self%height_scale_m = sqrt(field_dot(kernel%grid, self%hc, self%hc)/kernel%grid%cells())
         if (self%height_scale_m <= 0.0_dp) self%height_scale_m = p_mean*kernel%max_abs()
         if (self%height_scale_m <= 0.0_dp) self%height_scale_m = 1.0_dp
     end subroutine new_contact_problem
@@ -83,19 +90,21 @@ contains
 
     !> A fresh state: fields allocated, pressure uniform or from `p_init` (clipped at zero and
     !> rescaled to the load)
-    pure subroutine problem_start(self, state, p_init)
+    subroutine problem_start(self, state, p_init)
         class(contact_problem_t), intent(in) :: self
         type(contact_state_t), intent(out) :: state
         real(dp), intent(in), optional :: p_init(:, :)
         integer :: nx, ny
+        real(dp) :: total
         nx = size(self%hc, 1); ny = size(self%hc, 2)
         allocate (state%p(nx, ny), state%u(nx, ny), state%g(nx, ny))
         state%p = self%p_mean_pa
         if (present(p_init)) then
             if (all(shape(p_init) == [nx, ny])) then
-                if (sum(max(p_init, 0.0_dp)) > 0.0_dp) then
+                total = field_sum(self%kernel%grid, max(p_init, 0.0_dp))
+                if (total > 0.0_dp) then
                     state%p = max(p_init, 0.0_dp)
-                    state%p = state%p*(self%p_mean_pa*size(state%p)/sum(state%p))
+                    state%p = state%p*(self%p_mean_pa*self%kernel%grid%cells()/total)
                 end if
             end if
         end if
@@ -128,20 +137,40 @@ contains
 
     !> Residuals of a candidate (p, u = K p): fills d (the contact-set mean of h - u), g and the
     !> four measures of `state`
-    pure subroutine problem_residuals(self, state)
+    subroutine problem_residuals(self, state)
         class(contact_problem_t), intent(in) :: self
         type(contact_state_t), intent(inout) :: state
-        integer :: nc
-        nc = count(state%p > 0.0_dp)
-        state%g = state%u - self%hc
-        if (nc > 0) then
-            state%approach_m = -sum(state%g, mask=state%p > 0.0_dp)/nc
-        else
-            state%approach_m = -maxval(state%g)
-        end if
-        state%g = state%g + state%approach_m
-        call residual_measures(state, minval(state%g), sum(state%p*state%g), sum(abs(state%p)), minval(state%p), &
-                               sum(state%p), real(size(state%p), dp), self%p_mean_pa, self%height_scale_m)
+        integer(i8) :: nc(1)
+        integer :: j
+        real(dp) :: rows(3, size(state%p, 2)), t(3), ext(2)
+        associate (grid => self%kernel%grid)
+            nc(1) = count(state%p > 0.0_dp, kind=i8)
+            call global_count(grid, nc)
+            state%g = state%u - self%hc
+            if (nc(1) > 0) then
+                do j = 1, size(state%p, 2)
+                    rows(1, j) = sum(state%g(:, j), mask=state%p(:, j) > 0.0_dp)
+                end do
+                call ordered_sum(grid, rows(1:1, :), t(1:1))
+                state%approach_m = -t(1)/real(nc(1), dp)
+            else
+                t(1) = -huge(1.0_dp); if (size(state%g) > 0) t(1) = maxval(state%g)
+                call global_max(grid, t(1))
+                state%approach_m = -t(1)
+            end if
+            state%g = state%g + state%approach_m
+            !$omp parallel do
+            do j = 1, size(state%p, 2)
+                rows(:, j) = [sum(state%p(:, j)*state%g(:, j)), sum(abs(state%p(:, j))), sum(state%p(:, j))]
+            end do
+            !$omp end parallel do
+            call ordered_sum(grid, rows, t)
+            ext = huge(1.0_dp)
+            if (size(state%p) > 0) ext = [minval(state%g), minval(state%p)]
+            call global_min(grid, ext)
+            call residual_measures(state, ext(1), t(1), t(2), ext(2), t(3), grid%cells(), self%p_mean_pa, &
+                                   self%height_scale_m)
+        end associate
     end subroutine problem_residuals
 
 end module veslide_contact

@@ -21,6 +21,7 @@ module veslide_solver_dr
     use veslide_contact, only: contact_problem_t, contact_state_t
     use veslide_solver_options, only: solver_options_t
     use veslide_anderson, only: anderson_t
+    use veslide_collective, only: ordered_sum, global_max
     implicit none
     private
     public :: douglas_rachford
@@ -42,8 +43,9 @@ contains
         complex(dp), allocatable :: hk(:, :)
         type(resolvent_t) :: res
         type(anderson_t) :: aa
-        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, xv, scale, p_mean
-        integer :: nx, ny, n, since_balance, i
+        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, xv, scale, p_mean, ext(2), tot(1), r1
+        real(dp), allocatable :: rows(:, :)
+        integer :: nx, ny, n, since_balance, i, j
         logical :: accelerated
 
         nx = size(problem%hc, 1); ny = size(problem%hc, 2); n = nx*ny
@@ -58,8 +60,8 @@ contains
         if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp/problem%kernel%typical_abs(scale)
         call problem%kernel%resolvent(gamma, scale, res)
 
-        allocate (zz(nx, ny), y(n), f(n))
-        call aa%init(n, opts%anderson_memory)
+        allocate (zz(nx, ny), y(n), f(n), rows(1, ny))
+        call aa%init(n, opts%anderson_memory, problem%kernel%grid)
         z(1:n) => zz
         call c_f_pointer(c_loc(fft%x), xb, [n])    ! a flat view of the FFT buffer
         zz = state%p/p_mean                     ! z = p + gamma g
@@ -73,21 +75,29 @@ contains
             fft%x = zz
             call res%solve(fft, hk, gamma, 1.0_dp)
             state%operator_applications = state%operator_applications + 1
-            rp = 0.0_dp; rg = 0.0_dp; rsq = 0.0_dp
-            !$omp parallel do private(xv) reduction(max:rp, rg) reduction(+:rsq)
-            do i = 1, n
-                xv = xb(i)
-                y(i) = max(2.0_dp*xv - z(i), 0.0_dp)
-                f(i) = y(i) - xv
-                if (y(i) > 0.0_dp) then
-                    rg = max(rg, abs(f(i)))
-                else
-                    rp = max(rp, abs(xv))
-                end if
-                rsq = rsq + f(i)**2
+            rp = 0.0_dp; rg = 0.0_dp
+            !$omp parallel do private(i, xv, r1) reduction(max:rp, rg)
+            do j = 1, ny
+                r1 = 0.0_dp
+                do i = (j - 1)*nx + 1, j*nx
+                    xv = xb(i)
+                    y(i) = max(2.0_dp*xv - z(i), 0.0_dp)
+                    f(i) = y(i) - xv
+                    if (y(i) > 0.0_dp) then
+                        rg = max(rg, abs(f(i)))
+                    else
+                        rp = max(rp, abs(xv))
+                    end if
+                    r1 = r1 + f(i)**2
+                end do
+                rows(1, j) = r1
             end do
             !$omp end parallel do
-            rg = rg/gamma
+            call ordered_sum(problem%kernel%grid, rows, tot)
+            ext = [rp, rg]
+            call global_max(problem%kernel%grid, ext)
+            rp = ext(1); rsq = tot(1)
+            rg = ext(2)/gamma
             fnorm = sqrt(rsq)
 
             ! safeguard: an accelerated step that made |f| grow is replaced by the plain step

@@ -8,6 +8,7 @@ module veslide_solver_pk
     use veslide_fftw, only: fft2d_t
     use veslide_contact, only: contact_problem_t, contact_state_t, residual_measures
     use veslide_solver_options, only: solver_options_t
+    use veslide_collective, only: ordered_sum, global_min
     implicit none
     private
     public :: polonsky_keer
@@ -26,54 +27,70 @@ contains
     !> The load rescaling p, u <- s p, s u is kept as a pending scalar `a` (true p = a P). The
     !> displacement is carried along linearly; the correction K c for the points that projection
     !> or re-admission changed costs one more FFT pair in the iterations that have any, unless
-    !> there is a single such point (then one shifted column of the influence function is added).
+    !> there is a single such point (then one shifted column of the influence function is added,
+    !> on one process). Every sum is taken row by row and then over the rows in order, so the
+    !> iteration is the same whatever the number of threads or processes.
     subroutine polonsky_keer(problem, fft, opts, state)
         type(contact_problem_t), intent(in) :: problem
         type(fft2d_t), intent(inout) :: fft
         type(solver_options_t), intent(in) :: opts
         !> on entry the starting pressure (problem%start); on exit the solution
         type(contact_state_t), intent(inout) :: state
-        real(dp), allocatable :: t(:, :), green(:, :)
+        real(dp), allocatable :: t(:, :), green(:, :), rows(:, :)
         real(dp) :: a, gp, gbar, s1, s2, gg, gg_old, beta, tau, den, num, sr, srt, st, sp_new, pv, g, pn, hs
-        real(dp) :: gmin, spg, sp, pmin, c1, delta, uo, c, p_mean
-        integer :: nx, ny, i, j, nc, m, since_fresh, ic, jc
+        real(dp) :: gmin, spg, sp, pmin, c1, delta, uo, c, p_mean, nc, m, noverlap, tot(5), ext(2), cells
+        real(dp) :: r1, r2, r3, r4, r5, e1, e2
+        integer :: nx, ny, i, j, since_fresh, ic, jc
         logical :: fresh, have_green
-        integer :: noverlap
 
         nx = size(problem%hc, 1); ny = size(problem%hc, 2)
         hs = problem%height_scale_m
         p_mean = problem%p_mean_pa
         state%method = 'pk'
-        allocate (t(nx, ny))
+        associate (grid => problem%kernel%grid)
+        cells = grid%cells()
+        allocate (t(nx, ny), rows(5, ny))
         have_green = .false.
         call problem%kernel%apply(fft, state%p, state%u)
         state%operator_applications = 1
         fresh = .true.; since_fresh = 0
         t = 0.0_dp; delta = 0.0_dp; gg_old = 1.0_dp; a = 1.0_dp
-        gp = sum(state%u - problem%hc, mask=state%p > 0.0_dp)/max(1, count(state%p > 0.0_dp))
+        do j = 1, ny
+            rows(1, j) = sum(state%u(:, j) - problem%hc(:, j), mask=state%p(:, j) > 0.0_dp)
+            rows(2, j) = count(state%p(:, j) > 0.0_dp)
+        end do
+        call ordered_sum(grid, rows(1:2, :), tot(1:2))
+        gp = tot(1)/max(1.0_dp, tot(2))
         do
             ! pass A: residuals and contact-set statistics of g = a U - h, shifted by gp
-            nc = 0; s1 = 0.0_dp; s2 = 0.0_dp; gmin = huge(1.0_dp); spg = 0.0_dp; sp = 0.0_dp; pmin = huge(1.0_dp)
-            !$omp parallel do private(i, pv, g) reduction(+:nc, s1, s2, spg, sp) reduction(min:gmin, pmin)
+            ext = huge(1.0_dp)
+            !$omp parallel do private(i, pv, g, r1, r2, r3, r4, r5, e1, e2) reduction(min:ext)
             do j = 1, ny
+                r1 = 0.0_dp; r2 = 0.0_dp; r3 = 0.0_dp; r4 = 0.0_dp; r5 = 0.0_dp
+                e1 = huge(1.0_dp); e2 = huge(1.0_dp)
                 do i = 1, nx
                     pv = a*state%p(i, j)
                     g = a*state%u(i, j) - problem%hc(i, j) - gp
                     if (pv > 0.0_dp) then
-                        nc = nc + 1; s1 = s1 + g; s2 = s2 + g*g
+                        r1 = r1 + 1.0_dp; r2 = r2 + g; r3 = r3 + g*g
                     end if
-                    gmin = min(gmin, g)
-                    spg = spg + pv*g
-                    sp = sp + pv
-                    pmin = min(pmin, pv)
+                    e1 = min(e1, g)
+                    r4 = r4 + pv*g
+                    r5 = r5 + pv
+                    e2 = min(e2, pv)
                 end do
+                rows(:, j) = [r1, r2, r3, r4, r5]
+                ext = min(ext, [e1, e2])
             end do
             !$omp end parallel do
+            call ordered_sum(grid, rows, tot)
+            call global_min(grid, ext)
+            nc = tot(1); s1 = tot(2); s2 = tot(3); spg = tot(4); sp = tot(5); gmin = ext(1); pmin = ext(2)
             c1 = s1/nc
             gbar = gp + c1
             gg = max(s2 - s1*c1, 0.0_dp)
             state%approach_m = -gbar
-            call residual_measures(state, gmin - c1, spg - c1*sp, sp, pmin, sp, real(nx, dp)*ny, p_mean, hs)
+            call residual_measures(state, gmin - c1, spg - c1*sp, sp, pmin, sp, cells, p_mean, hs)
             gp = gbar
             if (state%residual <= opts%tolerance) then
                 if (fresh) then
@@ -87,37 +104,43 @@ contains
             ! pass C: conjugate direction on the contact set, straight into the FFT buffer
             beta = delta*gg/gg_old
             gg_old = gg
-            num = 0.0_dp; st = 0.0_dp
-            !$omp parallel do private(i, g) reduction(+:num, st)
+            !$omp parallel do private(i, g, r1, r2)
             do j = 1, ny
+                r1 = 0.0_dp; r2 = 0.0_dp
                 do i = 1, nx
                     if (state%p(i, j) > 0.0_dp) then
                         g = a*state%u(i, j) - problem%hc(i, j) - gbar
                         t(i, j) = g + beta*t(i, j)
-                        num = num + g*t(i, j)
-                        st = st + t(i, j)
+                        r1 = r1 + g*t(i, j)
+                        r2 = r2 + t(i, j)
                     else
                         t(i, j) = 0.0_dp
                     end if
                     fft%x(i, j) = t(i, j)
                 end do
+                rows(1:2, j) = [r1, r2]
             end do
             !$omp end parallel do
+            call ordered_sum(grid, rows(1:2, :), tot(1:2))
+            num = tot(1); st = tot(2)
             call problem%kernel%apply_buffer(fft)          ! fft%x = r = K t
             state%operator_applications = state%operator_applications + 1
 
             ! pass D: step length, with r centred on the contact set
-            sr = 0.0_dp; srt = 0.0_dp
-            !$omp parallel do private(i) reduction(+:sr, srt)
+            !$omp parallel do private(i, r1, r2)
             do j = 1, ny
+                r1 = 0.0_dp; r2 = 0.0_dp
                 do i = 1, nx
                     if (state%p(i, j) > 0.0_dp) then
-                        sr = sr + fft%x(i, j)
-                        srt = srt + fft%x(i, j)*t(i, j)
+                        r1 = r1 + fft%x(i, j)
+                        r2 = r2 + fft%x(i, j)*t(i, j)
                     end if
                 end do
+                rows(1:2, j) = [r1, r2]
             end do
             !$omp end parallel do
+            call ordered_sum(grid, rows(1:2, :), tot(1:2))
+            sr = tot(1); srt = tot(2)
             den = srt - sr/nc*st
             if (.not. (den > 0.0_dp)) then
                 ! no descent left: only round-off remains, confirm on a fresh product
@@ -129,9 +152,10 @@ contains
             ! pass E: step, projection, re-admission of overlapping points, displacement update.
             ! r is not needed after its use here, so the buffer takes the correction c (what
             ! projection and re-admission add to the linear step).
-            m = 0; sp_new = 0.0_dp; noverlap = 0; ic = 0; jc = 0
-            !$omp parallel do private(i, pn, g, uo, c) reduction(+:m, sp_new, noverlap) reduction(max:ic, jc)
+            ic = 0; jc = 0
+            !$omp parallel do private(i, pn, g, uo, c, r1, r2, r3) reduction(max:ic, jc)
             do j = 1, ny
+                r1 = 0.0_dp; r2 = 0.0_dp; r3 = 0.0_dp
                 do i = 1, nx
                     uo = a*state%u(i, j)
                     pn = a*state%p(i, j) - tau*t(i, j)
@@ -144,23 +168,26 @@ contains
                     if (pn == 0.0_dp) then
                         g = uo - problem%hc(i, j) - gbar
                         if (g < 0.0_dp) then
-                            noverlap = noverlap + 1
+                            r3 = r3 + 1.0_dp
                             c = c - tau*g
                             pn = -tau*g
                         end if
                     end if
                     fft%x(i, j) = c
                     if (c /= 0.0_dp) then
-                        m = m + 1; ic = max(ic, i); jc = max(jc, j)
+                        r1 = r1 + 1.0_dp; ic = max(ic, i); jc = max(jc, j)
                     end if
                     state%p(i, j) = pn
-                    sp_new = sp_new + pn
+                    r2 = r2 + pn
                 end do
+                rows(1:3, j) = [r1, r2, r3]
             end do
             !$omp end parallel do
-            delta = merge(0.0_dp, 1.0_dp, noverlap > 0)
-            if (m > 0) call add_correction(m, ic, jc)
-            a = p_mean*(real(nx, dp)*ny)/sp_new
+            call ordered_sum(grid, rows(1:3, :), tot(1:3))
+            m = tot(1); sp_new = tot(2); noverlap = tot(3)
+            delta = merge(0.0_dp, 1.0_dp, noverlap > 0.0_dp)
+            if (m > 0.0_dp) call add_correction(m, ic, jc)
+            a = p_mean*cells/sp_new
             fresh = .false.
             since_fresh = since_fresh + 1
             if (since_fresh >= opts%refresh_every) call refresh()
@@ -168,6 +195,7 @@ contains
         state%p = a*state%p
         state%u = a*state%u
         state%g = state%u - problem%hc - gbar
+        end associate
 
     contains
 
@@ -181,10 +209,11 @@ contains
 
         !> u += K c for the correction held in the FFT buffer (m non-zeros; for m = 1 at (ic, jc))
         subroutine add_correction(m, ic, jc)
-            integer, intent(in) :: m, ic, jc
+            real(dp), intent(in) :: m
+            integer, intent(in) :: ic, jc
             integer :: ii, jj, i0, j0, js
             real(dp) :: cv
-            if (m > 1) then
+            if (m > 1.0_dp .or. problem%kernel%grid%is_distributed()) then
                 call problem%kernel%apply_buffer(fft)
                 state%u = state%u + fft%x
                 state%operator_applications = state%operator_applications + 1

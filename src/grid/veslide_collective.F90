@@ -50,7 +50,7 @@ contains
         logical, intent(in), optional :: spectral
         integer :: c
 #ifdef VESLIDE_MPI
-        real(dp), allocatable :: all(:, :)
+        real(dp), allocatable :: all(:, :), mine(:, :)
         integer, allocatable :: counts(:), displs(:)
         integer :: r, k
         type(MPI_Comm) :: comm
@@ -70,7 +70,8 @@ contains
             end do
             allocate (all(k, sum(counts)/max(k, 1)))
             comm%MPI_VAL = grid%comm
-            call MPI_Allgatherv(parts, size(parts), MPI_DOUBLE_PRECISION, all, counts, displs, &
+            mine = parts                       ! contiguous (parts may be an array section)
+            call MPI_Allgatherv(mine, size(mine), MPI_DOUBLE_PRECISION, all, counts, displs, &
                                 MPI_DOUBLE_PRECISION, comm)
             totals = 0.0_dp
             do c = 1, size(all, 2)

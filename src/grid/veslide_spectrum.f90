@@ -5,36 +5,40 @@ module veslide_spectrum
     use veslide_kinds, only: dp
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
+    use veslide_collective, only: ordered_sum
     implicit none
     private
     public :: spectrum_slope_tensor, slope_tensor
 
 contains
 
-    !> Slope tensor of the field whose half-spectrum is `ak`, times scale^2:
-    !> M = scale^2 sum_q w q q |ak|^2 over band(1) <= |q| <= band(2) [1/m] (all q when absent).
-    !> For coefficients of h = sum_q a_q exp(i q.x) scale = 1; for FFTW's output 1/(nx ny).
-    pure subroutine spectrum_slope_tensor(grid, ak, m, band, scale)
+    !> Slope tensor of the field whose half-spectrum is `ak` (the grid's spectral storage), times
+    !> scale^2: M = scale^2 sum_q w q q |ak|^2 over band(1) <= |q| <= band(2) [1/m] (all q when
+    !> absent). For coefficients of h = sum_q a_q exp(i q.x) scale = 1; for FFTW's output 1/(nx ny).
+    subroutine spectrum_slope_tensor(grid, ak, m, band, scale)
         type(grid_t), intent(in) :: grid
         complex(dp), intent(in) :: ak(:, :)
         real(dp), intent(out) :: m(2, 2)
         real(dp), intent(in), optional :: band(2), scale
-        integer :: i, j
-        real(dp) :: q(2), p2, qn
-        m = 0.0_dp
-        do j = 1, grid%ny
-            do i = 1, grid%nq()
+        integer :: a, b, i, j, ij(2)
+        real(dp) :: q(2), p2, qn, cols(3, size(ak, 2)), t(3)
+        !$omp parallel do private(a, i, j, ij, q, p2, qn)
+        do b = 1, size(ak, 2)
+            cols(:, b) = 0.0_dp
+            do a = 1, size(ak, 1)
+                ij = grid%spectral_index(a, b); i = ij(1); j = ij(2)
                 if (present(band)) then
                     qn = norm2(grid%wavevector(i, j))
                     if (qn < band(1) .or. qn > band(2)) cycle
                 end if
                 q = grid%derivative_wavevector(i, j)
-                p2 = grid%hermitian_weight(i)*abs(ak(i, j))**2
-                m(1, 1) = m(1, 1) + q(1)*q(1)*p2
-                m(2, 2) = m(2, 2) + q(2)*q(2)*p2
-                m(1, 2) = m(1, 2) + q(1)*q(2)*p2
+                p2 = grid%hermitian_weight(i)*abs(ak(a, b))**2
+                cols(:, b) = cols(:, b) + [q(1)*q(1), q(2)*q(2), q(1)*q(2)]*p2
             end do
         end do
+        !$omp end parallel do
+        call ordered_sum(grid, cols, t, spectral=.true.)
+        m(1, 1) = t(1); m(2, 2) = t(2); m(1, 2) = t(3)
         if (present(scale)) m = m*scale**2
         m(2, 1) = m(1, 2)
     end subroutine spectrum_slope_tensor

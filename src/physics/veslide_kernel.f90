@@ -27,6 +27,7 @@ module veslide_kernel
     use veslide_strings, only: name_index
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
+    use veslide_collective, only: ordered_sum, global_min, global_max, global_any
     use veslide_material, only: material_t
     implicit none
     private
@@ -48,7 +49,7 @@ module veslide_kernel
         integer :: alias_zones = 0                   !! M of the last shell summed (0: none)
         real(dp) :: alias_error = 0.0_dp             !! estimated relative error of the alias sum
         real(dp) :: min_re = 0.0_dp                  !! min Re K_d over q /= 0 [m/Pa]
-        complex(dp), allocatable, private :: kd(:, :)  !! multiplier K_d (nx/2+1, ny) [m/Pa]
+        complex(dp), allocatable, private :: kd(:, :)  !! multiplier K_d on the grid's spectral storage [m/Pa]
     contains
         procedure :: apply => kernel_apply
         procedure :: apply_buffer => kernel_apply_buffer
@@ -63,6 +64,7 @@ module veslide_kernel
     !> The multiplier of (I + gamma s K)^-1 / (nx ny) (FFTW's normalisation folded in)
     type :: resolvent_t
         complex(dp), allocatable, private :: mult(:, :)
+        logical, private :: owns_mean = .true.     !! this process holds q = 0
     contains
         procedure :: solve => resolvent_solve
     end type resolvent_t
@@ -148,7 +150,7 @@ contains
         !> largest shell index M (default 64)
         integer, intent(in), optional :: alias_max
         real(dp) :: tol_, a, b, kmax, worst, d(2)
-        integer :: max_, i, j, m, nrep_x, nrep_y, rx, ry, nq, nx, ny
+        integer :: max_, i, j, m, nrep_x, nrep_y, rx, ry, nx, ny, na, nb, ia, ib, ij(2), sh(2)
         real(dp) :: q(2), qr(2)
         complex(dp), allocatable :: s_prev(:, :), r_prev(:, :), s_cur(:, :), r_cur(:, :)
         logical :: use_x, use_y, aliased
@@ -167,8 +169,8 @@ contains
         d = grid%spacing(); a = d(1); b = d(2)
         use_x = nx > 1; use_y = ny > 1
         aliased = variant == KERNEL_COLLOCATION_ALIAS .or. variant == KERNEL_GALERKIN
-        nq = grid%nq()
-        allocate (self%kd(nq, ny), s_cur(nq, ny), r_cur(nq, ny))
+        sh = grid%spectral_shape(); na = sh(1); nb = sh(2)
+        allocate (self%kd(na, nb), s_cur(na, nb), r_cur(na, nb))
 
         ! Shell 0, then shells 1..M in doubling stages. On a Nyquist line the two signed
         ! representatives of the mode are averaged (this keeps the operator real, and makes
@@ -178,7 +180,7 @@ contains
         if (.not. aliased) then
             self%kd = s_cur
         else
-            allocate (s_prev(nq, ny), r_prev(nq, ny))
+            allocate (s_prev(na, nb), r_prev(na, nb))
             r_prev = s_cur
             m = 1
             call add_shells(1, 1, s_cur)
@@ -188,8 +190,11 @@ contains
                 m = 2*m
                 ! Richardson for an M^-2 tail: R(M) = S(M) + (S(M) - S(M/2))/3
                 r_cur = s_cur + (s_cur - s_prev)/3.0_dp
-                kmax = maxval(abs(r_cur))
-                worst = maxval(abs(r_cur - r_prev))/kmax
+                ! (every process takes the same decision: global extrema)
+                kmax = maxval(abs(r_cur)); call global_max(grid, kmax)
+                worst = 0.0_dp; if (size(r_cur) > 0) worst = maxval(abs(r_cur - r_prev))
+                call global_max(grid, worst)
+                worst = worst/kmax
                 r_prev = r_cur
                 if (worst <= tol_ .or. 2*m > max_) exit
             end do
@@ -207,9 +212,10 @@ contains
             integer :: mm
             complex(dp) :: s
             if (m1 == 0) acc = (0.0_dp, 0.0_dp)
-            !$omp parallel do schedule(dynamic) private(i, q, qr, nrep_x, nrep_y, rx, ry, s, mm)
-            do j = 1, ny
-                do i = 1, nq
+            !$omp parallel do schedule(dynamic) private(ia, i, j, ij, q, qr, nrep_x, nrep_y, rx, ry, s, mm)
+            do ib = 1, nb
+                do ia = 1, na
+                    ij = grid%spectral_index(ia, ib); i = ij(1); j = ij(2)
                     if (i == 1 .and. j == 1) cycle
                     q = grid%wavevector(i, j)
                     nrep_x = merge(2, 1, grid%is_nyquist_x(i)); nrep_y = merge(2, 1, grid%is_nyquist_y(j))
@@ -224,7 +230,7 @@ contains
                             end do
                         end do
                     end do
-                    acc(i, j) = acc(i, j) + s/real(nrep_x*nrep_y, dp)
+                    acc(ia, ib) = acc(ia, ib) + s/real(nrep_x*nrep_y, dp)
                 end do
             end do
             !$omp end parallel do
@@ -232,16 +238,18 @@ contains
 
     end subroutine new_kernel
 
-    !> A kernel from a given multiplier K_d on the half-spectrum of `grid` (a material law or a
-    !> geometry that new_kernel does not build: layered solids, tabulated compliances, limits)
+    !> A kernel from a given multiplier K_d on the half-spectrum of `grid`, in the grid's spectral
+    !> storage (a material law or a geometry that new_kernel does not build: layered solids,
+    !> tabulated compliances, limits)
     subroutine new_kernel_from_multiplier(self, grid, kd, velocity_m_s, error)
         type(kernel_t), intent(out) :: self
         type(grid_t), intent(in) :: grid
         complex(dp), intent(in) :: kd(:, :)
         real(dp), intent(in) :: velocity_m_s(2)
         type(error_t), allocatable, intent(out) :: error
-        if (size(kd, 1) /= grid%nq() .or. size(kd, 2) /= grid%ny) then
-            call fatal_error(error, "veslide:kernel:new_kernel_from_multiplier: the multiplier is not (nx/2+1, ny)")
+        if (any(shape(kd) /= grid%spectral_shape())) then
+            call fatal_error(error, "veslide:kernel:new_kernel_from_multiplier: the multiplier is not"// &
+                             " on the grid's spectral storage ((nx/2+1, ny) on one process)")
             return
         end if
         self%grid = grid; self%velocity_m_s = velocity_m_s; self%variant = 0
@@ -254,17 +262,23 @@ contains
         type(kernel_t), intent(inout) :: self
         type(error_t), allocatable, intent(out) :: error
         integer :: i, j
-        self%kd(1, 1) = (0.0_dp, 0.0_dp)
-        self%symmetric = all(aimag(self%kd) == 0.0_dp)
-        self%min_re = huge(1.0_dp)
+        logical :: skewed, nan
+        if (self%grid%owns_mean_mode()) self%kd(1, 1) = (0.0_dp, 0.0_dp)
+        skewed = any(aimag(self%kd) /= 0.0_dp)
+        call global_any(self%grid, skewed)
+        self%symmetric = .not. skewed
+        self%min_re = huge(1.0_dp); nan = .false.
         do j = 1, size(self%kd, 2)
             do i = 1, size(self%kd, 1)
-                if (i == 1 .and. j == 1) cycle
+                if (i == 1 .and. j == 1 .and. self%grid%owns_mean_mode()) cycle
+                nan = nan .or. real(self%kd(i, j), dp) /= real(self%kd(i, j), dp)
                 self%min_re = min(self%min_re, real(self%kd(i, j), dp))
             end do
         end do
-        if (size(self%kd) == 1) self%min_re = 0.0_dp
-        if (.not. (self%min_re > 0.0_dp) .and. size(self%kd) > 1) then
+        if (nan) self%min_re = -huge(1.0_dp)      ! not finite: refused below
+        call global_min(self%grid, self%min_re)
+        if (self%grid%cells() == 1.0_dp) self%min_re = 0.0_dp
+        if (.not. (self%min_re > 0.0_dp) .and. self%grid%cells() > 1.0_dp) then
             if (self%variant == KERNEL_COLLOCATION_ALIAS) then
                 call fatal_error(error, "veslide:kernel:new_kernel: the discrete kernel is not positive definite"// &
                     " (min Re K_d <= 0); the collocation-alias variant loses definiteness for large"// &
@@ -321,6 +335,7 @@ contains
         real(dp), intent(in) :: gamma, s
         type(resolvent_t), intent(out) :: r
         r%mult = 1.0_dp/((1.0_dp + gamma*(self%kd*s))*self%grid%cells())
+        r%owns_mean = self%grid%owns_mean_mode()
     end subroutine kernel_resolvent
 
     !> x = (I + gamma s K)^-1 (z + gamma r) with mean(x) = mean_x: on entry fft%x holds z and
@@ -332,7 +347,7 @@ contains
         real(dp), intent(in) :: gamma, mean_x
         call fft%forward()
         fft%k = self%mult*(fft%k + gamma*rk)
-        fft%k(1, 1) = mean_x
+        if (self%owns_mean) fft%k(1, 1) = mean_x
         call fft%backward_unscaled()
     end subroutine resolvent_solve
 
@@ -345,21 +360,29 @@ contains
         type(fft2d_t), intent(inout) :: fft
         real(dp), intent(in) :: p(:, :)
         real(dp) :: f(2)
-        integer :: i, j
+        real(dp), allocatable :: cols(:, :)
+        integer :: a, b, ij(2)
         f = 0.0_dp
         if (self%symmetric) return
         fft%x = p
         call fft%forward()
-        do j = 1, self%grid%ny
-            do i = 1, self%grid%nq()
-                f = f - self%grid%hermitian_weight(i)*self%grid%derivative_wavevector(i, j)*aimag(self%kd(i, j)) &
-                    *abs(fft%k(i, j))**2
+        allocate (cols(2, size(fft%k, 2)))
+        !$omp parallel do private(a, ij)
+        do b = 1, size(fft%k, 2)
+            cols(:, b) = 0.0_dp
+            do a = 1, size(fft%k, 1)
+                ij = self%grid%spectral_index(a, b)
+                cols(:, b) = cols(:, b) - self%grid%hermitian_weight(ij(1)) &
+                             *self%grid%derivative_wavevector(ij(1), ij(2))*aimag(self%kd(a, b))*abs(fft%k(a, b))**2
             end do
         end do
+        !$omp end parallel do
+        call ordered_sum(self%grid, cols, f, spectral=.true.)
         f = f/self%grid%cells()**2
     end function kernel_tangential_force
 
-    !> K_d at half-spectrum entry (i, j) [m/Pa]
+    !> K_d at storage position (i, j) of the grid's half-spectrum (the entry (i, j) on one
+    !> process; `grid%spectral_index` maps positions to entries on a distributed grid) [m/Pa]
     elemental complex(dp) function kernel_value(self, i, j) result(k)
         class(kernel_t), intent(in) :: self
         integer, intent(in) :: i, j
@@ -367,18 +390,27 @@ contains
     end function kernel_value
 
     !> max |K_d| [m/Pa]
-    pure real(dp) function kernel_max_abs(self) result(k)
+    real(dp) function kernel_max_abs(self) result(k)
         class(kernel_t), intent(in) :: self
         k = maxval(abs(self%kd))
+        call global_max(self%grid, k)
     end function kernel_max_abs
 
     !> Geometric mean of |s K_d| over q /= 0: the magnitude that makes a step of 1/it balanced
-    pure real(dp) function kernel_typical_abs(self, s) result(k)
+    real(dp) function kernel_typical_abs(self, s) result(k)
         class(kernel_t), intent(in) :: self
         real(dp), intent(in) :: s
-        complex(dp), allocatable :: ks(:, :)
-        ks = self%kd*s
-        k = exp(sum(log(abs(ks) + tiny(1.0_dp)), mask=abs(ks) > 0.0_dp)/max(1, count(abs(ks) > 0.0_dp)))
+        real(dp) :: cols(2, size(self%kd, 2)), t(2), v
+        integer :: a, b
+        do b = 1, size(self%kd, 2)
+            cols(:, b) = 0.0_dp
+            do a = 1, size(self%kd, 1)
+                v = abs(self%kd(a, b)*s)
+                if (v > 0.0_dp) cols(:, b) = cols(:, b) + [log(v + tiny(1.0_dp)), 1.0_dp]
+            end do
+        end do
+        call ordered_sum(self%grid, cols, t, spectral=.true.)
+        k = exp(t(1)/max(1.0_dp, t(2)))
     end function kernel_typical_abs
 
 end module veslide_kernel

@@ -2,7 +2,7 @@
 !> validation scenes, and slope/height statistics.
 !>
 !> Heights h(x, y) [m] on an nx x ny periodic grid of cell centres, positive toward the solid
-!> (the highest points touch first). Random surfaces: h(x) = sum_q a_q exp(i q.x) with
+!> (the highest points touch first); each process makes its own rows (nx, ny_local) of a grid. Random surfaces: h(x) = sum_q a_q exp(i q.x) with
 !> a_q = alpha + i beta, alpha, beta ~ N(0, (2 pi)^2/(Lx Ly) C(q)/2), a_{-q} = conj(a_q), a_0 = 0,
 !> Nyquist lines zero. Each a_q is drawn from (seed, signed wavenumber) alone (veslide_rng), so a
 !> finer grid with the same spectrum gives the same surface, sampled more densely.
@@ -13,6 +13,8 @@ module veslide_surface
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
     use veslide_spectrum, only: slope_tensor
+    use veslide_collective, only: ordered_sum
+    use veslide_fields, only: field_mean, field_rms
     implicit none
     private
     public :: psd_t, psd_value, random_surface, random_coefficients, rms_height, expected_slope_tensor
@@ -58,44 +60,52 @@ contains
     end function psd_value
 
     !> Fourier coefficients a_q of a random surface with spectrum `psd` and unit C0 on the r2c
-    !> half-spectrum (nx/2+1, ny), so that h(x) = sum_q a_q exp(i q.x) over the full plane.
+    !> half-spectrum (the grid's spectral storage: (nx/2+1, ny) on one process), so that
+    !> h(x) = sum_q a_q exp(i q.x) over the full plane.
     !> Each pair {q, -q} is drawn once, from (seed, signed wavenumber of the representative with
     !> ki > 0, or ki = 0 and kj > 0); the ki = 0 column holds both members, conjugate. The q = 0
-    !> mode and Nyquist lines are zero. Also returns the expected variance and slope-tensor trace.
-    pure subroutine random_coefficients(grid, psd, seed, ak, var_sum, slope_sum)
+    !> mode and Nyquist lines are zero. Any share of the coefficients is drawn independently of the
+    !> others. Also returns the expected variance and slope-tensor trace of this process's share,
+    !> summed column by column of the storage (`cols`, for an ordered sum over processes).
+    pure subroutine random_coefficients(grid, psd, seed, ak, var_sum, slope_sum, cols)
         type(grid_t), intent(in) :: grid
         type(psd_t), intent(in) :: psd
         integer(i8), intent(in) :: seed
         complex(dp), intent(out) :: ak(:, :)
-        !> expected <h^2> and <|grad h|^2> of the spectrum on this grid
+        !> expected <h^2> and <|grad h|^2> of the spectrum on this grid (this process's share)
         real(dp), intent(out) :: var_sum, slope_sum
-        integer :: i, j, ki, kj, k(2)
-        real(dp) :: qx, qy, c, sig, z1, z2, wt
+        !> the same per storage column, (2, columns)
+        real(dp), intent(out), optional :: cols(:, :)
+        integer :: a, b, i, j, ki, kj, k(2), ij(2)
+        real(dp) :: qx, qy, c, sig, z1, z2, wt, col(2)
         logical :: nyq
         var_sum = 0.0_dp; slope_sum = 0.0_dp
-        do j = 1, grid%ny
-            do i = 1, grid%nq()
+        do b = 1, size(ak, 2)
+            col = 0.0_dp
+            do a = 1, size(ak, 1)
+                ij = grid%spectral_index(a, b); i = ij(1); j = ij(2)
                 k = grid%wavenumber(i, j); ki = k(1); kj = k(2)
                 nyq = grid%is_nyquist_x(i) .or. grid%is_nyquist_y(j)
                 qx = two_pi*ki/grid%lx_m; qy = two_pi*kj/grid%ly_m
                 c = psd_value(psd, qx, qy)
                 if (nyq .or. (ki == 0 .and. kj == 0) .or. c == 0.0_dp) then
-                    ak(i, j) = (0.0_dp, 0.0_dp); cycle
+                    ak(a, b) = (0.0_dp, 0.0_dp); cycle
                 end if
                 sig = sqrt(0.5_dp*two_pi**2/(grid%lx_m*grid%ly_m)*c)
                 if (ki > 0 .or. kj > 0) then
                     call normal_pair_at(seed, ki, kj, z1, z2)
-                    ak(i, j) = sig*cmplx(z1, z2, dp)
+                    ak(a, b) = sig*cmplx(z1, z2, dp)
                 else
                     call normal_pair_at(seed, -ki, -kj, z1, z2)
-                    ak(i, j) = sig*cmplx(z1, -z2, dp)
+                    ak(a, b) = sig*cmplx(z1, -z2, dp)
                 end if
                 ! expected contributions, counting the conjugate partner of every stored
                 ! entry except the ki = 0 column (whose partner is stored itself)
                 wt = merge(1.0_dp, 2.0_dp, ki == 0)*2.0_dp*sig**2
-                var_sum = var_sum + wt
-                slope_sum = slope_sum + wt*(qx*qx + qy*qy)
+                col = col + [wt, wt*(qx*qx + qy*qy)]
             end do
+            var_sum = var_sum + col(1); slope_sum = slope_sum + col(2)
+            if (present(cols)) cols(:, b) = col
         end do
     end subroutine random_coefficients
 
@@ -114,7 +124,8 @@ contains
         type(error_t), allocatable, intent(out) :: error
         logical, intent(in), optional :: realised
         type(fft2d_t) :: fft
-        real(dp) :: var_sum, slope_sum, scale, m(2, 2)
+        real(dp) :: var_sum, slope_sum, scale, m(2, 2), t(2)
+        real(dp), allocatable :: cols(:, :)
         logical :: realised_
 
         realised_ = .true.; if (present(realised)) realised_ = realised
@@ -127,21 +138,24 @@ contains
         if (.not. (psd%q_low > 0.0_dp .and. psd%q_low <= psd%q_roll .and. psd%q_roll <= psd%q_cut)) then
             call fatal_error(error, "wavevectors must satisfy 0 < q_low <= q_roll <= q_cut"); return
         end if
-        call fft%init(grid%nx, grid%ny, error, isolated=.true.); if (allocated(error)) return
-        call random_coefficients(grid, psd, seed, fft%k, var_sum, slope_sum)
+        call fft%init(grid%nx, grid%ny, error, isolated=.true., grid=grid); if (allocated(error)) return
+        allocate (cols(2, size(fft%k, 2)))
+        call random_coefficients(grid, psd, seed, fft%k, var_sum, slope_sum, cols)
+        call ordered_sum(grid, cols, t, spectral=.true.)
+        var_sum = t(1); slope_sum = t(2)
         if (var_sum <= 0.0_dp) then
             call fatal_error(error, "the spectrum has no mode on this grid (check q_low, q_cut, nx, ny)"); return
         end if
         ! c2r without 1/N: h(x) = sum_q a_q exp(i q.x)
         call fft%backward_unscaled()
         h = fft%x
-        h = h - sum(h)/size(h)
+        h = h - field_mean(grid, h)
         if (realised_) then
             if (rms_slope > 0.0_dp) then
                 call slope_tensor(grid, fft, h, m)
                 scale = rms_slope/sqrt(m(1, 1) + m(2, 2))
             else
-                scale = rms_height_target/rms_height(h)
+                scale = rms_height_target/field_rms(grid, h)
             end if
         else
             if (rms_slope > 0.0_dp) then
@@ -190,9 +204,9 @@ contains
         integer :: i, j
         real(dp) :: qx, qy
         qx = two_pi/wavelength*cos(direction_rad); qy = two_pi/wavelength*sin(direction_rad)
-        do j = 1, grid%ny
+        do j = 1, grid%ny_local
             do i = 1, grid%nx
-                h(i, j) = amplitude*cos(qx*(i - 1)*grid%lx_m/grid%nx + qy*(j - 1)*grid%ly_m/grid%ny)
+                h(i, j) = amplitude*cos(qx*(i - 1)*grid%lx_m/grid%nx + qy*(grid%j0 + j - 1)*grid%ly_m/grid%ny)
             end do
         end do
     end subroutine cosine_surface
@@ -203,10 +217,10 @@ contains
         real(dp), intent(in) :: amplitude, wavelength
         real(dp), intent(out) :: h(:, :)
         integer :: i, j
-        do j = 1, grid%ny
+        do j = 1, grid%ny_local
             do i = 1, grid%nx
                 h(i, j) = amplitude*cos(two_pi*(i - 1)*grid%lx_m/grid%nx/wavelength) &
-                          *cos(two_pi*(j - 1)*grid%ly_m/grid%ny/wavelength)
+                          *cos(two_pi*(grid%j0 + j - 1)*grid%ly_m/grid%ny/wavelength)
             end do
         end do
     end subroutine bisinusoid_surface
@@ -218,9 +232,9 @@ contains
         real(dp), intent(out) :: h(:, :)
         integer :: i, j
         real(dp) :: x, y
-        do j = 1, grid%ny
+        do j = 1, grid%ny_local
             do i = 1, grid%nx
-                x = (i - 1 - grid%nx/2)*grid%lx_m/grid%nx; y = (j - 1 - grid%ny/2)*grid%ly_m/grid%ny
+                x = (i - 1 - grid%nx/2)*grid%lx_m/grid%nx; y = (grid%j0 + j - 1 - grid%ny/2)*grid%ly_m/grid%ny
                 h(i, j) = -(x*x + y*y)/(2.0_dp*radius)
             end do
         end do
@@ -235,7 +249,7 @@ contains
         real(dp) :: x
         do i = 1, grid%nx
             x = (i - 1 - grid%nx/2)*grid%lx_m/grid%nx
-            h(i, 1:grid%ny) = -x*x/(2.0_dp*radius)
+            h(i, 1:grid%ny_local) = -x*x/(2.0_dp*radius)
         end do
     end subroutine cylinder_surface
 
