@@ -2,12 +2,11 @@
 !> Runs the case or the study a namelist describes and writes its HDF5 result; see README.md.
 program veslide_main
     use, intrinsic :: iso_fortran_env, only: stderr => error_unit, stdout => output_unit
-    use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_quantities, only: results_t
-    use veslide_case, only: case_t, run_case, write_case, case_results
+    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines
     use veslide_study, only: run_study, study_progress_t
     use veslide_version, only: version_string
     use veslide_system, only: ignore_file_size_signal, exit_now
@@ -154,27 +153,12 @@ contains
     !> The run summary, read from the case's results list
     subroutine summary()
         type(results_t) :: r
-        real(dp) :: hrms
+        character(len=120), allocatable :: lines(:)
         call case_results(cfg, c, r)
-        hrms = r%get('rms_height_m')
-        write (stdout, '(a)') "veslide "//version_string()//": "//cfg%path//" -> "//cfg%output%file
-        write (stdout, '(a,i0,a,i0,a,a,a,a,a,a)') "  grid ", c%grid%nx, " x ", c%grid%ny, &
-            ", surface ", cfg%surface%kind, ", material ", cfg%material%model, ", kernel ", cfg%solver%kernel
-        write (stdout, '(a,es12.5,a)') "  rms height            ", hrms, " m"
-        write (stdout, '(a,es12.5,a)') "  nominal pressure      ", r%get('mean_pressure_pa'), " Pa"
-        write (stdout, '(a,f12.8)') "  contact area fraction ", r%get('contact_area_fraction')
-        write (stdout, '(a,es12.5,a,f9.5,a)') "  mean separation       ", r%get('mean_separation_m'), " m (", &
-            r%get('mean_separation_m')/max(hrms, tiny(1.0_dp)), " h_rms)"
-        write (stdout, '(a,es12.5,a)') "  max pressure          ", r%get('max_pressure_pa'), " Pa"
-        if (.not. c%kernel%symmetric) then
-            write (stdout, '(a,es12.5)') "  friction coefficient  ", r%get('friction_coefficient')
-            write (stdout, '(a,es12.5)') "  lateral force ratio   ", r%get('lateral_force_ratio')
-        end if
-        write (stdout, '(a,a,a,i0,a,i0,a,es9.2,a,l1)') "  solver ", c%state%method, ": ", c%state%iterations, &
-            " iterations, ", c%state%operator_applications, " FFT pairs, residual ", c%state%residual, &
-            ", converged ", c%state%converged
-        write (stdout, '(a,f8.3,a,f8.3,a,f8.3,a)') "  time: surface ", r%get('surface_seconds'), " s, kernel ", &
-            r%get('kernel_seconds'), " s, solve ", r%get('solve_seconds'), " s"
+        lines = summary_lines(cfg, c, r)
+        do i = 1, size(lines)
+            write (stdout, '(a)') trim(lines(i))
+        end do
     end subroutine summary
 
 end program veslide_main

@@ -5,8 +5,8 @@ module test_veslide_anisotropy
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_spectrum, only: slope_tensor
-    use veslide_anisotropy, only: tensor_axes, decompose, compose, m2_of_theta, patch_stats_t, contact_patches, &
-                                  percolates
+    use veslide_anisotropy, only: tensor_axes, decompose, compose, m2_of_theta
+    use veslide_patches, only: patch_stats_t, contact_patches, percolates
     use testsuite, only: unittest_t, new_unittest, check, report
     implicit none
     private

@@ -1,5 +1,7 @@
-!> veslide-batch FILE.nml [--overwrite] [--quiet]: the study of FILE.nml on every MPI rank at once.
-!> Rank r runs the speed chains (seed, eccentricity, angle, pressure) whose index is r modulo the
+!> veslide-batch FILE.nml [--overwrite] [--quiet]: FILE.nml on every MPI rank at once.
+!> A single case (no &sweep list): one grid distributed over the ranks (FFTW's MPI transforms,
+!> rows of every field per rank), solved together and written collectively (parallel HDF5) into
+!> the file a serial run writes. A study: rank r runs the speed chains (seed, eccentricity, angle, pressure) whose index is r modulo the
 !> number of ranks, each warm-started along speed as in a serial study, into a rank file next to
 !> the output; when every rank has finished, rank 0 joins the rank files into the study file
 !> (veslide_study's merge: the same /summary and /ensemble as a serial run), publishes it as a
@@ -11,6 +13,9 @@ program veslide_batch
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_study, only: run_study, merge_study_parts, study_progress_t
+    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines
+    use veslide_quantities, only: results_t
+    use veslide_system, only: ignore_file_size_signal
     implicit none
     type(config_t) :: cfg
     type(error_t), allocatable :: error
@@ -33,9 +38,10 @@ program veslide_batch
         end select
     end do
     if (len(input) == 0) call die("usage: mpirun -n N veslide-batch FILE.nml [--overwrite] [--quiet]")
+    call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
-    if (.not. cfg%sweep%is_study()) call die("veslide-batch: "//input//" has no &sweep list; run it with veslide")
+    if (.not. cfg%sweep%is_study()) call distributed_case()
     out = cfg%output%file
     status = 0
     if (rank == 0) then
@@ -89,6 +95,59 @@ program veslide_batch
     if (total > 0 .and. rank == 0) stop 2, quiet=.true.   ! a controlled exit: the message is printed above
 
 contains
+
+    !> One case on a grid shared by all ranks; the ranks of one machine share its free memory
+    subroutine distributed_case()
+        type(case_t) :: c
+        type(results_t) :: r
+        type(MPI_Comm) :: node
+        character(len=120), allocatable :: lines(:)
+        integer :: node_ranks, i, nlen
+        out = cfg%output%file
+        status = 0
+        if (rank == 0) then
+            call prepare_output(out, overwrite .or. cfg%output%overwrite, tmp, lock, error)
+            if (allocated(error)) status = 1
+        end if
+        call agree(status); if (status /= 0) call die(error_text())
+        nlen = 0; if (rank == 0) nlen = len(tmp)
+        call MPI_Bcast(nlen, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
+        if (rank /= 0) allocate (character(len=nlen) :: tmp)
+        call MPI_Bcast(tmp, nlen, MPI_CHARACTER, 0, MPI_COMM_WORLD)
+        call MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, node)
+        call MPI_Comm_size(node, node_ranks)
+        call MPI_Comm_free(node)
+        call run_case(cfg, c, error, comm=MPI_COMM_WORLD%MPI_VAL, node_ranks=node_ranks)
+        if (.not. allocated(error)) call write_case(tmp, cfg, c, error)
+        if (allocated(error)) then          ! every rank holds the same verdict
+            if (rank == 0) then
+                write (stderr, '(a)') error%message
+                call discard_output(tmp); call release_output(lock, out)
+            end if
+            call MPI_Finalize(); stop 1, quiet=.true.
+        end if
+        call case_results(cfg, c, r)        ! (collective)
+        if (rank == 0) then
+            call commit_output(tmp, out, overwrite .or. cfg%output%overwrite, error)
+            call release_output(lock, out)
+            if (allocated(error)) then
+                write (stderr, '(a)') error%message; status = 1
+            else if (.not. quiet) then
+                lines = summary_lines(cfg, c, r)
+                do i = 1, size(lines)
+                    write (stdout, '(a)') trim(lines(i))
+                end do
+            end if
+            if (status == 0 .and. .not. c%state%converged) write (stderr, '(a,es9.2,a,es9.2,a,i0,a)') &
+                "veslide-batch: NOT CONVERGED: residual ", c%state%residual, " > tolerance ", cfg%solver%tolerance, &
+                " after ", c%state%iterations, " iterations (result written with /scalars/converged = 0)"
+        end if
+        call MPI_Bcast(status, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
+        call MPI_Finalize()
+        if (status /= 0) stop 1, quiet=.true.
+        if (.not. c%state%converged) stop 2, quiet=.true.
+        stop
+    end subroutine distributed_case
 
     !> Every rank learns whether rank 0 failed
     subroutine agree(flag)

@@ -1,5 +1,5 @@
-!> Anisotropy of the rigid surface and of the deformed solid (section 3 of the paper), and the
-!> statistics of contact patches.
+!> Anisotropy of the rigid surface and of the deformed solid (section 3 of the paper); the
+!> statistics of contact patches are in veslide_patches.
 !>
 !> Slope tensors in a band of wavevectors: M_ij = <d_i h d_j h>, Md_ij = <d_i w d_j w> (second
 !> spectral moments of the band-filtered fields). m2(theta) = e.M.e, gamma = lambda_min/lambda_max,
@@ -15,15 +15,7 @@ module veslide_anisotropy
     use veslide_kinds, only: dp, pi
     implicit none
     private
-    public :: tensor_axes, decompose, compose, m2_of_theta, patch_stats_t, contact_patches, percolates
-
-    type :: patch_stats_t
-        integer :: count = 0                    !! number of patches
-        real(dp) :: mean_area_fraction = 0.0_dp !! mean patch area / cell area
-        real(dp) :: orientation(2, 2) = 0.0_dp  !! area-weighted gyration tensor, trace 1
-        real(dp) :: gamma = 0.0_dp              !! its eigenvalue ratio (min/max)
-        real(dp) :: theta = 0.0_dp              !! direction of its major axis [rad, 0..pi)
-    end type patch_stats_t
+    public :: tensor_axes, decompose, compose, m2_of_theta
 
 contains
 
@@ -87,110 +79,5 @@ contains
         sd = matmul(rs, matmul(reshape([sigma1, 0.0_dp, 0.0_dp, sigma2], [2, 2]), transpose(rs)))
         md = matmul(r, matmul(matmul(sd, m), transpose(r)))
     end function compose
-
-    !> Neighbour k (1..4: +x, -x, +y, -y) of cell (ci, cj) on the periodic grid, and the unwrapped
-    !> cell offsets (ox, oy) carried across the boundary
-    pure subroutine periodic_step(ci, cj, k, nx, ny, ox, oy, ni, nj, dx, dy)
-        integer, intent(in) :: ci, cj, k, nx, ny, ox, oy
-        integer, intent(out) :: ni, nj, dx, dy
-        integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
-        ni = ci + di(k); nj = cj + dj(k); dx = ox; dy = oy
-        if (ni < 1) then
-            ni = nx; dx = dx - 1
-        else if (ni > nx) then
-            ni = 1; dx = dx + 1
-        end if
-        if (nj < 1) then
-            nj = ny; dy = dy - 1
-        else if (nj > ny) then
-            nj = 1; dy = dy + 1
-        end if
-    end subroutine periodic_step
-
-    !> Connected patches of `mask` (4-neighbour, periodic): labels, and their statistics
-    subroutine contact_patches(mask, lx, ly, stats, labels)
-        logical, intent(in) :: mask(:, :)
-        real(dp), intent(in) :: lx, ly
-        type(patch_stats_t), intent(out) :: stats
-        integer, allocatable, intent(out), optional :: labels(:, :)
-        integer, allocatable :: lab(:, :), qi(:), qj(:), ox(:, :), oy(:, :)
-        integer :: nx, ny, i, j, head, tail, ci, cj, k, ni, nj, dx, dy, npatch, cnt
-        real(dp) :: sx, sy, sxx, syy, sxy, x, y, g(2, 2), a, l1, l2, wsum
-        nx = size(mask, 1); ny = size(mask, 2)
-        allocate (lab(nx, ny), qi(nx*ny), qj(nx*ny), ox(nx, ny), oy(nx, ny))
-        lab = 0; ox = 0; oy = 0; npatch = 0
-        stats%orientation = 0.0_dp; wsum = 0.0_dp
-        do j = 1, ny
-            do i = 1, nx
-                if (.not. mask(i, j) .or. lab(i, j) /= 0) cycle
-                npatch = npatch + 1
-                lab(i, j) = npatch; ox(i, j) = 0; oy(i, j) = 0
-                head = 1; tail = 1; qi(1) = i; qj(1) = j
-                cnt = 0; sx = 0; sy = 0; sxx = 0; syy = 0; sxy = 0
-                do while (head <= tail)
-                    ci = qi(head); cj = qj(head); head = head + 1
-                    ! unwrapped position of this cell in units of cells
-                    x = real(ci - 1 + ox(ci, cj)*nx, dp)*lx/nx
-                    y = real(cj - 1 + oy(ci, cj)*ny, dp)*ly/ny
-                    cnt = cnt + 1; sx = sx + x; sy = sy + y; sxx = sxx + x*x; syy = syy + y*y; sxy = sxy + x*y
-                    do k = 1, 4
-                        call periodic_step(ci, cj, k, nx, ny, ox(ci, cj), oy(ci, cj), ni, nj, dx, dy)
-                        if (.not. mask(ni, nj) .or. lab(ni, nj) /= 0) cycle
-                        lab(ni, nj) = npatch; ox(ni, nj) = dx; oy(ni, nj) = dy
-                        tail = tail + 1; qi(tail) = ni; qj(tail) = nj
-                    end do
-                end do
-                a = real(cnt, dp)
-                g(1, 1) = sxx/a - (sx/a)**2 + (lx/nx)**2/12.0_dp
-                g(2, 2) = syy/a - (sy/a)**2 + (ly/ny)**2/12.0_dp
-                g(1, 2) = sxy/a - (sx/a)*(sy/a); g(2, 1) = g(1, 2)
-                stats%orientation = stats%orientation + a*g
-                wsum = wsum + a*(g(1, 1) + g(2, 2))
-            end do
-        end do
-        stats%count = npatch
-        if (npatch > 0) then
-            stats%mean_area_fraction = real(count(mask), dp)/npatch/(real(nx, dp)*ny)
-            stats%orientation = stats%orientation/wsum
-            call tensor_axes(stats%orientation, l1, l2, stats%theta)
-            stats%gamma = l2/l1
-        end if
-        if (present(labels)) call move_alloc(lab, labels)
-    end subroutine contact_patches
-
-    !> Does some connected component of `mask` wrap around the periodic cell along x (dir = 1)
-    !> or along y (dir = 2)? A component wraps when a cell is reached with two unwrapped offsets.
-    logical function percolates(mask, dir) result(yes)
-        logical, intent(in) :: mask(:, :)
-        integer, intent(in) :: dir
-        integer, allocatable :: lab(:, :), qi(:), qj(:), ox(:, :), oy(:, :)
-        integer :: nx, ny, i, j, head, tail, ci, cj, k, ni, nj, dx, dy, ncomp
-        nx = size(mask, 1); ny = size(mask, 2)
-        allocate (lab(nx, ny), qi(nx*ny), qj(nx*ny), ox(nx, ny), oy(nx, ny))
-        lab = 0; ox = 0; oy = 0; ncomp = 0; yes = .false.
-        do j = 1, ny
-            do i = 1, nx
-                if (.not. mask(i, j) .or. lab(i, j) /= 0) cycle
-                ncomp = ncomp + 1
-                lab(i, j) = ncomp
-                head = 1; tail = 1; qi(1) = i; qj(1) = j
-                do while (head <= tail)
-                    ci = qi(head); cj = qj(head); head = head + 1
-                    do k = 1, 4
-                        call periodic_step(ci, cj, k, nx, ny, ox(ci, cj), oy(ci, cj), ni, nj, dx, dy)
-                        if (.not. mask(ni, nj)) cycle
-                        if (lab(ni, nj) /= 0) then
-                            if ((dir == 1 .and. dx /= ox(ni, nj)) .or. (dir == 2 .and. dy /= oy(ni, nj))) then
-                                yes = .true.; return
-                            end if
-                            cycle
-                        end if
-                        lab(ni, nj) = ncomp; ox(ni, nj) = dx; oy(ni, nj) = dy
-                        tail = tail + 1; qi(tail) = ni; qj(tail) = nj
-                    end do
-                end do
-            end do
-        end do
-    end function percolates
 
 end module veslide_anisotropy

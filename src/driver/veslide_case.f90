@@ -5,9 +5,12 @@ module veslide_case
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
     use veslide_strings, only: str
+    use veslide_version, only: version_string
     use veslide_config, only: config_t
     use veslide_grid, only: grid_t, new_grid
-    use veslide_fftw, only: fft2d_t
+    use veslide_fftw, only: fft2d_t, distribute_grid
+    use veslide_collective, only: share_error, global_max
+    use veslide_fields, only: field_rms, field_max
     use veslide_spectrum, only: slope_tensor
     use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
     use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
@@ -18,17 +21,19 @@ module veslide_case
     use veslide_solver_options, only: solver_options_t, solver_method_id
     use veslide_solver, only: solve_contact
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation, slope_force
-    use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta, patch_stats_t, contact_patches, percolates
+    use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta
+    use veslide_patches, only: patch_stats_t, contact_patches, percolates
     use veslide_quantities, only: results_t, add_force_quantities, add_solver_quantities
     use veslide_topography, only: read_topography, topography_shape
     use veslide_memory, only: memory_estimate_bytes, format_gib
     use veslide_system, only: available_memory_bytes, peak_memory_bytes
     use veslide_hdf5, only: h5file_t
-    use veslide_output, only: write_provenance, write_results, write_field
+    use veslide_hdf5_parallel, only: create_collective, write_rows
+    use veslide_output, only: write_provenance, write_results, write_field, field_layout
     implicit none
     private
     public :: case_t, build_surface, build_material, build_kernel, case_grid, run_case, solve_prepared, &
-              case_results, write_case, write_case_group, velocity_of, size_and_check_memory
+              case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines
 
     !> Everything one solve produced
     type :: case_t
@@ -76,23 +81,34 @@ contains
         call add_context(error, "veslide: "//cfg%path//": &grid: ")
     end subroutine case_grid
 
-    !> Rigid heights from the configuration; a measured topography fixes &grid nx, ny, lx_m, ly_m
-    subroutine build_surface(cfg, h, error)
+    !> Rigid heights from the configuration; a measured topography fixes &grid nx, ny, lx_m, ly_m.
+    !> With `on` (a grid already made, perhaps distributed), the heights of its rows.
+    subroutine build_surface(cfg, h, error, on)
         type(config_t), intent(inout) :: cfg
         real(dp), allocatable, intent(out) :: h(:, :)
         type(error_t), allocatable, intent(out) :: error
+        type(grid_t), intent(in), optional :: on
         type(grid_t) :: grid
         type(psd_t) :: psd
         real(dp) :: q0
         if (cfg%surface%kind == 'file') then
-            call read_topography(cfg%surface%file, cfg%surface%dataset, h, cfg%grid%lx_m, error)
+            if (present(on)) then
+                call read_topography(cfg%surface%file, cfg%surface%dataset, h, cfg%grid%lx_m, error, &
+                                     rows=[on%j0, on%ny_local])
+            else
+                call read_topography(cfg%surface%file, cfg%surface%dataset, h, cfg%grid%lx_m, error)
+            end if
             call add_context(error, "veslide: "//cfg%path//": &surface ")
             if (allocated(error)) return
-            cfg%grid%nx = size(h, 1); cfg%grid%ny = size(h, 2); cfg%grid%ly_m = cfg%grid%lx_m
+            cfg%grid%nx = size(h, 1); cfg%grid%ny = size(h, 1); cfg%grid%ly_m = cfg%grid%lx_m
             return
         end if
-        call case_grid(cfg, grid, error); if (allocated(error)) return
-        allocate (h(grid%nx, grid%ny))
+        if (present(on)) then
+            grid = on
+        else
+            call case_grid(cfg, grid, error); if (allocated(error)) return
+        end if
+        allocate (h(grid%nx, grid%ny_local))
         associate (s => cfg%surface)
             select case (s%kind)
             case ('self_affine')
@@ -152,51 +168,81 @@ contains
         seconds = wall_seconds() - t0
     end subroutine build_kernel
 
-    !> Before anything is allocated: the grid of a measured topography (from the file's shape), and
-    !> the memory the run will need against what the process may use; refused in one line naming
-    !> &grid nx, ny (or the file) when it does not fit. Returns the estimate.
-    subroutine size_and_check_memory(cfg, estimate, error)
+    !> Before anything is allocated: the grid of a measured topography (from the file's shape and
+    !> its length_m attribute), and the memory the run will need against what the process may use;
+    !> refused in one line naming &grid nx, ny (or the file) when it does not fit. Returns the
+    !> estimate. On a grid shared by `ranks` processes, `node_ranks` of them on this machine, the
+    !> estimate is one process's share and the memory free on the machine is shared among those.
+    subroutine size_and_check_memory(cfg, estimate, error, ranks, node_ranks)
         type(config_t), intent(inout) :: cfg
         integer(i8), intent(out) :: estimate
         type(error_t), allocatable, intent(out) :: error
+        integer, intent(in), optional :: ranks, node_ranks
         integer(i8) :: available
-        integer :: n
-        character(len=:), allocatable :: what
+        integer :: n, ranks_, node_ranks_
+        character(len=:), allocatable :: what, who
+        ranks_ = 1; if (present(ranks)) ranks_ = max(1, ranks)
+        node_ranks_ = 1; if (present(node_ranks)) node_ranks_ = max(1, node_ranks)
         what = "&grid nx, ny = "
         if (cfg%surface%kind == 'file') then
-            call topography_shape(cfg%surface%file, cfg%surface%dataset, n, error)
+            call topography_shape(cfg%surface%file, cfg%surface%dataset, n, error, cfg%grid%lx_m)
             call add_context(error, "veslide: "//cfg%path//": &surface ")
             if (allocated(error)) return
-            cfg%grid%nx = n; cfg%grid%ny = n
+            cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%ly_m = cfg%grid%lx_m
             what = "&surface file '"//cfg%surface%file//"' of "
         end if
-        estimate = memory_estimate_bytes(cfg)
+        estimate = memory_estimate_bytes(cfg, ranks_)
         available = available_memory_bytes()
+        if (available >= 0) available = available/node_ranks_
         if (available >= 0 .and. estimate > available) then
             what = what//str(cfg%grid%nx)//" x "//str(cfg%grid%ny)
+            who = "this process (free memory, ulimit and cgroup limits)"
+            if (ranks_ > 1) then
+                what = what//" on "//str(ranks_)//" processes"
+                who = "each of the "//str(node_ranks_)//" processes on this machine (its share of the free memory,"// &
+                      " ulimit and cgroup limits)"
+            end if
             call fatal_error(error, "veslide: "//cfg%path//": "//what//" needs about "//format_gib(estimate)// &
-                " of memory, and "//format_gib(available)//" is available to this process (free memory,"// &
-                " ulimit and cgroup limits): choose a smaller &grid nx, ny or run where more memory is free")
+                " of memory per process, and "//format_gib(available)//" is available to "//who// &
+                ": choose a smaller &grid nx, ny, use more processes, or run where more memory is free")
         end if
     end subroutine size_and_check_memory
 
-    !> Build and solve one case
-    subroutine run_case(cfg, c, error)
+    !> Build and solve one case; with `comm` (an MPI communicator, the MPI build) on a grid shared
+    !> by its processes, `node_ranks` of them on this machine (collective: every process returns
+    !> the same verdict)
+    subroutine run_case(cfg, c, error, comm, node_ranks)
         type(config_t), intent(inout) :: cfg
         type(case_t), intent(out) :: c
         type(error_t), allocatable, intent(out) :: error
+        integer, intent(in), optional :: comm, node_ranks
         type(fft2d_t) :: fft
         real(dp) :: t0
-        call size_and_check_memory(cfg, c%memory_estimate_bytes, error); if (allocated(error)) return
-        t0 = wall_seconds()
-        call build_surface(cfg, c%h, error); if (allocated(error)) return
-        c%surface_seconds = wall_seconds() - t0
+        integer :: ranks
+        ranks = 1
+        if (present(comm)) then
+            call new_grid(c%grid, 1, 1, 1.0_dp, 1.0_dp, error)      ! the number of processes first
+            if (.not. allocated(error)) call distribute_grid(c%grid, comm, error)
+            if (allocated(error)) return
+            ranks = c%grid%ranks
+        end if
+        call size_and_check_memory(cfg, c%memory_estimate_bytes, error, ranks, node_ranks)
+        call share_error(c%grid, error); if (allocated(error)) return
         call case_grid(cfg, c%grid, error); if (allocated(error)) return
-        call fft%init(c%grid%nx, c%grid%ny, error, planner=cfg%solver%fft_planner, nthreads=cfg%solver%threads)
+        if (present(comm)) then
+            call distribute_grid(c%grid, comm, error); if (allocated(error)) return
+        end if
+        t0 = wall_seconds()
+        call build_surface(cfg, c%h, error, on=c%grid)
+        call share_error(c%grid, error); if (allocated(error)) return
+        c%surface_seconds = wall_seconds() - t0
+        call fft%init(c%grid%nx, c%grid%ny, error, planner=cfg%solver%fft_planner, nthreads=cfg%solver%threads, &
+                      grid=c%grid)
         if (allocated(error)) return
         call build_material(cfg, c%mat, error); if (allocated(error)) return
         call build_kernel(cfg, c%grid, c%mat, c%kernel, c%kernel_seconds, error); if (allocated(error)) return
         call solve_prepared(cfg, fft, c, error)
+        call share_error(c%grid, error)
         call fft%destroy()
     end subroutine run_case
 
@@ -238,12 +284,18 @@ contains
         c%have_anisotropy = .false.; c%have_patches = .false.; c%have_persson = .false.
         if (cfg%analysis%anisotropy) call anisotropy_analysis(cfg, fft, c)
         if (cfg%analysis%persson) then
+            if (c%grid%is_distributed()) then
+                call fatal_error(error, "veslide: "//cfg%path//": &analysis persson = .true. is not available on a"// &
+                    " grid distributed over processes (the theory orders every mode of the spectrum by |q|):"// &
+                    " set persson = .false., or run the case on one process")
+                return
+            end if
             call persson_analysis(cfg, fft, c, error); if (allocated(error)) return
         end if
         if (cfg%analysis%patches) then
-            call contact_patches(c%state%p > 0.0_dp, c%grid%lx_m, c%grid%ly_m, c%patches)
-            c%percolates_x = percolates(.not. (c%state%p > 0.0_dp), 1)
-            c%percolates_y = percolates(.not. (c%state%p > 0.0_dp), 2)
+            call contact_patches(c%state%p > 0.0_dp, c%grid%lx_m, c%grid%ly_m, c%patches, c%grid)
+            c%percolates_x = percolates(.not. (c%state%p > 0.0_dp), 1, c%grid)
+            c%percolates_y = percolates(.not. (c%state%p > 0.0_dp), 2, c%grid)
             c%have_patches = .true.
         end if
     end subroutine solve_prepared
@@ -291,13 +343,13 @@ contains
         type(config_t), intent(in) :: cfg
         type(case_t), intent(in) :: c
         type(results_t), intent(out) :: r
-        real(dp) :: along, across, d
+        real(dp) :: along, across, d, peak
         integer :: j
-        call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g), '-')
-        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p), '-')
-        call r%add('mean_separation_m', mean_separation(c%state%g), 'm')
-        call r%add('rms_height_m', rms_height(c%h), 'm')
-        call r%add('max_pressure_pa', maxval(c%state%p), 'Pa')
+        call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g, c%grid), '-')
+        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p, c%grid), '-')
+        call r%add('mean_separation_m', mean_separation(c%state%g, c%grid), 'm')
+        call r%add('rms_height_m', field_rms(c%grid, c%h), 'm')
+        call r%add('max_pressure_pa', field_max(c%grid, c%state%p), 'Pa')
         call r%add('mean_pressure_pa', cfg%load%mean_pressure_pa, 'Pa')
         call r%add('approach_m', c%state%approach_m, 'm')
         call add_solver_quantities(r, c%state, cfg%solver%tolerance)
@@ -313,8 +365,11 @@ contains
         call r%add('kernel_alias_error', c%kernel%alias_error, '-')
         call r%add('kernel_alias_zones', real(c%kernel%alias_zones, dp), '-', is_integer=.true.)
         call r%add('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
+        peak = real(peak_memory_bytes(), dp)
+        call global_max(c%grid, peak)
+        call r%add('processes', real(c%grid%ranks, dp), '-', is_integer=.true.)
         call r%add('memory_estimate_bytes', real(c%memory_estimate_bytes, dp), 'B', is_integer=.true.)
-        call r%add('memory_peak_bytes', real(peak_memory_bytes(), dp), 'B', is_integer=.true.)
+        call r%add('memory_peak_bytes', peak, 'B', is_integer=.true.)
         call r%add('surface_seconds', c%surface_seconds, 's')
         call r%add('kernel_seconds', c%kernel_seconds, 's')
         call r%add('solve_seconds', c%solve_seconds, 's')
@@ -367,17 +422,95 @@ contains
         call r%trim()
     end subroutine case_results
 
-    !> Write one case to an HDF5 file (the caller writes to a temporary name, then commits)
+    !> The run summary a program prints, from the case's results `r` (one line per entry)
+    function summary_lines(cfg, c, r) result(lines)
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        type(results_t), intent(in) :: r
+        character(len=120), allocatable :: lines(:)
+        character(len=120) :: b
+        real(dp) :: hrms
+        hrms = r%get('rms_height_m')
+        allocate (lines(0))
+        lines = [lines, b_("veslide "//version_string()//": "//cfg%path//" -> "//cfg%output%file)]
+        write (b, '(a,i0,a,i0,a,a,a,a,a,a)') "  grid ", c%grid%nx, " x ", c%grid%ny, &
+            ", surface ", cfg%surface%kind, ", material ", cfg%material%model, ", kernel ", cfg%solver%kernel
+        lines = [lines, b]
+        if (c%grid%is_distributed()) then
+            write (b, '(a,i0,a)') "  distributed over ", c%grid%ranks, " processes (rows of the grid)"
+            lines = [lines, b]
+        end if
+        write (b, '(a,es12.5,a)') "  rms height            ", hrms, " m"; lines = [lines, b]
+        write (b, '(a,es12.5,a)') "  nominal pressure      ", r%get('mean_pressure_pa'), " Pa"; lines = [lines, b]
+        write (b, '(a,f12.8)') "  contact area fraction ", r%get('contact_area_fraction'); lines = [lines, b]
+        write (b, '(a,es12.5,a,f9.5,a)') "  mean separation       ", r%get('mean_separation_m'), " m (", &
+            r%get('mean_separation_m')/max(hrms, tiny(1.0_dp)), " h_rms)"
+        lines = [lines, b]
+        write (b, '(a,es12.5,a)') "  max pressure          ", r%get('max_pressure_pa'), " Pa"; lines = [lines, b]
+        if (.not. c%kernel%symmetric) then
+            write (b, '(a,es12.5)') "  friction coefficient  ", r%get('friction_coefficient'); lines = [lines, b]
+            write (b, '(a,es12.5)') "  lateral force ratio   ", r%get('lateral_force_ratio'); lines = [lines, b]
+        end if
+        write (b, '(a,a,a,i0,a,i0,a,es9.2,a,l1)') "  solver ", c%state%method, ": ", c%state%iterations, &
+            " iterations, ", c%state%operator_applications, " FFT pairs, residual ", c%state%residual, &
+            ", converged ", c%state%converged
+        lines = [lines, b]
+        write (b, '(a,f8.3,a,f8.3,a,f8.3,a)') "  time: surface ", r%get('surface_seconds'), " s, kernel ", &
+            r%get('kernel_seconds'), " s, solve ", r%get('solve_seconds'), " s"
+        lines = [lines, b]
+    contains
+        function b_(t) result(l)
+            character(len=*), intent(in) :: t
+            character(len=120) :: l
+            l = t
+        end function b_
+    end function summary_lines
+
+    !> Write one case to an HDF5 file (the caller writes to a temporary name, then commits). On a
+    !> distributed grid (collective): the fields are written by every process at once (parallel
+    !> HDF5), then the first process adds everything else, so the file is laid out as a serial one.
     subroutine write_case(path, cfg, c, error)
         character(len=*), intent(in) :: path
         type(config_t), intent(in) :: cfg
         type(case_t), intent(in) :: c
         type(error_t), allocatable, intent(out) :: error
         type(h5file_t) :: f
+        type(results_t) :: r
+        if (c%grid%is_distributed()) then
+            call case_results(cfg, c, r)                 ! (collective: global sums and extrema)
+            call create_collective(f, path, c%grid, error)
+            if (.not. allocated(error) .and. cfg%output%fields) call write_fields(error)
+            if (allocated(error)) then
+                call f%close()
+            else
+                call f%close(error)
+            end if
+            call share_error(c%grid, error); if (allocated(error)) return
+            if (c%grid%is_root()) then
+                call f%open(path, 'rw', error)
+                if (.not. allocated(error)) call write_provenance(f, cfg%path, cfg%text, [cfg%surface%seed], error)
+                if (.not. allocated(error)) call write_case_group(f, '', cfg, c, error, r)
+                if (allocated(error)) then
+                    call f%close()
+                else
+                    call f%close(error)
+                end if
+            end if
+            call share_error(c%grid, error)
+            return
+        end if
         call f%open(path, 'w', error); if (allocated(error)) return
         call write_provenance(f, cfg%path, cfg%text, [cfg%surface%seed], error); if (allocated(error)) return
         call write_case_group(f, '', cfg, c, error); if (allocated(error)) return
         call f%close(error)
+    contains
+        subroutine write_fields(error)
+            type(error_t), allocatable, intent(out) :: error
+            call write_rows(f, c%grid, '/fields/height_m', c%h, error); if (allocated(error)) return
+            call write_rows(f, c%grid, '/fields/pressure_pa', c%state%p, error); if (allocated(error)) return
+            call write_rows(f, c%grid, '/fields/displacement_m', c%state%u, error); if (allocated(error)) return
+            call write_rows(f, c%grid, '/fields/gap_m', c%state%g, error)
+        end subroutine write_fields
     end subroutine write_case
 
     !> Results and fields of a case under `prefix` ('' for the root)
@@ -398,12 +531,24 @@ contains
         call write_results(f, prefix, r_, error); if (allocated(error)) return
         call f%writeattr(prefix//'/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
         call f%writeattr(prefix//'/scalars', 'kernel_variant', cfg%solver%kernel, error); if (allocated(error)) return
-        if (cfg%output%fields) then
+        if (cfg%output%fields .and. c%grid%is_distributed()) then
+            ! written already by every process (write_case): their attributes
+            call field_attributes(prefix//'/fields/height_m', 'm'); if (allocated(error)) return
+            call field_attributes(prefix//'/fields/pressure_pa', 'Pa'); if (allocated(error)) return
+            call field_attributes(prefix//'/fields/displacement_m', 'm'); if (allocated(error)) return
+            call field_attributes(prefix//'/fields/gap_m', 'm')
+        else if (cfg%output%fields) then
             call write_field(f, prefix//'/fields/height_m', c%h, 'm', error); if (allocated(error)) return
             call write_field(f, prefix//'/fields/pressure_pa', c%state%p, 'Pa', error); if (allocated(error)) return
             call write_field(f, prefix//'/fields/displacement_m', c%state%u, 'm', error); if (allocated(error)) return
             call write_field(f, prefix//'/fields/gap_m', c%state%g, 'm', error)
         end if
+    contains
+        subroutine field_attributes(name, units)
+            character(len=*), intent(in) :: name, units
+            call f%writeattr(name, 'units', units, error); if (allocated(error)) return
+            call f%writeattr(name, 'layout', field_layout, error)
+        end subroutine field_attributes
     end subroutine write_case_group
 
 end module veslide_case

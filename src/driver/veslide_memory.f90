@@ -24,9 +24,12 @@ module veslide_memory
 
 contains
 
-    !> Peak memory of the case or study of `cfg` on its grid [bytes]
-    pure integer(i8) function memory_estimate_bytes(cfg) result(bytes)
+    !> Peak memory of the case or study of `cfg` on its grid [bytes]; with `ranks`, of one of that
+    !> many processes sharing the grid (its rows, plus FFTW's MPI transposes: one more complex
+    !> half-spectrum of its share, 8 bytes per cell)
+    pure integer(i8) function memory_estimate_bytes(cfg, ranks) result(bytes)
         type(config_t), intent(in) :: cfg
+        integer, intent(in), optional :: ranks
         real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
         solve = 8 + 16 + 8 + 16 + 24
@@ -46,6 +49,12 @@ contains
         study = 0
         if (cfg%sweep%is_study()) study = 8*max(1, size(cfg%sweep%speeds)) + 16 + 16
         per_cell = solve + max(solver, analysis, kernel_build, 16.0_dp) + study
+        if (present(ranks)) then
+            if (ranks > 1) then
+                per_cell = per_cell + 8
+                n = n/ranks
+            end if
+        end if
         bytes = fixed_bytes + int(per_cell*n, i8)
     end function memory_estimate_bytes
 

@@ -17,7 +17,7 @@ module veslide_collective
     implicit none
     private
     public :: ordered_sum, ordered_sum_scalar, global_min, global_max, global_count, global_any, halo_rows, share_error
-    public :: mpi_enabled
+    public :: mpi_enabled, gather_to_root, broadcast_from_root, ordered_rank_sum
 
     !> Was the library built with MPI (-DVESLIDE_MPI)?
 #ifdef VESLIDE_MPI
@@ -37,6 +37,10 @@ module veslide_collective
     interface global_count
         module procedure global_count_i4, global_count_i8
     end interface global_count
+
+    interface gather_to_root
+        module procedure gather_columns_r, gather_blocks_i
+    end interface gather_to_root
 
 contains
 
@@ -284,6 +288,104 @@ contains
 
 #endif
     end subroutine halo_rows
+
+    !> On the first process: the columns of `a` of every process, in rank order, and how many
+    !> each gave (elsewhere `all` is empty)
+    subroutine gather_columns_r(grid, a, all, counts)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: a(:, :)
+        real(dp), allocatable, intent(out) :: all(:, :)
+        integer, allocatable, intent(out) :: counts(:)
+#ifdef VESLIDE_MPI
+        integer, allocatable :: displs(:)
+        real(dp), allocatable :: mine(:, :)
+        integer :: r, n
+        type(MPI_Comm) :: comm
+        if (grid%is_distributed()) then
+            comm%MPI_VAL = grid%comm
+            allocate (counts(grid%ranks), displs(grid%ranks))
+            n = size(a, 2)
+            call MPI_Gather(n, 1, MPI_INTEGER, counts, 1, MPI_INTEGER, 0, comm)
+            if (grid%is_root()) then
+                allocate (all(size(a, 1), sum(counts)))
+            else
+                allocate (all(size(a, 1), 0))
+            end if
+            displs(1) = 0
+            do r = 2, grid%ranks
+                displs(r) = displs(r - 1) + counts(r - 1)*size(a, 1)
+            end do
+            mine = a
+            call MPI_Gatherv(mine, size(mine), MPI_DOUBLE_PRECISION, all, counts*size(a, 1), displs, &
+                             MPI_DOUBLE_PRECISION, 0, comm)
+            return
+        end if
+#endif
+        all = a
+        counts = [size(a, 2)]
+    end subroutine gather_columns_r
+
+    !> On the first process: the block `a` (the same shape everywhere) of every process,
+    !> all(:, :, r) for rank r - 1 (elsewhere `all` is empty)
+    subroutine gather_blocks_i(grid, a, all)
+        type(grid_t), intent(in) :: grid
+        integer, intent(in) :: a(:, :)
+        integer, allocatable, intent(out) :: all(:, :, :)
+#ifdef VESLIDE_MPI
+        integer, allocatable :: mine(:, :)
+        type(MPI_Comm) :: comm
+        if (grid%is_distributed()) then
+            comm%MPI_VAL = grid%comm
+            if (grid%is_root()) then
+                allocate (all(size(a, 1), size(a, 2), grid%ranks))
+            else
+                allocate (all(size(a, 1), size(a, 2), 1))
+            end if
+            mine = a
+            call MPI_Gather(mine, size(mine), MPI_INTEGER, all, size(mine), MPI_INTEGER, 0, comm)
+            return
+        end if
+#endif
+        allocate (all(size(a, 1), size(a, 2), 1))
+        all(:, :, 1) = a
+    end subroutine gather_blocks_i
+
+    !> x <- the first process's x
+    subroutine broadcast_from_root(grid, x)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(inout) :: x(:)
+#ifdef VESLIDE_MPI
+        type(MPI_Comm) :: comm
+        if (grid%is_distributed()) then
+            comm%MPI_VAL = grid%comm
+            call MPI_Bcast(x, size(x), MPI_DOUBLE_PRECISION, 0, comm)
+        end if
+#endif
+    end subroutine broadcast_from_root
+
+    !> total = the sum of every process's `local`, added in rank order (deterministic)
+    subroutine ordered_rank_sum(grid, local, total)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: local(:)
+        real(dp), intent(out) :: total(:)
+#ifdef VESLIDE_MPI
+        real(dp), allocatable :: all(:, :), mine(:)
+        integer :: r
+        type(MPI_Comm) :: comm
+        if (grid%is_distributed()) then
+            comm%MPI_VAL = grid%comm
+            allocate (all(size(local), grid%ranks))
+            mine = local
+            call MPI_Allgather(mine, size(mine), MPI_DOUBLE_PRECISION, all, size(mine), MPI_DOUBLE_PRECISION, comm)
+            total = 0.0_dp
+            do r = 1, grid%ranks
+                total = total + all(:, r)
+            end do
+            return
+        end if
+#endif
+        total = local
+    end subroutine ordered_rank_sum
 
     !> One verdict for all processes: when any has an error, every one returns an error (the
     !> message of the lowest rank that failed); a no-op on a grid that is not distributed

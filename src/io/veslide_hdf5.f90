@@ -38,6 +38,7 @@ module veslide_hdf5
         procedure :: read_r0 => h5_read_r0
         procedure :: read_i0 => h5_read_i0
         procedure :: read_r2 => h5_read_r2
+        procedure :: read_r2_rows => h5_read_r2_rows
         procedure :: read_text => h5_read_text
         procedure :: shape_of => h5_shape_of
         procedure :: attr_exists => h5_attr_exists
@@ -532,6 +533,33 @@ contains
         type(error_t), allocatable, intent(out) :: error
         call read_raw(self, name, H5T_NATIVE_DOUBLE, c_loc(value), error)
     end subroutine h5_read_r2
+
+    !> Rows j0+1 .. j0+size(value, 2) of the 2-D float64 dataset `name` (a hyperslab: a
+    !> process of a distributed grid reads its own rows only)
+    subroutine h5_read_r2_rows(self, name, value, j0, error)
+        class(h5file_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        real(dp), intent(out), target, contiguous :: value(:, :)
+        integer, intent(in) :: j0
+        type(error_t), allocatable, intent(out) :: error
+        integer(hid_t) :: did, fspace, mspace
+        integer(hsize_t) :: count(2)
+        integer :: ierr, ie
+        type(c_ptr) :: buf
+        if (size(value) == 0) return
+        call h5dopen_f(self%fid, name, did, ierr)
+        if (ierr /= 0) then
+            call fatal_error(error, "veslide:hdf5:read: no dataset "//name//" in "//self%path); return
+        end if
+        count = shape(value, hsize_t)
+        call h5dget_space_f(did, fspace, ie)
+        call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, [0_hsize_t, int(j0, hsize_t)], count, ierr)
+        call h5screate_simple_f(2, count, mspace, ie)
+        buf = c_loc(value)
+        if (ierr == 0) call h5dread_f(did, H5T_NATIVE_DOUBLE, buf, ierr, mem_space_id=mspace, file_space_id=fspace)
+        call h5sclose_f(mspace, ie); call h5sclose_f(fspace, ie); call h5dclose_f(did, ie)
+        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:read: cannot read rows of "//name//" in "//self%path)
+    end subroutine h5_read_r2_rows
 
     !> A scalar string dataset (variable-length, as write_text stores it)
     subroutine h5_read_text(self, name, value, error)

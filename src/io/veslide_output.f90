@@ -17,7 +17,7 @@ module veslide_output
     implicit none
     private
     public :: prepare_output, release_output, commit_output, discard_output, write_provenance, process_id, &
-              write_results, write_field
+              write_results, write_field, field_layout
 
     !> How a 2-D field is laid out, for readers in other languages
     character(len=*), parameter :: field_layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"

@@ -13,14 +13,37 @@ contains
 
     !> The grid of dataset `dataset` in `file` (n x n), checked like read_topography but without
     !> reading the heights: the size is known before any memory is committed to it
-    subroutine topography_shape(file, dataset, n, error)
+    !> With `length_m` (0 on entry: take the dataset's attribute), the cell side as read_topography
+    !> would use it.
+    subroutine topography_shape(file, dataset, n, error, length_m)
         character(len=*), intent(in) :: file, dataset
         integer, intent(out) :: n
         type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(inout), optional :: length_m
         type(h5file_t) :: f
         call open_dataset(file, dataset, f, n, error)
+        if (.not. allocated(error) .and. present(length_m)) call cell_side(f, file, dataset, length_m, error)
         call f%close()
     end subroutine topography_shape
+
+    !> The cell side: `length_m` if > 0, else the dataset's attribute length_m
+    subroutine cell_side(f, file, dataset, length_m, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: file, dataset
+        real(dp), intent(inout) :: length_m
+        type(error_t), allocatable, intent(out) :: error
+        character(len=:), allocatable :: at
+        if (length_m /= 0.0_dp) return
+        at = "file '"//file//"': "
+        if (.not. f%attr_exists(dataset, 'length_m')) then
+            call fatal_error(error, at//"the cell side is unknown: set &grid lx_m or a 'length_m' attribute"); return
+        end if
+        call f%read_attr_r0(dataset, 'length_m', length_m, error)
+        if (allocated(error)) return
+        if (.not. (length_m > 0.0_dp .and. ieee_is_finite(length_m))) then
+            call fatal_error(error, at//"attribute length_m must be > 0")
+        end if
+    end subroutine cell_side
 
     !> Open `file` and check that `dataset` is a square 2-D float64 array of at least 2 x 2
     subroutine open_dataset(file, dataset, f, n, error)
@@ -59,32 +82,31 @@ contains
     !> Heights of dataset `dataset` in `file`; `length_m` is the cell side: on entry the caller's
     !> value (0: take the attribute `length_m` of the dataset), on exit the side used. Messages
     !> start with the file name; the caller puts the input that named it in front.
-    subroutine read_topography(file, dataset, h, length_m, error)
+    !> With `rows` = [j0, n_local], only rows j0+1 .. j0+n_local are read (a process's share of
+    !> a distributed grid; the NaN check covers those rows).
+    subroutine read_topography(file, dataset, h, length_m, error, rows)
         character(len=*), intent(in) :: file, dataset
         real(dp), allocatable, intent(out) :: h(:, :)
         real(dp), intent(inout) :: length_m
         type(error_t), allocatable, intent(out) :: error
+        integer, intent(in), optional :: rows(2)
         type(h5file_t) :: f
         integer :: n
         character(len=:), allocatable :: at
         at = "file '"//file//"': "
         call open_dataset(file, dataset, f, n, error); if (allocated(error)) return
-        allocate (h(n, n))
-        call f%read_r2(dataset, h, error)
+        if (present(rows)) then
+            allocate (h(n, rows(2)))
+            call f%read_r2_rows(dataset, h, rows(1), error)
+        else
+            allocate (h(n, n))
+            call f%read_r2(dataset, h, error)
+        end if
         if (allocated(error)) return
-        if (.not. all(ieee_is_finite(h))) then
+        if (.not. all(ieee_is_finite(h))) then      ! (a distributed grid: this process's rows)
             call fatal_error(error, at//"dataset '"//dataset//"' contains NaN or infinite heights"); return
         end if
-        if (length_m == 0.0_dp) then
-            if (.not. f%attr_exists(dataset, 'length_m')) then
-                call fatal_error(error, at//"the cell side is unknown: set &grid lx_m or a 'length_m' attribute"); return
-            end if
-            call f%read_attr_r0(dataset, 'length_m', length_m, error)
-            if (allocated(error)) return
-            if (.not. (length_m > 0.0_dp .and. ieee_is_finite(length_m))) then
-                call fatal_error(error, at//"attribute length_m must be > 0"); return
-            end if
-        end if
+        call cell_side(f, file, dataset, length_m, error); if (allocated(error)) return
         call f%close()
     end subroutine read_topography
 
