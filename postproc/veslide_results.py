@@ -21,10 +21,12 @@ def namelist_value(path, name, default=None):
 
 
 def dimensionless_speed(path, speed_m_s):
-    """v tau / L0 with tau the creep time of the one-term law (tau_s) and L0 = lx_m."""
+    """v tau / L0 with tau the creep time of the one-term law (tau_s) and L0 = 2 pi/q_r the
+    roll-off wavelength, lx_m / k_roll (the punch size of the paper; L0 = lx_m when k_roll = 1)."""
     tau = namelist_value(path, "tau_s", 0.01)
     lx = namelist_value(path, "lx_m", 0.01)
-    return np.asarray(speed_m_s) * tau / lx
+    k_roll = namelist_value(path, "k_roll", 1.0)
+    return np.asarray(speed_m_s) * tau / (lx / k_roll)
 
 
 def case_group(path, k):
@@ -44,3 +46,45 @@ def polar(path, prefix=""):
     with h5py.File(path, "r") as f:
         g = f[prefix + "/anisotropy"]
         return g["theta_rad"][()], g["m2_surface"][()], g["mu2_deformed"][()]
+
+
+# angles defined modulo pi (axes): the range their mean is reported in, as /ensemble does
+AXIAL = {"theta_s_rad": "0..pi", "theta_d_rad": "0..pi", "patch_theta_rad": "0..pi", "phi_rad": "-pi/2..pi/2"}
+
+
+def seed_stats(x, name=""):
+    """mean, standard error of the mean, min and max over seeds. Axes (AXIAL names) are averaged
+    as axial data like /ensemble: circular mean of the doubled angle, deviations wrapped into
+    (-pi/2, pi/2]; min and max are of the samples unwrapped about that mean."""
+    x = np.asarray(x, float)
+    n = len(x)
+    if name in AXIAL:
+        m = 0.5 * np.arctan2(np.sin(2 * x).sum(), np.cos(2 * x).sum())
+        if AXIAL[name] == "0..pi":
+            m = m % np.pi
+        d = x - m
+        d = d - np.pi * np.round(d / np.pi)
+    else:
+        m = x.mean()
+        d = x - m
+    se = np.sqrt((d ** 2).sum() / max(1, n - 1) / n)
+    return m, se, (m + d).min(), (m + d).max()
+
+
+def family_stats(path, key, quantity):
+    """{member: (v tau/L0, mean, sem)} of a study per value of `key` (alpha_deg, eccentricity, ...)
+    and speed, over the seeds, from /summary. `quantity` is a column name or a function of the
+    summary table returning one value per case (e.g. separation over rms height)."""
+    s = table(path)
+    q = quantity(s) if callable(quantity) else s[quantity]
+    name = quantity if isinstance(quantity, str) else ""
+    out = {}
+    for member in np.unique(s[key]):
+        rows = []
+        for v in np.unique(s["speed_m_s"][s[key] == member]):
+            sel = (s[key] == member) & (s["speed_m_s"] == v)
+            m, se, _, _ = seed_stats(q[sel], name)
+            rows.append((float(dimensionless_speed(path, v)), m, se))
+        rows.sort()
+        out[member] = tuple(np.array(c) for c in zip(*rows))
+    return out

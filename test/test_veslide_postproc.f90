@@ -30,8 +30,9 @@ contains
         base = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.6 / &material model='one_term' /"// &
                " &solver fft_planner='estimate', tolerance = 1e-8 / &analysis anisotropy = .true. /"
         call single('fig1', base//" &motion speed_m_s = 0.13 /", .true., error); if (allocated(error)) return
-        call single('fig2', base//" &motion speed_m_s = 0.13 /", .false., error); if (allocated(error)) return
-        call study('fig3', base//" &motion speed_m_s = 0.13 / &sweep alphas_deg = 0, 45, 90 /", error)
+        call study('fig2', base//" &motion speed_m_s = 0.13 / &sweep n_seeds = 2 /", error)
+        if (allocated(error)) return
+        call study('fig3', base//" &motion speed_m_s = 0.13 / &sweep alphas_deg = 0, 45, 90, n_seeds = 2 /", error)
         if (allocated(error)) return
         call study('fig4_5_7', base//" &sweep speeds_m_s = 0.01, 0.1, 1, alphas_deg = 0, 90, n_seeds = 2 /", error)
         if (allocated(error)) return

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The studies behind docs/reproduction.md that are not figures of the paper: runs every input of
+# inputs/studies/STUDY/ one after the other (recording each one's wall time and the machine's
+# load in results/studies/STUDY/runtimes.txt), then draws the study's tables and figure.
+#   bash postproc/run_studies.sh band     figure-2 band study (zeta1 = 1..8)
+#   bash postproc/run_studies.sh cells    fast limit against alpha for cells of L0 .. 8 L0
+#   bash postproc/run_studies.sh cellspeed   the same at v tau/L0 = 0.1, 1, 10 (L0 and 4 L0)
+#   bash postproc/run_studies.sh STUDY --plot    only redraw from existing results
+# OMP_NUM_THREADS defaults to 1 here (the numbers in the docs were measured so).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+study="${1:?usage: run_studies.sh band|cells|cellspeed [--plot]}"
+[ -d "inputs/studies/$study" ] || { echo "no inputs/studies/$study" >&2; exit 1; }
+bash scripts/setup.sh
+export PATH="$PWD/.venv/bin:$PATH"
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
+mkdir -p "results/studies/$study" docs/figures/studies
+if [ "${2:-}" != "--plot" ]; then
+    fpm build --profile release >/dev/null
+    log="results/studies/$study/runtimes.txt"
+    : > "$log"
+    for nml in "inputs/studies/$study"/*.nml; do
+        load0=$(cut -d' ' -f1 /proc/loadavg)
+        t0=$(date +%s.%N)
+        fpm run --profile release veslide -- "$nml" --quiet
+        t1=$(date +%s.%N)
+        load1=$(cut -d' ' -f1 /proc/loadavg)
+        printf '%s %.1f s, load %s -> %s, OMP_NUM_THREADS=%s\n' "$(basename "$nml" .nml)" \
+            "$(echo "$t1 - $t0" | bc)" "$load0" "$load1" "$OMP_NUM_THREADS" | tee -a "$log"
+    done
+fi
+python postproc/study_tables.py "$study" "results/studies/$study" docs/figures/studies

@@ -1,0 +1,296 @@
+#!/usr/bin/env python3
+"""Tables and figures of the studies in inputs/studies/ (docs/reproduction.md).
+
+usage: python postproc/study_tables.py band|cells RESULTS_DIR OUT_DIR
+  band   RESULTS_DIR holds zeta1_1.h5 .. zeta1_8.h5 (inputs/studies/band): gamma_d, theta_d,
+         gamma_s, sigma1, sigma2, phi of the figure-2 scene against the lower band edge zeta1,
+         mean +- standard error over seeds; writes OUT_DIR/band_zeta1.png and prints a table.
+  cells  RESULTS_DIR holds L1_n256.h5, L2_n512.h5, L4_n1024.h5, ... (inputs/studies/cells) and
+         their references on the elastic solid E = Einf, E_L1_n256.h5, ...: the fast and the slow
+         limit against alpha for cells of L0 .. 8 L0; writes OUT_DIR/cells_alpha.png.
+  cellspeed  the same tables for inputs/studies/cellspeed (intermediate speeds, L0 and 4 L0);
+         writes OUT_DIR/cellspeed_alpha.png.
+Tables are markdown, printed to stdout and written to RESULTS_DIR/table.md.
+"""
+import glob
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import h5py  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import veslide_results as vr  # noqa: E402
+
+def stats(x, name=""):
+    """mean, standard error, min, max over seeds (veslide_results.seed_stats)."""
+    return vr.seed_stats(x, name)
+
+
+def psd(qx, qy, hurst=0.8, eps=1.0, alpha=0.0, q_low=1.0, q_roll=1.0, q_cut=64.0):
+    """C(q)/C0 of appendix B as src/physics/veslide_surface.f90 evaluates it (q in any common unit)."""
+    q2 = qx * qx + qy * qy
+    a2 = 2.0 / (1.0 + eps ** 2); b2 = 2.0 - a2
+    u = np.cos(alpha) * qx + np.sin(alpha) * qy
+    v = -np.sin(alpha) * qx + np.cos(alpha) * qy
+    tqq = u * u / a2 + v * v / b2
+    s = np.where(q2 <= q_roll ** 2, q2, q_roll ** 2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = (tqq / np.where(s > 0, s, 1.0)) ** (-(hurst + 1.0))
+    inside = (q2 >= q_low ** 2 * (1 - 1e-12)) & (q2 <= q_cut ** 2 * (1 + 1e-12))
+    return np.where(inside, c, 0.0)
+
+
+def lattice(kmax):
+    k = np.arange(-kmax, kmax + 1, dtype=float)
+    return np.meshgrid(k, k, indexing="xy")
+
+
+def fmt(m, se, scale=1.0, digits=3):
+    return "%.*f +- %.*f" % (digits, m * scale, digits, se * scale)
+
+
+def fmt_sci(m, se):
+    """(m +- se)eN with the exponent of the larger of the two."""
+    big = max(abs(m), abs(se))
+    e = int(np.floor(np.log10(big))) if big > 0 else 0
+    return "(%.2f +- %.2f)e%d" % (m / 10.0 ** e, se / 10.0 ** e, e)
+
+
+# ----------------------------------------------------------------------------------------- band
+
+def band(results, outdir):
+    files = sorted(glob.glob(os.path.join(results, "zeta1_*.h5")),
+                   key=lambda p: int(re.search(r"zeta1_(\d+)", p).group(1)))
+    if not files:
+        raise SystemExit("no zeta1_*.h5 in " + results)
+    kx, ky = lattice(64)
+    kk = np.hypot(kx, ky)
+    slope = (kx ** 2 + ky ** 2) * psd(kx, ky)
+    rows, per_seed = [], {}
+    for p in files:
+        s = vr.table(p)
+        z1 = vr.namelist_value(p, "zeta1", 1.0)
+        z2 = vr.namelist_value(p, "zeta2", 64.0)
+        inband = (kk >= z1 * (1 - 1e-12)) & (kk <= z2 * (1 + 1e-12))
+        r = dict(zeta1=z1, zeta2=z2, n=len(s["seed"]), modes=int(inband.sum()),
+                 share=slope[inband].sum() / slope.sum())
+        for q in ("gamma_s", "gamma_d", "theta_d_rad", "sigma1", "sigma2", "phi_rad",
+                  "patch_gamma", "patch_theta_rad", "contact_area_fraction", "friction_coefficient"):
+            r[q] = stats(s[q], q)
+        rows.append(r)
+        per_seed[z1] = s
+    lines = ["| zeta1 | wavevectors in band | share of slope trace | gamma_s | gamma_d | gamma_d range"
+             " | theta_d [deg] | theta_d range [deg] | sigma1 | sigma2 | phi [deg] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        d = np.degrees
+        lines.append("| %g | %d | %.3f | %s | %s | %.2f-%.2f | %s | %.0f-%.0f | %s | %s | %s |" % (
+            r["zeta1"], r["modes"], r["share"], fmt(*r["gamma_s"][:2]), fmt(*r["gamma_d"][:2]),
+            r["gamma_d"][2], r["gamma_d"][3], fmt(*r["theta_d_rad"][:2], scale=180 / np.pi, digits=1),
+            d(r["theta_d_rad"][2]), d(r["theta_d_rad"][3]), fmt(*r["sigma1"][:2]), fmt(*r["sigma2"][:2]),
+            fmt(*r["phi_rad"][:2], scale=180 / np.pi, digits=1)))
+    # paired differences between neighbouring lower edges (the same surfaces and solves)
+    z = sorted(per_seed)
+    lines += ["", "Paired change of gamma_d per seed when zeta1 rises by one (mean +- SE over seeds):", ""]
+    for a, b in zip(z[:-1], z[1:]):
+        dg = per_seed[b]["gamma_d"] - per_seed[a]["gamma_d"]
+        lines.append("- %g -> %g: %+.4f +- %.4f" % (a, b, dg.mean(), dg.std(ddof=1) / np.sqrt(len(dg))))
+    r0 = rows[0]
+    lines += ["", "Same ensemble, zeta1 = %g: A/A0 = %s, f = %s, patch gamma = %s, patch theta = %s deg"
+              % (r0["zeta1"], fmt(*r0["contact_area_fraction"][:2], digits=4),
+                 fmt(*r0["friction_coefficient"][:2], digits=4), fmt(*r0["patch_gamma"][:2]),
+                 fmt(*r0["patch_theta_rad"][:2], scale=180 / np.pi, digits=1))]
+    table = "\n".join(lines)
+    print(table)
+    with open(os.path.join(results, "table.md"), "w") as fh:
+        fh.write(table + "\n")
+
+    zz = np.array([r["zeta1"] for r in rows])
+    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    for k, r in enumerate(rows):
+        s = per_seed[r["zeta1"]]
+        jitter = 0.12 * (np.arange(len(s["seed"])) / max(1, len(s["seed"]) - 1) - 0.5)
+        a.plot(r["zeta1"] + jitter, s["gamma_d"], ".", color="0.7", ms=4,
+               label=None)
+        td = np.degrees(r["theta_d_rad"][0] + (s["theta_d_rad"] - r["theta_d_rad"][0]
+                                                - np.pi * np.round((s["theta_d_rad"] - r["theta_d_rad"][0]) / np.pi)))
+        b.plot(r["zeta1"] + jitter, td, ".", color="0.7", ms=4)
+    g = np.array([r["gamma_d"][:2] for r in rows])
+    gs = np.array([r["gamma_s"][:2] for r in rows])
+    t = np.array([r["theta_d_rad"][:2] for r in rows])
+    n = rows[0]["n"]
+    a.errorbar(zz, g[:, 0], yerr=g[:, 1], fmt="o-", capsize=3, color="C0",
+               label=r"$\gamma_d$, mean $\pm$ SE (%d seeds)" % n)
+    a.errorbar(zz, gs[:, 0], yerr=gs[:, 1], fmt="s--", capsize=3, color="C2", ms=4,
+               label=r"$\gamma_s$ (rigid surface), mean $\pm$ SE")
+    a.axhline(0.37, color="C3", lw=1, ls=":", label=r"paper: $\gamma_d$ = 0.37")
+    a.set_xlabel(r"lower band edge $\zeta_1$ (band $\zeta_1 q_0 \leq |q| \leq 64 q_0$)")
+    a.set_ylabel(r"$\gamma = \lambda_\min / \lambda_\max$")
+    a.set_ylim(0, 1.05); a.legend(fontsize=8, loc="center right")
+    b.errorbar(zz, np.degrees(t[:, 0]), yerr=np.degrees(t[:, 1]), fmt="o-", capsize=3, color="C0",
+               label=r"$\theta_d$, mean $\pm$ SE")
+    b.axhline(90, color="C3", lw=1, ls=":", label=r"paper: $\theta_d \approx$ 90°")
+    b.set_xlabel(r"lower band edge $\zeta_1$ (band $\zeta_1 q_0 \leq |q| \leq 64 q_0$)")
+    b.set_ylabel(r"$\theta_d$ [deg] (0 = along $\mathbf{v}$)")
+    b.legend(fontsize=8)
+    fig.suptitle(r"figure-2 scene: isotropic surface, $v\tau/L_0$ = 0.13, p = 32 kPa, 512$^2$; grey: single surfaces", fontsize=10)
+    fig.tight_layout(); out = os.path.join(outdir, "band_zeta1.png")
+    fig.savefig(out, dpi=110); plt.close(fig)
+    print("wrote", out)
+
+
+# ---------------------------------------------------------------------------------------- cells
+
+def rubbery_share(m, eps, alpha_deg, hurst=0.8):
+    """Expected share of the slope-tensor trace carried by the modes with q.v = 0 (k_x = 0) for
+    v along x, on a cell of m L0 with k_low = 1, k_roll = m, k_cut = 64 m (units 2 pi/L)."""
+    kx, ky = lattice(64 * m)
+    s = (kx ** 2 + ky ** 2) * psd(kx, ky, hurst, eps, np.radians(alpha_deg), 1.0, float(m), 64.0 * m)
+    return s[kx == 0].sum() / s.sum()
+
+
+def _cell_table(p):
+    s = vr.table(p)
+    s["sep_over_h"] = s["mean_separation_m"] / s["rms_height_m"]
+    s["sigma_ratio"] = s["sigma1"] / s["sigma2"]
+    s["vtau_l0"] = vr.dimensionless_speed(p, s["speed_m_s"])
+    return s
+
+
+def _paired(s, sel, quantity, ref, ref_sel_of):
+    """Per-case ratio quantity / ref[quantity] of the case with the same seed (ref_sel_of(seed))."""
+    out = []
+    for k in np.flatnonzero(sel):
+        r = ref_sel_of(int(s["seed"][k]))
+        if r.sum() == 1:
+            out.append(s[quantity][k] / ref[quantity][r][0])
+    return np.array(out)
+
+
+def cells(results, outdir):
+    files = sorted(glob.glob(os.path.join(results, "L*_n*.h5")),
+                   key=lambda p: tuple(int(x) for x in re.search(r"L(\d+)_n(\d+)", p).groups()))
+    if not files:
+        raise SystemExit("no L*_n*.h5 in " + results)
+    data = []
+    for p in files:
+        m, n = (int(x) for x in re.search(r"L(\d+)_n(\d+)", p).groups())
+        ref = os.path.join(results, "E_" + os.path.basename(p))
+        data.append(dict(m=m, n=n, s=_cell_table(p), e=_cell_table(ref) if os.path.exists(ref) else None,
+                         eps=vr.namelist_value(p, "eccentricity", 1.0)))
+    speeds = sorted({float(x) for d in data for x in np.unique(d["s"]["vtau_l0"])}, reverse=True)
+    lines = ["Seeds per case: " + ", ".join("L = %d L0 (%d^2): %d" % (d["m"], d["n"], len(np.unique(d["s"]["seed"])))
+                                             for d in data)]
+    res = {}   # (m, n, speed, alpha) -> statistics, for the figure
+    for speed in speeds:
+        fast = speed >= 1.0
+        lines += ["", "v tau/L0 = %g (mean +- SE over seeds; ratios taken seed by seed):" % speed, "",
+                  "| L/L0 | grid | alpha [deg] | k_x = 0 share of trace | A/A0 | A(alpha)/A(0) | "
+                  + ("A / A(E = Einf) | " if fast else "") + "s/h_rms | f | F_y/F_n | sigma1/sigma2 | "
+                  + ("sigma1/sigma2 (E = Einf) | " if fast else "") + "phi [deg] |"
+                  + (" phi [deg] (E = Einf) |" if fast else ""),
+                  "|---" * (14 if fast else 11) + "|"]
+        for d in data:
+            s, e = d["s"], d["e"]
+            sv = np.isclose(s["vtau_l0"], speed, rtol=1e-6)
+            if not sv.any():
+                continue
+            for al in np.unique(s["alpha_deg"][sv]):
+                sel = sv & np.isclose(s["alpha_deg"], al)
+                a0 = sv & np.isclose(s["alpha_deg"], 0.0)
+                st = {q: stats(s[q][sel], q) for q in ("contact_area_fraction", "sep_over_h", "friction_coefficient",
+                                                         "lateral_force_ratio", "sigma_ratio", "phi_rad")}
+                r0 = stats(_paired(s, sel, "contact_area_fraction", s, lambda sd: a0 & (s["seed"] == sd)))
+                row = "| %d | %d^2 | %.1f | %.4f | %s | %s | " % (
+                    d["m"], d["n"], al, rubbery_share(d["m"], d["eps"], al),
+                    fmt(*st["contact_area_fraction"][:2], digits=5), fmt(*r0[:2], digits=4))
+                rec = dict(a_over_a0=r0, sigma_ratio=st["sigma_ratio"], f=st["friction_coefficient"])
+                if fast:
+                    if e is not None:
+                        esel = lambda sd: np.isclose(e["alpha_deg"], al) & (e["seed"] == sd)
+                        re_ = stats(_paired(s, sel, "contact_area_fraction", e, esel))
+                        rec["a_over_einf"] = re_
+                        rec["sigma_ratio_einf"] = stats(e["sigma_ratio"][np.isclose(e["alpha_deg"], al)])
+                        rec["phi_einf"] = stats(e["phi_rad"][np.isclose(e["alpha_deg"], al)], "phi_rad")
+                        row += "%s | " % fmt(*re_[:2], digits=4)
+                    else:
+                        row += "- | "
+                row += "%s | %s | %s | %s | " % (
+                    fmt(*st["sep_over_h"][:2]), fmt_sci(*st["friction_coefficient"][:2]),
+                    fmt_sci(*st["lateral_force_ratio"][:2]), fmt(*st["sigma_ratio"][:2]))
+                if fast:
+                    row += ("%s | " % fmt(*rec["sigma_ratio_einf"][:2])) if e is not None else "- | "
+                row += "%s |" % fmt(*st["phi_rad"][:2], scale=180 / np.pi, digits=1)
+                if fast:
+                    row += (" %s |" % fmt(*rec["phi_einf"][:2], scale=180 / np.pi, digits=1)) if e is not None else " - |"
+                lines.append(row)
+                res[(d["m"], d["n"], speed, float(al))] = rec
+    table = "\n".join(lines)
+    print(table)
+    with open(os.path.join(results, "table.md"), "w") as fh:
+        fh.write(table + "\n")
+
+    # figure: top row the fast limit, bottom row the slow control
+    fig, axs = plt.subplots(len(speeds), 3, figsize=(14, 4 * len(speeds)), squeeze=False)
+    ticks = [0, 22.5, 45, 67.5, 90]
+    for row, speed in enumerate(sorted(speeds, reverse=True)):
+        has_einf = any("a_over_einf" in r for (m, n, v, a), r in res.items() if v == speed)
+        for k, d in enumerate(data):
+            keys = sorted(a for (m, n, v, a) in res if (m, n, v) == (d["m"], d["n"], speed))
+            if not keys:
+                continue
+            al = np.array(keys)
+            get = lambda q: np.array([res[(d["m"], d["n"], speed, a)][q][:2] for a in keys])
+            lab = (r"$L = L_0$" if d["m"] == 1 else r"$L = %d L_0$" % d["m"]) + r", %d$^2$" % d["n"]
+            c = "C%d" % k
+            ls = "-" if len(keys) > 2 else "--"     # two angles only: the line is no interpolation
+            g = get("a_over_a0")
+            axs[row, 0].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=4, capsize=3, color=c, ls=ls, label=lab)
+            if has_einf:
+                if "a_over_einf" in res[(d["m"], d["n"], speed, keys[0])]:
+                    g = get("a_over_einf")
+                    axs[row, 1].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=4, capsize=3, color=c, ls=ls, label=lab)
+            else:
+                g = get("f")
+                axs[row, 1].errorbar(al, g[:, 0] * 1e3, yerr=g[:, 1] * 1e3, marker="o", ms=4, capsize=3,
+                                     color=c, ls=ls, label=lab)
+            g = get("sigma_ratio")
+            axs[row, 2].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=4, capsize=3, color=c, ls=ls, label=lab)
+            if has_einf and "sigma_ratio_einf" in res[(d["m"], d["n"], speed, keys[0])]:
+                g = get("sigma_ratio_einf")
+                axs[row, 2].plot(al, g[:, 0], ls=":", marker="x", color=c)
+        title = r"$v\tau/L_0$ = %g" % speed
+        axs[row, 0].set_ylabel(r"$A(\alpha)/A(0)$, same seed")
+        axs[row, 0].axhline(1.0, color="k", lw=0.5)
+        if has_einf:
+            axs[row, 1].set_ylabel(r"$A / A(E = E_\infty)$, same surface")
+            axs[row, 1].axhline(1.0, color="k", lw=0.5)
+            axs[row, 2].set_title(title + r"; dotted: $E = E_\infty$ (continuum fast limit)", fontsize=9)
+        else:
+            axs[row, 1].set_ylabel(r"friction $f$ [$10^{-3}$]")
+            axs[row, 2].set_title(title, fontsize=9)
+        axs[row, 2].set_ylabel(r"$\sigma_1/\sigma_2$")
+        axs[row, 2].axhline(1.0, color="k", lw=0.5)
+        for ax in axs[row]:
+            ax.set_xlabel(r"$\alpha$ [deg]"); ax.set_xticks(ticks)
+            ax.grid(True, lw=0.3, color="0.85")
+        for ax in axs[row, :2]:
+            ax.set_title(title, fontsize=9)
+        axs[row, 0].legend(fontsize=8)
+    fig.suptitle(r"$\varepsilon$ = 0.6, p = 32 kPa: periodic cells of side L, mean $\pm$ SE over seeds", fontsize=10)
+    fig.tight_layout(); out = os.path.join(outdir, os.path.basename(os.path.normpath(results)) + "_alpha.png")
+    fig.savefig(out, dpi=110); plt.close(fig)
+    print("wrote", out)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4 or sys.argv[1] not in ("band", "cells", "cellspeed"):
+        raise SystemExit(__doc__)
+    os.makedirs(sys.argv[3], exist_ok=True)
+    {"band": band, "cells": cells, "cellspeed": cells}[sys.argv[1]](sys.argv[2], sys.argv[3])
