@@ -1,4 +1,5 @@
 !> veslide FILE.nml [--output PATH] [--overwrite] [--quiet]
+!> veslide --memory FILE.nml [--processes R]
 !> Runs the case or the study a namelist describes and writes its HDF5 result; see README.md.
 program veslide_main
     use, intrinsic :: iso_fortran_env, only: stderr => error_unit, stdout => output_unit
@@ -6,7 +7,10 @@ program veslide_main
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_quantities, only: results_t
-    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines
+    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, case_memory
+    use veslide_memory, only: format_gib
+    use veslide_system, only: available_memory_bytes
+    use veslide_kinds, only: i8
     use veslide_study, only: run_study, study_progress_t
     use veslide_version, only: version_string
     use veslide_system, only: ignore_file_size_signal, exit_now
@@ -15,10 +19,10 @@ program veslide_main
     type(case_t) :: c
     type(error_t), allocatable :: error
     character(len=:), allocatable :: input, output, tmp, arg
-    logical :: overwrite, quiet, output_given
-    integer :: i, n, lock
+    logical :: overwrite, quiet, output_given, memory_only
+    integer :: i, n, lock, processes
 
-    overwrite = .false.; quiet = .false.; lock = -1
+    overwrite = .false.; quiet = .false.; lock = -1; memory_only = .false.; processes = 1
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
     output = ''
     allocate (character(len=0) :: input)
@@ -38,6 +42,15 @@ program veslide_main
             if (len(output) == 0) call die("veslide: "//arg//" needs a file name, got ''")
         case ('--overwrite')
             overwrite = .true.
+        case ('--memory')
+            memory_only = .true.
+        case ('--processes')
+            i = i + 1
+            if (i > command_argument_count()) call die("veslide: --processes needs a number of processes")
+            arg = argument(i)
+            read (arg, *, iostat=n) processes
+            if (n /= 0 .or. processes < 1) call die("veslide: --processes needs a whole number >= 1, got '"// &
+                                                   arg//"'")
         case ('-q', '--quiet')
             quiet = .true.
         case default
@@ -53,6 +66,7 @@ program veslide_main
 
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
+    if (memory_only) call print_memory()
     if (output_given) cfg%output%file = output
     if (.not. quiet) then
         do i = 1, size(cfg%warnings)
@@ -131,8 +145,27 @@ contains
         call exit_now(1)
     end subroutine die
 
+    !> --memory: the estimate of the run's peak memory, per process on `processes` processes (the
+    !> memory a job must request; refused runs are refused on this estimate), then stop
+    subroutine print_memory()
+        integer(i8) :: estimate, available
+        call case_memory(cfg, estimate, error, processes)
+        if (allocated(error)) call die(error%message)
+        available = available_memory_bytes()
+        if (processes > 1) then
+            write (stdout, '(a,i0,a,i0,a,i0,a)') cfg%path//": grid ", cfg%grid%nx, " x ", cfg%grid%ny, " on ", &
+                processes, " processes (MPI, mpi/run.sh): about "//format_gib(estimate)//" per process"
+        else
+            write (stdout, '(a,i0,a,i0,a)') cfg%path//": grid ", cfg%grid%nx, " x ", cfg%grid%ny, &
+                ": about "//format_gib(estimate)//" in one process"
+        end if
+        if (available >= 0) write (stdout, '(a)') "available to this process here and now: "//format_gib(available)
+        stop
+    end subroutine print_memory
+
     subroutine usage()
         write (stdout, '(a)') "usage: veslide FILE.nml [--output PATH] [--overwrite] [--quiet]", &
+            "       veslide --memory FILE.nml [--processes R]   (the memory a run needs, per process)", &
             "  Solves the steady sliding contact (or the &sweep study) the namelist describes and writes", &
             "  an HDF5 file (default &output file). Exit status: 0 converged, 1 bad input or I/O error,", &
             "  2 solved but not converged (the file is written, /scalars/converged = 0)."

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Build the MPI programs (veslide-batch) with the MPI compiler wrapper, FFTW's MPI transforms and
-# parallel HDF5, and print the path of the executable; `bash mpi/build.sh test [ARGS]` runs the
-# distributed checks instead (ARGS go to fpm test, e.g. --runner "mpirun -n 3").
+# Build the MPI programs with the MPI compiler wrapper, FFTW's MPI transforms and parallel HDF5,
+# and print the path of one: `bash mpi/build.sh [veslide-batch | veslide-bench-mpi]` (default
+# veslide-batch); `bash mpi/build.sh test [ARGS]` runs the distributed checks instead (ARGS go to
+# fpm test, e.g. --runner "mpirun -n 3").
 # The library is compiled with -DVESLIDE_MPI (its distributed code paths); -I/usr/include lets
 # FFTW's fftw3-mpi.f03 find the fftw3.f03 it includes; pkgconfig/hdf5.pc selects parallel HDF5.
 set -euo pipefail
@@ -18,4 +19,4 @@ fi
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 fpm build "${flags[@]}" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
-echo "$here/$(fpm run "${flags[@]}" --runner echo 2>/dev/null | tail -1)"
+echo "$here/$(fpm run "${flags[@]}" "${1:-veslide-batch}" --runner echo 2>/dev/null | tail -1)"

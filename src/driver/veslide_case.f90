@@ -33,7 +33,8 @@ module veslide_case
     implicit none
     private
     public :: case_t, build_surface, build_material, build_kernel, case_grid, run_case, solve_prepared, &
-              case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines
+              case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines, &
+              case_memory
 
     !> Everything one solve produced
     type :: case_t
@@ -179,19 +180,13 @@ contains
         type(error_t), allocatable, intent(out) :: error
         integer, intent(in), optional :: ranks, node_ranks
         integer(i8) :: available
-        integer :: n, ranks_, node_ranks_
+        integer :: ranks_, node_ranks_
         character(len=:), allocatable :: what, who
         ranks_ = 1; if (present(ranks)) ranks_ = max(1, ranks)
         node_ranks_ = 1; if (present(node_ranks)) node_ranks_ = max(1, node_ranks)
         what = "&grid nx, ny = "
-        if (cfg%surface%kind == 'file') then
-            call topography_shape(cfg%surface%file, cfg%surface%dataset, n, error, cfg%grid%lx_m)
-            call add_context(error, "veslide: "//cfg%path//": &surface ")
-            if (allocated(error)) return
-            cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%ly_m = cfg%grid%lx_m
-            what = "&surface file '"//cfg%surface%file//"' of "
-        end if
-        estimate = memory_estimate_bytes(cfg, ranks_)
+        if (cfg%surface%kind == 'file') what = "&surface file '"//cfg%surface%file//"' of "
+        call case_memory(cfg, estimate, error, ranks_); if (allocated(error)) return
         available = available_memory_bytes()
         if (available >= 0) available = available/node_ranks_
         if (available >= 0 .and. estimate > available) then
@@ -207,6 +202,24 @@ contains
                 ": choose a smaller &grid nx, ny, use more processes, or run where more memory is free")
         end if
     end subroutine size_and_check_memory
+
+    !> The memory the case or study of `cfg` will need, per process when `ranks` processes share its
+    !> grid [bytes], before anything is allocated (a measured topography's grid from its file)
+    subroutine case_memory(cfg, estimate, error, ranks)
+        type(config_t), intent(inout) :: cfg
+        integer(i8), intent(out) :: estimate
+        type(error_t), allocatable, intent(out) :: error
+        integer, intent(in), optional :: ranks
+        integer :: n
+        estimate = 0
+        if (cfg%surface%kind == 'file') then
+            call topography_shape(cfg%surface%file, cfg%surface%dataset, n, error, cfg%grid%lx_m)
+            call add_context(error, "veslide: "//cfg%path//": &surface ")
+            if (allocated(error)) return
+            cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%ly_m = cfg%grid%lx_m
+        end if
+        estimate = memory_estimate_bytes(cfg, ranks)
+    end subroutine case_memory
 
     !> Build and solve one case; with `comm` (an MPI communicator, the MPI build) on a grid shared
     !> by its processes, `node_ranks` of them on this machine (collective: every process returns

@@ -11,13 +11,18 @@ module veslide_collective
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error
     use veslide_grid, only: grid_t
+    use veslide_clock, only: wall_seconds
 #ifdef VESLIDE_MPI
     use mpi_f08
 #endif
     implicit none
     private
     public :: ordered_sum, ordered_sum_scalar, global_min, global_max, global_count, global_any, halo_rows, share_error
-    public :: mpi_enabled, gather_to_root, broadcast_from_root, ordered_rank_sum
+    public :: mpi_enabled, gather_to_root, broadcast_from_root, ordered_rank_sum, collective_seconds
+
+    !> Wall time this process has spent in the collectives of the solver's loop (ordered sums,
+    !> extrema, counts) so far [s]: what a distributed grid costs beyond the transforms
+    real(dp), save :: collective_seconds = 0.0_dp
 
     !> Was the library built with MPI (-DVESLIDE_MPI)?
 #ifdef VESLIDE_MPI
@@ -59,6 +64,7 @@ contains
         integer :: r, k
         type(MPI_Comm) :: comm
         logical :: spectral_
+        real(dp) :: t0
         if (grid%is_distributed()) then
             spectral_ = .false.; if (present(spectral)) spectral_ = spectral
             k = size(parts, 1)
@@ -75,8 +81,10 @@ contains
             allocate (all(k, sum(counts)/max(k, 1)))
             comm%MPI_VAL = grid%comm
             mine = parts                       ! contiguous (parts may be an array section)
+            t0 = wall_seconds()
             call MPI_Allgatherv(mine, size(mine), MPI_DOUBLE_PRECISION, all, counts, displs, &
                                 MPI_DOUBLE_PRECISION, comm)
+            collective_seconds = collective_seconds + (wall_seconds() - t0)
             totals = 0.0_dp
             do c = 1, size(all, 2)
                 totals = totals + all(:, c)
@@ -116,9 +124,12 @@ contains
         real(dp), intent(inout) :: x(:)
 #ifdef VESLIDE_MPI
         type(MPI_Comm) :: comm
+        real(dp) :: t0
         if (grid%is_distributed()) then
             comm%MPI_VAL = grid%comm
+            t0 = wall_seconds()
             call MPI_Allreduce(MPI_IN_PLACE, x, size(x), MPI_DOUBLE_PRECISION, MPI_MIN, comm)
+            collective_seconds = collective_seconds + (wall_seconds() - t0)
         end if
 #endif
     end subroutine global_min_array
@@ -138,9 +149,12 @@ contains
         real(dp), intent(inout) :: x(:)
 #ifdef VESLIDE_MPI
         type(MPI_Comm) :: comm
+        real(dp) :: t0
         if (grid%is_distributed()) then
             comm%MPI_VAL = grid%comm
+            t0 = wall_seconds()
             call MPI_Allreduce(MPI_IN_PLACE, x, size(x), MPI_DOUBLE_PRECISION, MPI_MAX, comm)
+            collective_seconds = collective_seconds + (wall_seconds() - t0)
         end if
 #endif
     end subroutine global_max_array
@@ -151,9 +165,12 @@ contains
         integer(i8), intent(inout) :: n(:)
 #ifdef VESLIDE_MPI
         type(MPI_Comm) :: comm
+        real(dp) :: t0
         if (grid%is_distributed()) then
             comm%MPI_VAL = grid%comm
+            t0 = wall_seconds()
             call MPI_Allreduce(MPI_IN_PLACE, n, size(n), MPI_INTEGER8, MPI_SUM, comm)
+            collective_seconds = collective_seconds + (wall_seconds() - t0)
         end if
 #endif
     end subroutine global_count_i8

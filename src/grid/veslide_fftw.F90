@@ -13,6 +13,7 @@ module veslide_fftw
     use veslide_error, only: error_t, fatal_error
     use veslide_strings, only: c_strlen
     use veslide_grid, only: grid_t
+    use veslide_clock, only: wall_seconds
 #ifdef VESLIDE_MPI
     use mpi_f08, only: MPI_Comm, MPI_Comm_rank, MPI_Comm_size, MPI_Allgather, MPI_INTEGER
 #endif
@@ -31,6 +32,8 @@ module veslide_fftw
     type :: fft2d_t
         integer :: nx = 0, ny = 0
         logical :: distributed = .false.       !! FFTW's MPI transforms on a distributed grid
+        real(c_double) :: seconds = 0.0_c_double  !! wall time spent in the transforms so far [s]
+        integer :: transforms = 0              !! transforms executed so far
         type(c_ptr), private :: plan_r2c = c_null_ptr, plan_c2r = c_null_ptr
         type(c_ptr), private :: p_x = c_null_ptr, p_k = c_null_ptr
         !> real-space buffer, (nx, ny) (distributed: (nx, ny_local)), FFTW-aligned
@@ -242,14 +245,17 @@ contains
     !> x -> k (unnormalised forward transform, exp(-i q.x))
     subroutine fft_forward(self)
         class(fft2d_t), intent(inout) :: self
+        real(c_double) :: t0
+        t0 = wall_seconds()
         if (self%distributed) then
 #ifdef VESLIDE_MPI
             self%xr(1:self%nx, :) = self%x
             call fftw_mpi_execute_dft_r2c(self%plan_r2c, self%xr, self%k)
 #endif
-            return
+        else
+            call fftw_execute_dft_r2c(self%plan_r2c, self%x, self%k)
         end if
-        call fftw_execute_dft_r2c(self%plan_r2c, self%x, self%k)
+        self%seconds = self%seconds + (wall_seconds() - t0); self%transforms = self%transforms + 1
     end subroutine fft_forward
 
     !> k -> x, divided by nx*ny (the input k is destroyed, as FFTW's c2r does)
@@ -262,14 +268,17 @@ contains
     !> k -> x without the 1/(nx*ny) factor (for callers that fold it into a multiplier)
     subroutine fft_backward_unscaled(self)
         class(fft2d_t), intent(inout) :: self
+        real(c_double) :: t0
+        t0 = wall_seconds()
         if (self%distributed) then
 #ifdef VESLIDE_MPI
             call fftw_mpi_execute_dft_c2r(self%plan_c2r, self%k, self%xr)
             self%x = self%xr(1:self%nx, :)
 #endif
-            return
+        else
+            call fftw_execute_dft_c2r(self%plan_c2r, self%k, self%x)
         end if
-        call fftw_execute_dft_c2r(self%plan_c2r, self%k, self%x)
+        self%seconds = self%seconds + (wall_seconds() - t0); self%transforms = self%transforms + 1
     end subroutine fft_backward_unscaled
 
     !> Free plans and buffers
