@@ -17,6 +17,7 @@ contains
             new_unittest("compliance-limits-and-sign", test_compliance), &
             new_unittest("relaxation-equals-creep", test_relaxation_creep), &
             new_unittest("elastic-is-frequency-independent", test_elastic), &
+            new_unittest("loss-peak-of-the-standard-solid", test_loss_peak), &
             new_unittest("creep-sum-must-stay-below-1/E0", test_creep_sum, should_fail=.true., &
                          expect="sum of c_k must be below 1/E0"), &
             new_unittest("poisson-out-of-range", test_bad_poisson, should_fail=.true., expect="poisson") &
@@ -74,6 +75,26 @@ contains
     end subroutine test_elastic
 
     !> sum c_k >= 1/E0 would make the glassy modulus infinite or negative: refused
+    !> One-term (standard linear) solid: tan(delta) peaks at (Einf - E0)/(2 sqrt(E0 Einf)) where
+    !> omega = 1/sqrt(tau_creep tau_relax) = sqrt(Einf/E0)/tau; an elastic solid has none
+    subroutine test_loss_peak(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: w, td, ratio
+        ratio = 11.0_dp
+        call new_one_term(m, einf, ratio, tau, 0.5_dp, error); if (allocated(error)) return
+        call m%loss_peak(w, td)
+        call report("omega rel. error", abs(w - sqrt(ratio)/tau)/(sqrt(ratio)/tau))
+        call report("tan delta rel. error", abs(td - (ratio - 1.0_dp)/(2.0_dp*sqrt(ratio)))/((ratio - 1.0_dp)/ &
+                                                                                             (2.0_dp*sqrt(ratio))))
+        call check(error, w, sqrt(ratio)/tau, "peak frequency", rel=1.0e-6_dp); if (allocated(error)) return
+        call check(error, td, (ratio - 1.0_dp)/(2.0_dp*sqrt(ratio)), "peak tan(delta)", rel=1.0e-10_dp)
+        if (allocated(error)) return
+        call new_elastic(m, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
+        call m%loss_peak(w, td)
+        call check(error, w == 0.0_dp .and. td == 0.0_dp, "an elastic solid has no loss peak")
+    end subroutine test_loss_peak
+
     subroutine test_creep_sum(error)
         type(error_t), allocatable, intent(out) :: error
         type(material_t) :: m

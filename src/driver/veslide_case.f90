@@ -464,6 +464,21 @@ contains
             write (b, '(a,es12.5)') "  friction coefficient  ", r%get('friction_coefficient'); lines = [lines, b]
             write (b, '(a,es12.5)') "  lateral force ratio   ", r%get('lateral_force_ratio'); lines = [lines, b]
         end if
+        if (.not. c%mat%is_elastic()) then
+            block
+                real(dp) :: omega, td, qlo, qhi
+                call c%mat%loss_peak(omega, td)
+                qlo = c%grid%q0(); qhi = 0.5_dp*c%grid%nx*c%grid%q0()
+                if (cfg%surface%kind == 'self_affine') then
+                    qlo = cfg%surface%k_low*c%grid%q0(); qhi = cfg%surface%k_cut*c%grid%q0()
+                end if
+                write (b, '(a,f6.3,a,es10.3,a)') "  loss peak             tan(delta) = ", td, " at ", omega, " rad/s"
+                lines = [lines, b]
+                write (b, '(a,es9.3,a,es9.3,a,es9.3,a)') "    met by the surface's q for speeds ", omega/qhi, " to ", &
+                    omega/qlo, " m/s (this run ", norm2(c%velocity_m_s), ")"
+                lines = [lines, b]
+            end block
+        end if
         write (b, '(a,a,a,i0,a,i0,a,es9.2,a,l1)') "  solver ", c%state%method, ": ", c%state%iterations, &
             " iterations, ", c%state%operator_applications, " FFT pairs, residual ", c%state%residual, &
             ", converged ", c%state%converged

@@ -30,6 +30,7 @@ module veslide_material
         procedure :: compliance => material_compliance
         procedure :: is_elastic => material_is_elastic
         procedure :: loss_peak_time => material_loss_peak_time
+        procedure :: loss_peak => material_loss_peak
     end type material_t
 
 contains
@@ -146,5 +147,44 @@ contains
         t = 0.0_dp
         if (size(self%time_s) > 0) t = self%time_s(1)
     end function material_loss_peak_time
+
+    !> The peak of the loss tangent tan(delta) = Im E/Re E = -Im C/Re C over frequency, and the
+    !> angular frequency where it lies [rad/s] (0, 0 for an elastic solid): a scan over log(w)
+    !> spanning every Prony time by two decades either side, refined by golden sections
+    subroutine material_loss_peak(self, omega, tan_delta)
+        class(material_t), intent(in) :: self
+        real(dp), intent(out) :: omega, tan_delta
+        integer, parameter :: nscan = 400
+        real(dp) :: lo, hi, a, b, x1, x2, f1, f2, best, t
+        real(dp), parameter :: gr = 0.6180339887498949_dp
+        integer :: k, kbest
+        omega = 0.0_dp; tan_delta = 0.0_dp
+        if (self%is_elastic() .or. size(self%time_s) == 0) return
+        lo = log(0.01_dp/maxval(self%time_s)); hi = log(100.0_dp/minval(self%time_s))
+        best = -1.0_dp; kbest = 0
+        do k = 0, nscan
+            t = tan_at(lo + (hi - lo)*k/nscan)
+            if (t > best) then
+                best = t; kbest = k
+            end if
+        end do
+        a = lo + (hi - lo)*max(kbest - 1, 0)/nscan; b = lo + (hi - lo)*min(kbest + 1, nscan)/nscan
+        x1 = b - gr*(b - a); x2 = a + gr*(b - a); f1 = tan_at(x1); f2 = tan_at(x2)
+        do k = 1, 60
+            if (f1 > f2) then
+                b = x2; x2 = x1; f2 = f1; x1 = b - gr*(b - a); f1 = tan_at(x1)
+            else
+                a = x1; x1 = x2; f1 = f2; x2 = a + gr*(b - a); f2 = tan_at(x2)
+            end if
+        end do
+        omega = exp(0.5_dp*(a + b)); tan_delta = tan_at(0.5_dp*(a + b))
+    contains
+        real(dp) function tan_at(lw) result(td)
+            real(dp), intent(in) :: lw
+            complex(dp) :: c
+            c = self%compliance(exp(lw))
+            td = -aimag(c)/real(c, dp)
+        end function tan_at
+    end subroutine material_loss_peak
 
 end module veslide_material
