@@ -8,6 +8,10 @@
 !> `x` holds the process's rows (nx, ny_local) and `k` its half-spectrum rows in FFTW's transposed
 !> layout (ny, nq_local), so a Fourier multiplier costs one global transpose per transform; the
 !> transforms run in place in a padded buffer of their own, `x` is copied in and out of it.
+!>
+!> Plans measured by FFTW (planner 'measure' or 'patient') are chosen by timing, which varies
+!> from run to run; the machine's wisdom file (veslide_wisdom.c) keeps the first choice, so every
+!> later run of a grid makes the same plan and repeats its results bit for bit.
 module veslide_fftw
     use, intrinsic :: iso_c_binding
     use veslide_error, only: error_t, fatal_error
@@ -51,13 +55,20 @@ module veslide_fftw
         final :: fft_finalize
     end type fft2d_t
 
-    logical, save :: threads_ready = .false., mpi_ready = .false.
+    logical, save :: threads_ready = .false., mpi_ready = .false., wisdom_loaded = .false.
 
     interface
         subroutine c_free(p) bind(c, name='free')
             import :: c_ptr
             type(c_ptr), value :: p
         end subroutine c_free
+        !> the machine's FFTW wisdom file (veslide_wisdom.c)
+        integer(c_int) function wisdom_load() bind(c, name='veslide_wisdom_load')
+            import :: c_int
+        end function wisdom_load
+        integer(c_int) function wisdom_save() bind(c, name='veslide_wisdom_save')
+            import :: c_int
+        end function wisdom_save
     end interface
 
 contains
@@ -135,6 +146,8 @@ contains
         if (isolated_) then
             saved = fftw_export_wisdom_to_string()
             call fftw_forget_wisdom()
+        else if (flag /= FFTW_ESTIMATE .and. .not. wisdom_loaded) then
+            stat = wisdom_load(); wisdom_loaded = .true.
         end if
         self%plan_r2c = fftw_plan_dft_r2c_2d(int(ny, c_int), int(nx, c_int), self%x, self%k, flag)
         self%plan_c2r = fftw_plan_dft_c2r_2d(int(ny, c_int), int(nx, c_int), self%k, self%x, flag)
@@ -145,6 +158,8 @@ contains
                 stat = fftw_import_wisdom_from_string(chars)
                 call c_free(saved)
             end if
+        else if (flag /= FFTW_ESTIMATE) then
+            stat = wisdom_save()
         end if
         if (.not. (c_associated(self%plan_r2c) .and. c_associated(self%plan_c2r))) then
             call fatal_error(error, "veslide:fftw:init: FFTW returned a null plan"); return
@@ -183,6 +198,11 @@ contains
             if (isolated_) then
                 saved = fftw_export_wisdom_to_string()
                 call fftw_forget_wisdom()
+            else if (flag /= FFTW_ESTIMATE) then
+                ! the first process's file, shared so that every process plans alike
+                if (grid%is_root() .and. .not. wisdom_loaded) stat = wisdom_load()
+                wisdom_loaded = .true.
+                call fftw_mpi_broadcast_wisdom(int(grid%comm, c_int32_t))
             end if
             self%plan_r2c = fftw_mpi_plan_dft_r2c_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), self%xr, kt, &
                                                      int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_OUT))
@@ -195,6 +215,9 @@ contains
                     stat = fftw_import_wisdom_from_string(chars)
                     call c_free(saved)
                 end if
+            else if (flag /= FFTW_ESTIMATE) then
+                call fftw_mpi_gather_wisdom(int(grid%comm, c_int32_t))
+                if (grid%is_root()) stat = wisdom_save()
             end if
             if (.not. (c_associated(self%plan_r2c) .and. c_associated(self%plan_c2r))) then
                 call fatal_error(error, "veslide:fftw:init: FFTW returned a null MPI plan"); return
