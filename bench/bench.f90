@@ -9,6 +9,7 @@ program veslide_bench
     use veslide_error, only: error_t
     use veslide_config, only: config_t, default_config, complete_config
     use veslide_clock, only: now => wall_seconds
+    use veslide_median, only: median
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_case, only: case_t, run_case, write_case
@@ -77,21 +78,6 @@ program veslide_bench
 
 contains
 
-    real(dp) function median(x) result(m)
-        real(dp), intent(in) :: x(:)
-        real(dp) :: y(size(x)), tmp
-        integer :: i, j
-        y = x
-        do i = 2, size(y)
-            tmp = y(i); j = i - 1
-            do while (j >= 1)
-                if (y(j) <= tmp) exit
-                y(j + 1) = y(j); j = j - 1
-            end do
-            y(j + 1) = tmp
-        end do
-        m = 0.5_dp*(y((size(y) + 1)/2) + y(size(y)/2 + 1))
-    end function median
 
     subroutine check(error)
         type(error_t), allocatable, intent(in) :: error

@@ -14,6 +14,7 @@ program veslide_bench_mpi
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_clock, only: wall_seconds
+    use veslide_median, only: median
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t, distribute_grid
     use veslide_collective, only: ordered_sum, collective_seconds
@@ -59,21 +60,6 @@ contains
         end if
     end subroutine check
 
-    real(dp) function median(x) result(m)
-        real(dp), intent(in) :: x(:)
-        real(dp) :: y(size(x)), tmp
-        integer :: i, j
-        y = x
-        do i = 2, size(y)
-            tmp = y(i); j = i - 1
-            do while (j >= 1)
-                if (y(j) <= tmp) exit
-                y(j + 1) = y(j); j = j - 1
-            end do
-            y(j + 1) = tmp
-        end do
-        m = 0.5_dp*(y((size(y) + 1)/2) + y(size(y)/2 + 1))
-    end function median
 
     !> Median over ranks' slowest: every timing is the max over ranks of one repetition
     real(dp) function slowest(t) result(s)

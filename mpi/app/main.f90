@@ -41,7 +41,6 @@ program veslide_batch
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
-    if (.not. cfg%sweep%is_study()) call distributed_case()
     out = cfg%output%file
     status = 0
     if (rank == 0) then
@@ -49,6 +48,7 @@ program veslide_batch
         if (allocated(error)) status = 1
     end if
     call agree(status); if (status /= 0) call die(error_text())
+    if (.not. cfg%sweep%is_study()) call distributed_case()
     ! rank files: OUT.rankNNNN-of-RRRR.part (the count in the name keeps runs of another size apart)
     allocate (character(len=len(out) + 24) :: parts(nranks))
     do k = 1, nranks
@@ -103,13 +103,6 @@ contains
         type(MPI_Comm) :: node
         character(len=120), allocatable :: lines(:)
         integer :: node_ranks, i, nlen
-        out = cfg%output%file
-        status = 0
-        if (rank == 0) then
-            call prepare_output(out, overwrite .or. cfg%output%overwrite, tmp, lock, error)
-            if (allocated(error)) status = 1
-        end if
-        call agree(status); if (status /= 0) call die(error_text())
         nlen = 0; if (rank == 0) nlen = len(tmp)
         call MPI_Bcast(nlen, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
         if (rank /= 0) allocate (character(len=nlen) :: tmp)

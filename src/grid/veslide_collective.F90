@@ -115,23 +115,14 @@ contains
         real(dp), intent(inout) :: x
         real(dp) :: a(1)
         a(1) = x
-        call global_min_array(grid, a)
+        call extremum(grid, a, .false.)
         x = a(1)
     end subroutine global_min_scalar
 
     subroutine global_min_array(grid, x)
         type(grid_t), intent(in) :: grid
         real(dp), intent(inout) :: x(:)
-#ifdef VESLIDE_MPI
-        type(MPI_Comm) :: comm
-        real(dp) :: t0
-        if (grid%is_distributed()) then
-            comm%MPI_VAL = grid%comm
-            t0 = wall_seconds()
-            call MPI_Allreduce(MPI_IN_PLACE, x, size(x), MPI_DOUBLE_PRECISION, MPI_MIN, comm)
-            collective_seconds = collective_seconds + (wall_seconds() - t0)
-        end if
-#endif
+        call extremum(grid, x, .false.)
     end subroutine global_min_array
 
     !> x <- max of x over the processes
@@ -140,24 +131,36 @@ contains
         real(dp), intent(inout) :: x
         real(dp) :: a(1)
         a(1) = x
-        call global_max_array(grid, a)
+        call extremum(grid, a, .true.)
         x = a(1)
     end subroutine global_max_scalar
 
     subroutine global_max_array(grid, x)
         type(grid_t), intent(in) :: grid
         real(dp), intent(inout) :: x(:)
+        call extremum(grid, x, .true.)
+    end subroutine global_max_array
+
+    !> x <- the largest (`largest`) or smallest x over the processes, element by element (exact)
+    subroutine extremum(grid, x, largest)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(inout) :: x(:)
+        logical, intent(in) :: largest
 #ifdef VESLIDE_MPI
         type(MPI_Comm) :: comm
         real(dp) :: t0
         if (grid%is_distributed()) then
             comm%MPI_VAL = grid%comm
             t0 = wall_seconds()
-            call MPI_Allreduce(MPI_IN_PLACE, x, size(x), MPI_DOUBLE_PRECISION, MPI_MAX, comm)
+            if (largest) then
+                call MPI_Allreduce(MPI_IN_PLACE, x, size(x), MPI_DOUBLE_PRECISION, MPI_MAX, comm)
+            else
+                call MPI_Allreduce(MPI_IN_PLACE, x, size(x), MPI_DOUBLE_PRECISION, MPI_MIN, comm)
+            end if
             collective_seconds = collective_seconds + (wall_seconds() - t0)
         end if
 #endif
-    end subroutine global_max_array
+    end subroutine extremum
 
     !> n <- sum of n over the processes (exact)
     subroutine global_count_i8(grid, n)

@@ -107,7 +107,6 @@ contains
         logical :: isolated_
         type(c_ptr) :: saved
         integer(c_int) :: stat
-        character(kind=c_char), pointer :: chars(:)
 
         call self%destroy()
         if (nx < 1 .or. ny < 1) then
@@ -144,20 +143,14 @@ contains
         call c_f_pointer(self%p_k, self%k, [nx/2 + 1, ny])
         ! FFTW is row-major: dimensions are passed reversed
         if (isolated_) then
-            saved = fftw_export_wisdom_to_string()
-            call fftw_forget_wisdom()
+            call set_wisdom_aside(saved)
         else if (flag /= FFTW_ESTIMATE .and. .not. wisdom_loaded) then
             stat = wisdom_load(); wisdom_loaded = .true.
         end if
         self%plan_r2c = fftw_plan_dft_r2c_2d(int(ny, c_int), int(nx, c_int), self%x, self%k, flag)
         self%plan_c2r = fftw_plan_dft_c2r_2d(int(ny, c_int), int(nx, c_int), self%k, self%x, flag)
         if (isolated_) then
-            call fftw_forget_wisdom()
-            if (c_associated(saved)) then
-                call c_f_pointer(saved, chars, [c_strlen(saved) + 1])
-                stat = fftw_import_wisdom_from_string(chars)
-                call c_free(saved)
-            end if
+            call restore_wisdom(saved)
         else if (flag /= FFTW_ESTIMATE) then
             stat = wisdom_save()
         end if
@@ -196,8 +189,7 @@ contains
             call c_f_pointer(self%p_k, kt, [ny, int(ln1)])
             self%k => kt
             if (isolated_) then
-                saved = fftw_export_wisdom_to_string()
-                call fftw_forget_wisdom()
+                call set_wisdom_aside(saved)
             else if (flag /= FFTW_ESTIMATE) then
                 ! the first process's file, shared so that every process plans alike
                 if (grid%is_root() .and. .not. wisdom_loaded) stat = wisdom_load()
@@ -209,12 +201,7 @@ contains
             self%plan_c2r = fftw_mpi_plan_dft_c2r_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), kt, self%xr, &
                                                      int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_IN))
             if (isolated_) then
-                call fftw_forget_wisdom()
-                if (c_associated(saved)) then
-                    call c_f_pointer(saved, chars, [c_strlen(saved) + 1])
-                    stat = fftw_import_wisdom_from_string(chars)
-                    call c_free(saved)
-                end if
+                call restore_wisdom(saved)
             else if (flag /= FFTW_ESTIMATE) then
                 call fftw_mpi_gather_wisdom(int(grid%comm, c_int32_t))
                 if (grid%is_root()) stat = wisdom_save()
@@ -230,6 +217,26 @@ contains
         end subroutine init_distributed
 
     end subroutine fft_init
+
+    !> The process's wisdom kept aside as a string and forgotten (a plan made now ignores it)
+    subroutine set_wisdom_aside(saved)
+        type(c_ptr), intent(out) :: saved
+        saved = fftw_export_wisdom_to_string()
+        call fftw_forget_wisdom()
+    end subroutine set_wisdom_aside
+
+    !> The wisdom set aside restored, and what was planned meanwhile forgotten
+    subroutine restore_wisdom(saved)
+        type(c_ptr), intent(in) :: saved
+        character(kind=c_char), pointer :: chars(:)
+        integer(c_int) :: stat
+        call fftw_forget_wisdom()
+        if (c_associated(saved)) then
+            call c_f_pointer(saved, chars, [c_strlen(saved) + 1])
+            stat = fftw_import_wisdom_from_string(chars)
+            call c_free(saved)
+        end if
+    end subroutine restore_wisdom
 
     !> Share `grid` among the processes of the MPI communicator `comm` (a Fortran handle), with
     !> FFTW's slab decomposition: rows of real fields, transposed half-spectrum rows (collective)
