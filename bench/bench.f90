@@ -46,6 +46,8 @@ program veslide_bench
             call get_command_argument(2, arg); read (arg, *) n
         end if
         call bench_accuracy(n)
+    case ('scaling')
+        call bench_scaling()
     case ('hard')
         n = 256
         if (command_argument_count() >= 2) then
@@ -54,7 +56,9 @@ program veslide_bench
         block
             integer :: am, be
             real(dp) :: br, bf
-            am = -1; be = -1; br = -1; bf = -1
+            character(len=16) :: method
+            integer :: first, last
+            am = -1; be = -1; br = -1; bf = -1; method = ''; first = 1; last = hard_case_count()
             if (command_argument_count() >= 3) then
                 call get_command_argument(3, arg); read (arg, *) am
             end if
@@ -67,11 +71,19 @@ program veslide_bench
             if (command_argument_count() >= 6) then
                 call get_command_argument(6, arg); read (arg, *) bf
             end if
-            call bench_hard(n, am, be, br, bf)
+            if (command_argument_count() >= 7) call get_command_argument(7, method)
+            if (command_argument_count() >= 8) then
+                call get_command_argument(8, arg); read (arg, *) first; last = first
+            end if
+            if (command_argument_count() >= 9) then
+                call get_command_argument(9, arg); read (arg, *) last
+            end if
+            call bench_hard(n, am, be, br, bf, trim(method), first, last)
         end block
     case default
         write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | accuracy [NMAX]", &
-            "                     | hard [N [memory [balance_every [ratio [factor]]]]]"
+            "                     | hard [N [memory [balance_every [ratio [factor [method [first [last]]]]]]]]", &
+            "                     | scaling elastic|visco METHOD TOL N [N ...]"
         error stop 1
     end select
 
@@ -210,25 +222,70 @@ contains
         end do
     end subroutine bench_kernels
 
+    !> The paper scene (inputs/default.nml: ratio 11, v tau/L0 = 0.13, 32 kPa, spectrum q0..64 q0, the
+    !> same surface on every grid) solved by METHOD at each N^2 to TOL: FFT pairs, iterations, time.
+    !> 'elastic' is the same surface on the relaxed solid (E0 = Einf/11).
+    !>   veslide-bench scaling elastic|visco METHOD TOL N [N ...]
+    subroutine bench_scaling()
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        character(len=64) :: kind, method, arg
+        real(dp) :: tol
+        integer :: k, n
+        call get_command_argument(2, kind); call get_command_argument(3, method)
+        call get_command_argument(4, arg); read (arg, *) tol
+        write (stdout, '(a)') "| solid | method | N | converged | residual | iterations | FFT pairs | solve [s] |"// &
+            " area | friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|"
+        do k = 5, command_argument_count()
+            call get_command_argument(k, arg); read (arg, *) n
+            call default_config(cfg, 'bench')
+            cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp
+            cfg%surface%k_cut = 64.0_dp
+            cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+            cfg%material%tau_s = 0.01_dp; cfg%material%poisson = 0.5_dp
+            cfg%motion%speed_m_s = 0.13_dp
+            if (trim(kind) == 'elastic') then
+                cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e8_dp/11.0_dp
+                cfg%motion%speed_m_s = 0.0_dp
+            end if
+            cfg%load%mean_pressure_pa = 32.0e3_dp
+            cfg%solver%method = trim(method); cfg%solver%tolerance = tol; cfg%solver%threads = 1
+            cfg%output%fields = .false.; cfg%output%file = 'x.h5'
+            call complete_config(cfg, error); call check(error)
+            call run_case(cfg, c, error); call check(error)
+            write (stdout, '("| ",a," | ",a," | ",i0," | ",l1," | ",es8.1," | ",i0," | ",i0," | ",f9.3," | ",f8.5, &
+                &" | ",es11.4," |")') trim(kind), c%state%method, n, c%state%converged, c%state%residual, &
+                c%state%iterations, c%state%operator_applications, c%solve_seconds, &
+                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa
+            flush (stdout)
+        end do
+    end subroutine bench_scaling
+
     !> Every hard case at n^2: converged?, iterations, FFT pairs, time, area, friction
-    subroutine bench_hard(n, am, be, br, bf)
-        integer, intent(in) :: n, am, be
+    subroutine bench_hard(n, am, be, br, bf, method, first, last)
+        integer, intent(in) :: n, am, be, first, last
         real(dp), intent(in) :: br, bf
+        !> method to use ('' or 'default': the configuration's, i.e. 'auto')
+        character(len=*), intent(in) :: method
         type(config_t) :: cfg
         type(case_t) :: c
         type(error_t), allocatable :: error
         character(len=:), allocatable :: name
-        integer :: k
+        integer :: k, total
+        total = 0
         write (stdout, '(a,i0,a)') "hard cases at ", n, "^2 (tolerance 1e-10)"
         write (stdout, '(a)') "| # | case | method | converged | residual | iterations | FFT pairs | solve [s] |"// &
             " area | friction |"
         write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|"
-        do k = 1, hard_case_count()
+        do k = first, last
             call hard_case(k, n, cfg, name, error); call check(error)
             if (am >= 0) cfg%solver%anderson_memory = am
             if (be > 0) cfg%solver%balance_every = be
             if (br > 0) cfg%solver%balance_ratio = br
             if (bf > 0) cfg%solver%balance_factor = bf
+            if (len(method) > 0 .and. method /= 'default') cfg%solver%method = method
             call run_case(cfg, c, error)
             if (allocated(error)) then
                 write (stdout, '("| ",i0," | ",a," | error: ",a," |")') k, name, error%message
@@ -238,7 +295,10 @@ contains
                 &" | ",es10.3," |")') k, name, c%state%method, c%state%converged, c%state%residual, &
                 c%state%iterations, c%state%operator_applications, c%solve_seconds, &
                 contact_area_fraction(c%state%p), 0.0_dp - c%force_pa(1)/cfg%load%mean_pressure_pa
+            flush (stdout)
+            total = total + c%state%operator_applications
         end do
+        write (stdout, '(a,i0)') "total FFT pairs: ", total
     end subroutine bench_hard
 
     !> A paper-like case (ratio 11, v tau/L0 = 0.13, spectrum q0..32 q0): (1) solver tolerance

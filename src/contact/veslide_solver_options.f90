@@ -5,11 +5,12 @@ module veslide_solver_options
     implicit none
     private
     public :: solver_options_t, solver_method_id, solver_method_names
-    public :: SOLVER_AUTO, SOLVER_PK, SOLVER_DR
+    public :: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR
 
-    integer, parameter :: SOLVER_AUTO = 1, SOLVER_PK = 2, SOLVER_DR = 3
+    integer, parameter :: SOLVER_AUTO = 1, SOLVER_PK = 2, SOLVER_DR = 3, SOLVER_BCCG = 4, SOLVER_PDR = 5
     !> Names of the methods, indexed by their SOLVER_* id (the namelist's `&solver method`)
-    character(len=*), parameter :: solver_method_names(3) = [character(len=4) :: 'auto', 'pk', 'dr']
+    character(len=*), parameter :: solver_method_names(5) = [character(len=4) :: 'auto', 'pk', 'dr', 'bccg', &
+                                                             'pdr']
 
     type :: solver_options_t
         integer :: method = SOLVER_AUTO         !! SOLVER_* id
