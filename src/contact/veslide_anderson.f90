@@ -13,7 +13,7 @@ module veslide_anderson
     use veslide_lapack, only: dposv
     implicit none
     private
-    public :: anderson_t
+    public :: anderson_t, anderson_coefficients
 
     type :: anderson_t
         integer :: memory = 0            !! m; 0 gives the plain step
@@ -44,7 +44,7 @@ contains
     !> Forget the history (after a change of the map, or a rejected step)
     pure subroutine anderson_reset(self)
         class(anderson_t), intent(inout) :: self
-        self%stored = 0; self%have_prev = .false.
+        self%stored = 0; self%slot = 0; self%have_prev = .false.   ! columns refill from slot 1
     end subroutine anderson_reset
 
     !> One step from (z, f = residual at z): z <- z + f - G c. Returns .true. when the step was
@@ -54,7 +54,7 @@ contains
         real(dp), intent(inout) :: z(:)
         real(dp), intent(in) :: f(:)
         logical :: accelerated
-        real(dp) :: gtmp(max(self%memory, 1), max(self%memory, 1)), coef(max(self%memory, 1))
+        real(dp) :: coef(max(self%memory, 1))
         real(dp) :: dots(max(self%memory, 1), 2), dfv, zn
         integer :: i, k, n, mk, slot, info
         n = size(z)
@@ -77,12 +77,7 @@ contains
             end do
             !$omp end parallel do
             self%gram(1:mk, slot) = dots(1:mk, 1); self%gram(slot, 1:mk) = dots(1:mk, 1)
-            gtmp(1:mk, 1:mk) = self%gram(1:mk, 1:mk)
-            do k = 1, mk
-                gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp)
-            end do
-            coef(1:mk) = dots(1:mk, 2)
-            call dposv('U', mk, 1, gtmp, size(gtmp, 1), coef, size(coef), info)
+            call anderson_coefficients(self%gram, mk, dots(1:mk, 2), coef, info)
             if (info /= 0) then
                 self%stored = 0; mk = 0; coef = 0.0_dp
             end if
@@ -104,6 +99,24 @@ contains
         end if
         self%have_prev = .true.
     end function anderson_step
+
+    !> The mixing coefficients c = argmin |f - dF c| from the Gram matrix dF^T dF (leading mk x mk
+    !> block of `gram`) and rhs = dF^T f: regularised normal equations (relative diagonal shift
+    !> 1e-10), LAPACK dposv. info /= 0: not positive definite (c undefined)
+    subroutine anderson_coefficients(gram, mk, rhs, coef, info)
+        real(dp), intent(in) :: gram(:, :), rhs(:)
+        integer, intent(in) :: mk
+        real(dp), intent(out) :: coef(:)
+        integer, intent(out) :: info
+        real(dp) :: gtmp(mk, mk)
+        integer :: k
+        gtmp = gram(1:mk, 1:mk)
+        do k = 1, mk
+            gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp)
+        end do
+        coef(1:mk) = rhs(1:mk)
+        call dposv('U', mk, 1, gtmp, mk, coef, size(coef), info)
+    end subroutine anderson_coefficients
 
     !> z <- z_prev + f_prev (the plain step from the previous point, replacing a rejected
     !> accelerated step), and the history cleared

@@ -24,6 +24,7 @@
 !> four fused passes over the grid (residual statistics; residual and admissions; direction;
 !> step and clipping).
 module veslide_solver_bccg
+    use, intrinsic :: iso_fortran_env, only: int8
     use veslide_kinds, only: dp
     use veslide_fftw, only: fft2d_t
     use veslide_grid, only: grid_t
@@ -41,9 +42,8 @@ module veslide_solver_bccg
         real(dp), allocatable :: minv(:, :)    !! 1/(M N) (0 on the mean mode): the preconditioner
         real(dp), allocatable :: wq(:)         !! Hermitian weight of each half-spectrum column
         complex(dp), allocatable :: hk(:, :)   !! transform of the heights / N
-        real(dp), allocatable :: v(:, :)       !! search direction
-        real(dp), allocatable :: r(:, :)       !! residual on the contact set
-        logical, allocatable :: act(:, :)      !! the contact set
+        real(dp), allocatable :: v(:, :)       !! search direction (zero outside the contact set)
+        integer(int8), allocatable :: act(:, :) !! the contact set (1 in it, 0 outside)
         complex(dp), allocatable :: pk(:, :)   !! transform of the pressure (kept along: no drift
                                                !! beyond round-off, and no correction FFT needed)
         logical :: pk_valid = .false.          !! pk is the transform of the last returned pressure
@@ -79,8 +79,8 @@ contains
             self%minv = 0.0_dp
         end where
         self%wq = [(grid%hermitian_weight(i), i=1, self%nq)]
-        if (allocated(self%v)) deallocate (self%v, self%r, self%act)
-        allocate (self%v(self%nx, self%ny), self%r(self%nx, self%ny), self%act(self%nx, self%ny))
+        if (allocated(self%v)) deallocate (self%v, self%act)
+        allocate (self%v(self%nx, self%ny), self%act(self%nx, self%ny))
         if (allocated(self%hk)) deallocate (self%hk, self%pk)
         allocate (self%hk(self%nq, self%ny), self%pk(self%nq, self%ny))
         self%hk = (0.0_dp, 0.0_dp)
@@ -113,7 +113,7 @@ contains
         integer, intent(inout) :: its
         logical, intent(in), optional :: same_start
         integer, parameter :: max_direct = 8     ! clipped points transformed directly, not by FFT
-        real(dp) :: n, a, a_new, gprev, s1, gmin, spg, sp, c1, gbar, g, rz, rz_old, beta, rv, vkv, alpha, pt, z, w
+        real(dp) :: n, a, a_new, gprev, s1, gmin, spg, sp, c1, gbar, g, rz, rz_old, beta, rv, rvo, vkv, alpha, pt, z, w
         integer :: i, j, nact, nx, ny, nq, nclip
         integer :: ic(max_direct), jc(max_direct)
         real(dp) :: cv(max_direct)
@@ -137,7 +137,7 @@ contains
             sp = sum(p)
         end if
         a = n/sp                      ! the true pressure is a p
-        self%act = p > 0.0_dp
+        self%act = merge(1_int8, 0_int8, p > 0.0_dp)
         call gap_multiply(a)
         self%v = 0.0_dp; rz_old = 1.0_dp; restart = .true.
         gprev = 0.0_dp
@@ -148,7 +148,7 @@ contains
             do j = 1, ny
                 do i = 1, nx
                     g = fft%x(i, j) - gprev
-                    if (self%act(i, j)) then
+                    if (self%act(i, j) /= 0) then
                         nact = nact + 1; s1 = s1 + g
                     end if
                     gmin = min(gmin, g)
@@ -168,18 +168,20 @@ contains
             if (self%residual <= tol .or. its >= max_it) exit
             its = its + 1
 
-            ! pass 2: residual on the contact set, with the points outside it that penetrate
-            !$omp parallel do private(i, g)
+            ! pass 2: residual r on the contact set, with the points outside it that penetrate
+            ! (into the FFT buffer; r is not kept: r.v needs only r.z, by Parseval, and r.v_old)
+            rvo = 0.0_dp
+            !$omp parallel do private(i, g) reduction(+:rvo)
             do j = 1, ny
                 do i = 1, nx
                     g = fft%x(i, j) - gbar
-                    if (.not. self%act(i, j) .and. g < 0.0_dp) self%act(i, j) = .true.
-                    if (self%act(i, j)) then
-                        self%r(i, j) = -g
+                    if (self%act(i, j) == 0 .and. g < 0.0_dp) self%act(i, j) = 1_int8
+                    if (self%act(i, j) /= 0) then
+                        fft%x(i, j) = -g
+                        rvo = rvo - g*self%v(i, j)
                     else
-                        self%r(i, j) = 0.0_dp
+                        fft%x(i, j) = 0.0_dp
                     end if
-                    fft%x(i, j) = self%r(i, j)
                 end do
             end do
             !$omp end parallel do
@@ -203,13 +205,12 @@ contains
             rz_old = rz; restart = .false.
 
             ! pass 3: direction v = z + beta v on the contact set, zero outside
-            rv = 0.0_dp
-            !$omp parallel do private(i, z) reduction(+:rv)
+            rv = rz + beta*rvo
+            !$omp parallel do private(i, z)
             do j = 1, ny
                 do i = 1, nx
-                    if (self%act(i, j)) then
+                    if (self%act(i, j) /= 0) then
                         z = fft%x(i, j) + beta*self%v(i, j)
-                        rv = rv + self%r(i, j)*z
                     else
                         z = 0.0_dp
                     end if
@@ -247,13 +248,14 @@ contains
             do j = 1, ny
                 do i = 1, nx
                     fft%x(i, j) = 0.0_dp
-                    if (self%act(i, j)) then
+                    if (self%act(i, j) /= 0) then
                         pt = a*p(i, j) + alpha*self%v(i, j)
                         if (pt < 0.0_dp) then
                             fft%x(i, j) = -pt
                             nclip = nclip + 1
                             pt = 0.0_dp
-                            self%act(i, j) = .false.
+                            self%act(i, j) = 0_int8
+                            self%v(i, j) = 0.0_dp
                         end if
                     else
                         pt = 0.0_dp
