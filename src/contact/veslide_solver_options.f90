@@ -18,7 +18,7 @@ module veslide_solver_options
         integer :: max_iterations = 20000       !! iteration cap
         integer :: refresh_every = 200          !! recompute K p exactly this often (pk)
         integer :: anderson_memory = 5          !! Anderson mixing depth (dr); 0 switches it off
-        integer :: balance_every = 50           !! step-size balancing interval (dr)
+        integer :: balance_every = 100          !! step-size balancing interval (dr; docs/solver-scaling.md)
         real(dp) :: step = 0.0_dp               !! initial dimensionless step (dr); 0: automatic
         real(dp) :: balance_ratio = 10.0_dp     !! imbalance of the residuals that changes the step (dr)
         real(dp) :: balance_factor = 3.0_dp     !! factor the step changes by (dr)
