@@ -12,6 +12,7 @@ program veslide_main
     use veslide_system, only: available_memory_bytes
     use veslide_kinds, only: i8
     use veslide_study, only: run_study, study_progress_t
+    use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_version, only: version_string
     use veslide_system, only: ignore_file_size_signal, exit_now
     implicit none
@@ -104,7 +105,11 @@ program veslide_main
             stop
         end block
     end if
-    call run_case(cfg, c, error)
+    if (quiet) then
+        call run_case(cfg, c, error)
+    else
+        call run_case(cfg, c, error, progress=print_solver_progress)
+    end if
     if (allocated(error)) then
         call discard_output(tmp); call die(error%message)
     end if
@@ -182,6 +187,13 @@ contains
             info%case_s, info%elapsed_s, info%elapsed_s/info%done*(info%total - info%done)
         flush (stdout)
     end subroutine print_progress
+
+    !> A line every few seconds of a long solve
+    subroutine print_solver_progress(info)
+        type(solver_progress_t), intent(in) :: info
+        write (stdout, '(a)') progress_line(info)
+        flush (stdout)
+    end subroutine print_solver_progress
 
     !> The run summary, read from the case's results list
     subroutine summary()

@@ -47,6 +47,18 @@ program veslide_bench
             call get_command_argument(2, arg); read (arg, *) n
         end if
         call bench_accuracy(n)
+    case ('scaling')
+        call bench_scaling()
+    case ('iteration')
+        n = 1024
+        if (command_argument_count() >= 2) then
+            call get_command_argument(2, arg); read (arg, *) n
+        end if
+        k = 5
+        if (command_argument_count() >= 3) then
+            call get_command_argument(3, arg); read (arg, *) k
+        end if
+        call bench_iteration(n, k)
     case ('hard')
         n = 256
         if (command_argument_count() >= 2) then
@@ -55,7 +67,9 @@ program veslide_bench
         block
             integer :: am, be
             real(dp) :: br, bf
-            am = -1; be = -1; br = -1; bf = -1
+            character(len=16) :: method
+            integer :: first, last
+            am = -1; be = -1; br = -1; bf = -1; method = ''; first = 1; last = hard_case_count()
             if (command_argument_count() >= 3) then
                 call get_command_argument(3, arg); read (arg, *) am
             end if
@@ -68,11 +82,19 @@ program veslide_bench
             if (command_argument_count() >= 6) then
                 call get_command_argument(6, arg); read (arg, *) bf
             end if
-            call bench_hard(n, am, be, br, bf)
+            if (command_argument_count() >= 7) call get_command_argument(7, method)
+            if (command_argument_count() >= 8) then
+                call get_command_argument(8, arg); read (arg, *) first; last = first
+            end if
+            if (command_argument_count() >= 9) then
+                call get_command_argument(9, arg); read (arg, *) last
+            end if
+            call bench_hard(n, am, be, br, bf, trim(method), first, last)
         end block
     case default
         write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | accuracy [NMAX]", &
-            "                     | hard [N [memory [balance_every [ratio [factor]]]]]"
+            "                     | hard [N [memory [balance_every [ratio [factor [method [first [last]]]]]]]]", &
+            "                     | scaling elastic|visco METHOD TOL N [N ...] | iteration [N [ROUNDS]]"
         error stop 1
     end select
 
@@ -197,25 +219,142 @@ contains
         end do
     end subroutine bench_kernels
 
+    !> The paper scene (inputs/default.nml: ratio 11, v tau/L0 = 0.13, 32 kPa, spectrum q0..64 q0, the
+    !> same surface on every grid) solved by METHOD at each N^2 to TOL: FFT pairs, iterations, time.
+    !> 'elastic' is the same surface on the relaxed solid (E0 = Einf/11). The splitting's knobs
+    !> from the environment: VESLIDE_BENCH_MEMORY, _BALANCE_EVERY, _BALANCE_RATIO, _BALANCE_FACTOR.
+    !>   veslide-bench scaling elastic|visco METHOD TOL N [N ...]
+    subroutine bench_scaling()
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        character(len=64) :: kind, method, arg
+        real(dp) :: tol
+        integer :: k, n
+        call get_command_argument(2, kind); call get_command_argument(3, method)
+        call get_command_argument(4, arg); read (arg, *) tol
+        write (stdout, '(a)') "| solid | method | N | converged | residual | iterations | FFT pairs | solve [s] |"// &
+            " area | friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|"
+        do k = 5, command_argument_count()
+            call get_command_argument(k, arg); read (arg, *) n
+            call scene(n, trim(kind), trim(method), tol, cfg)
+            call run_case(cfg, c, error); call check(error)
+            write (stdout, '("| ",a," | ",a," | ",i0," | ",l1," | ",es8.1," | ",i0," | ",i0," | ",f9.3," | ",f8.5, &
+                &" | ",es11.4," |")') trim(kind), c%state%method, n, c%state%converged, c%state%residual, &
+                c%state%iterations, c%state%operator_applications, c%solve_seconds, &
+                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa
+            flush (stdout)
+        end do
+    end subroutine bench_scaling
+
+    !> The paper scene at n^2 (tolerance 1e-8), one thread: the cost of an iteration of each method
+    !> and of each FFT pair it spends, in units of one FFTW r2c + c2r pair timed in the same
+    !> process. `rounds` rounds, each timing the pair and then one solve per method (interleaved,
+    !> so that a change of load affects all alike); medians over the rounds.
+    subroutine bench_iteration(n, rounds)
+        integer, intent(in) :: n, rounds
+        character(len=*), parameter :: methods(4) = [character(len=4) :: 'bccg', 'pk', 'pdr', 'dr']
+        character(len=*), parameter :: solids(4) = [character(len=7) :: 'elastic', 'elastic', 'visco', 'visco']
+        type(config_t) :: cfg(4)
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        real(dp) :: tpair(rounds), tit(rounds, 4), tfft(rounds, 4)
+        integer :: its(4), pairs(4), r, m
+        do m = 1, 4
+            call scene(n, solids(m), methods(m), 1.0e-8_dp, cfg(m))
+        end do
+        do r = 1, rounds
+            tpair(r) = fft_pair_seconds(n, 1)
+            do m = 1, 4
+                call run_case(cfg(m), c, error); call check(error)
+                its(m) = c%state%iterations; pairs(m) = c%state%operator_applications
+                tit(r, m) = c%solve_seconds/its(m)
+                tfft(r, m) = c%solve_seconds/pairs(m)
+            end do
+        end do
+        write (stdout, '(a,i0,a,i0,a,f8.3,a)') "paper scene at ", n, "^2, tolerance 1e-8, one thread, ", rounds, &
+            " interleaved rounds; FFT pair ", 1e3*median(tpair), " ms (median)"
+        write (stdout, '(a)') "| method | solid | iterations | FFT pairs | FFT pairs/iteration | time/iteration [ms] |"// &
+            " time/iteration [pair-times] | time per FFT pair spent [pair-times] |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|"
+        do m = 1, 4
+            write (stdout, '("| ",a," | ",a," | ",i0," | ",i0," | ",f6.2," | ",f9.3," | ",f6.2," | ",f6.2," |")') &
+                trim(methods(m)), trim(solids(m)), its(m), pairs(m), real(pairs(m), dp)/its(m), 1e3*median(tit(:, m)), &
+                median(tit(:, m)/tpair), median(tfft(:, m)/tpair)
+        end do
+    end subroutine bench_iteration
+
+    !> The paper scene (see bench_scaling) at n^2 for `solid` ('elastic' or 'visco') and `method`
+    subroutine scene(n, solid, method, tol, cfg)
+        integer, intent(in) :: n
+        character(len=*), intent(in) :: solid, method
+        real(dp), intent(in) :: tol
+        type(config_t), intent(out) :: cfg
+        type(error_t), allocatable :: error
+        call default_config(cfg, 'bench')
+        cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp
+        cfg%surface%k_cut = 64.0_dp
+        cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+        cfg%material%tau_s = 0.01_dp; cfg%material%poisson = 0.5_dp
+        cfg%motion%speed_m_s = 0.13_dp
+        if (solid == 'elastic') then
+            cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e8_dp/11.0_dp
+            cfg%motion%speed_m_s = 0.0_dp
+        end if
+        cfg%load%mean_pressure_pa = 32.0e3_dp
+        cfg%solver%method = method; cfg%solver%tolerance = tol; cfg%solver%threads = 1
+        call knob('VESLIDE_BENCH_MEMORY', cfg%solver%anderson_memory)
+        call knob('VESLIDE_BENCH_BALANCE_EVERY', cfg%solver%balance_every)
+        call knob_real('VESLIDE_BENCH_BALANCE_RATIO', cfg%solver%balance_ratio)
+        call knob_real('VESLIDE_BENCH_BALANCE_FACTOR', cfg%solver%balance_factor)
+        cfg%output%fields = .false.; cfg%output%file = 'x.h5'
+        call complete_config(cfg, error); call check(error)
+    end subroutine scene
+
+    !> An integer knob from the environment, when set
+    subroutine knob(name, value)
+        character(len=*), intent(in) :: name
+        integer, intent(inout) :: value
+        character(len=32) :: env
+        integer :: l, st
+        call get_environment_variable(name, env, l, st)
+        if (st == 0 .and. l > 0) read (env, *) value
+    end subroutine knob
+
+    !> A real knob from the environment, when set
+    subroutine knob_real(name, value)
+        character(len=*), intent(in) :: name
+        real(dp), intent(inout) :: value
+        character(len=32) :: env
+        integer :: l, st
+        call get_environment_variable(name, env, l, st)
+        if (st == 0 .and. l > 0) read (env, *) value
+    end subroutine knob_real
+
     !> Every hard case at n^2: converged?, iterations, FFT pairs, time, area, friction
-    subroutine bench_hard(n, am, be, br, bf)
-        integer, intent(in) :: n, am, be
+    subroutine bench_hard(n, am, be, br, bf, method, first, last)
+        integer, intent(in) :: n, am, be, first, last
         real(dp), intent(in) :: br, bf
+        !> method to use ('' or 'default': the configuration's, i.e. 'auto')
+        character(len=*), intent(in) :: method
         type(config_t) :: cfg
         type(case_t) :: c
         type(error_t), allocatable :: error
         character(len=:), allocatable :: name
-        integer :: k
+        integer :: k, total
+        total = 0
         write (stdout, '(a,i0,a)') "hard cases at ", n, "^2 (tolerance 1e-10)"
         write (stdout, '(a)') "| # | case | method | converged | residual | iterations | FFT pairs | solve [s] |"// &
             " area | friction |"
         write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|"
-        do k = 1, hard_case_count()
+        do k = first, last
             call hard_case(k, n, cfg, name, error); call check(error)
             if (am >= 0) cfg%solver%anderson_memory = am
             if (be > 0) cfg%solver%balance_every = be
             if (br > 0) cfg%solver%balance_ratio = br
             if (bf > 0) cfg%solver%balance_factor = bf
+            if (len(method) > 0 .and. method /= 'default') cfg%solver%method = method
             call run_case(cfg, c, error)
             if (allocated(error)) then
                 write (stdout, '("| ",i0," | ",a," | error: ",a," |")') k, name, error%message
@@ -225,7 +364,10 @@ contains
                 &" | ",es10.3," |")') k, name, c%state%method, c%state%converged, c%state%residual, &
                 c%state%iterations, c%state%operator_applications, c%solve_seconds, &
                 contact_area_fraction(c%state%p), 0.0_dp - c%force_pa(1)/cfg%load%mean_pressure_pa
+            flush (stdout)
+            total = total + c%state%operator_applications
         end do
+        write (stdout, '(a,i0)') "total FFT pairs: ", total
     end subroutine bench_hard
 
     !> A paper-like case (ratio 11, v tau/L0 = 0.13, spectrum q0..32 q0): (1) solver tolerance

@@ -58,7 +58,8 @@ PY
 done
 # one case on a grid distributed over 2 and 3 ranks (uneven slabs) against the serial run: every
 # field and scalar to 1e-10 relative, the same iteration count; a viscoelastic anisotropic case
-# with tensors and patches, an elastic one, and a measured topography read by rows
+# with tensors and patches, an elastic one (bccg), a measured topography read by rows, and the
+# metric splitting pdr with its inner bccg
 python - "$work/topo.h5" <<'PY'
 import sys
 import h5py
@@ -74,6 +75,7 @@ cases=(
 "&grid nx = 48, ny = 40, lx_m = 0.012, ly_m = 0.01 / &surface kind = 'self_affine', seed = 5, k_cut = 12, eccentricity = 0.5, alpha_deg = 30 / &material model = 'one_term' / &motion speed_m_s = 0.05, direction_deg = 20 / &solver fft_planner = 'estimate' / &analysis anisotropy = .true., patches = .true. /"
 "&grid nx = 40, ny = 44, lx_m = 0.01, ly_m = 0.011 / &surface kind = 'self_affine', seed = 2, k_cut = 10 / &material model = 'elastic' / &solver fft_planner = 'estimate' / &analysis patches = .true. /"
 "&grid lx_m = 0 / &surface kind = 'file', file = '$work/topo.h5', dataset = 'heights' / &material model = 'one_term' / &motion speed_m_s = 0.02 / &solver fft_planner = 'estimate' /"
+"&grid nx = 44, ny = 48, lx_m = 0.011, ly_m = 0.012 / &surface kind = 'self_affine', seed = 7, k_cut = 11, eccentricity = 0.4, alpha_deg = 60 / &material model = 'one_term' / &motion speed_m_s = 0.01 / &solver method = 'pdr', fft_planner = 'estimate' /"
 )
 for k in "${!cases[@]}"; do
     printf '%s\n&output file = "%s", fields = .true. /\n' "${cases[$k]}" "$work/case$k-serial.h5" | tr '"' "'" > "$work/case$k-serial.nml"

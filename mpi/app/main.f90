@@ -15,6 +15,7 @@ program veslide_batch
     use veslide_study, only: run_study, merge_study_parts, study_progress_t
     use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines
     use veslide_quantities, only: results_t
+    use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_system, only: ignore_file_size_signal
     implicit none
     type(config_t) :: cfg
@@ -110,7 +111,12 @@ contains
         call MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, node)
         call MPI_Comm_size(node, node_ranks)
         call MPI_Comm_free(node)
-        call run_case(cfg, c, error, comm=MPI_COMM_WORLD%MPI_VAL, node_ranks=node_ranks)
+        if (rank == 0 .and. .not. quiet) then      ! rank 0 reports the whole grid's state
+            call run_case(cfg, c, error, comm=MPI_COMM_WORLD%MPI_VAL, node_ranks=node_ranks, &
+                          progress=print_solver_progress)
+        else
+            call run_case(cfg, c, error, comm=MPI_COMM_WORLD%MPI_VAL, node_ranks=node_ranks)
+        end if
         if (.not. allocated(error)) call write_case(tmp, cfg, c, error)
         if (allocated(error)) then          ! every rank holds the same verdict
             if (rank == 0) then
@@ -143,6 +149,13 @@ contains
     end subroutine distributed_case
 
     !> Every rank learns whether rank 0 failed
+    !> A line every few seconds of a long solve (the residual and counts are global)
+    subroutine print_solver_progress(info)
+        type(solver_progress_t), intent(in) :: info
+        write (stdout, '(a)') progress_line(info)
+        flush (stdout)
+    end subroutine print_solver_progress
+
     subroutine agree(flag)
         integer, intent(inout) :: flag
         call MPI_Bcast(flag, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)

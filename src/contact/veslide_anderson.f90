@@ -12,20 +12,25 @@
 !> Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715; Fang & Saad, Numer. Linear Algebra Appl.
 !> 16 (2009) 197 (type II).
 module veslide_anderson
+    use, intrinsic :: iso_fortran_env, only: real32
     use veslide_kinds, only: dp
     use veslide_lapack, only: dposv
     use veslide_grid, only: grid_t
     use veslide_collective, only: ordered_sum
     implicit none
     private
-    public :: anderson_t
+    public :: anderson_t, anderson_coefficients
 
     type :: anderson_t
         integer :: memory = 0            !! m; 0 gives the plain step
         integer :: stored = 0            !! columns held (<= memory)
         integer :: slot = 0              !! column written last
         logical :: have_prev = .false.   !! a previous (z, f) is held
-        real(dp), allocatable :: df(:, :), gm(:, :), gram(:, :), zprev(:), fprev(:)
+        !> the history's columns in single precision (half the memory and traffic; the mixing is
+        !> then exact to about 1e-7 of the step, which the fixed-point iteration absorbs: the
+        !> residual f itself stays double)
+        real(real32), allocatable :: df(:, :), gm(:, :)
+        real(dp), allocatable :: gram(:, :), zprev(:), fprev(:)
         type(grid_t) :: grid             !! the grid whose rows the unknowns are (serial: one row)
         integer :: row = 1               !! unknowns per row
     contains
@@ -58,7 +63,7 @@ contains
     !> Forget the history (after a change of the map, or a rejected step)
     pure subroutine anderson_reset(self)
         class(anderson_t), intent(inout) :: self
-        self%stored = 0; self%have_prev = .false.
+        self%stored = 0; self%slot = 0; self%have_prev = .false.   ! columns refill from slot 1
     end subroutine anderson_reset
 
     !> One step from (z, f = residual at z): z <- z + f - G c. Returns .true. when the step was
@@ -68,7 +73,7 @@ contains
         real(dp), intent(inout) :: z(:)
         real(dp), intent(in) :: f(:)
         logical :: accelerated
-        real(dp) :: gtmp(max(self%memory, 1), max(self%memory, 1)), coef(max(self%memory, 1))
+        real(dp) :: coef(max(self%memory, 1))
         real(dp) :: dots(max(self%memory, 1), 2), dfv, zn, part(2*max(self%memory, 1))
         real(dp), allocatable :: rows(:, :)
         integer :: i, k, n, mk, slot, info, j, nrow, rl
@@ -86,11 +91,12 @@ contains
                 part(1:2*mk) = 0.0_dp
                 do i = (j - 1)*rl + 1, j*rl
                     dfv = f(i) - self%fprev(i)
-                    self%df(i, slot) = dfv
-                    self%gm(i, slot) = (z(i) - self%zprev(i)) + dfv
+                    self%df(i, slot) = real(dfv, real32)
+                    self%gm(i, slot) = real((z(i) - self%zprev(i)) + dfv, real32)
+                    dfv = real(self%df(i, slot), dp)
                     do k = 1, mk
-                        part(k) = part(k) + self%df(i, k)*dfv
-                        part(mk + k) = part(mk + k) + self%df(i, k)*f(i)
+                        part(k) = part(k) + real(self%df(i, k), dp)*dfv
+                        part(mk + k) = part(mk + k) + real(self%df(i, k), dp)*f(i)
                     end do
                 end do
                 rows(:, j) = part(1:2*mk)
@@ -99,12 +105,7 @@ contains
             call ordered_sum(self%grid, rows, part(1:2*mk))
             dots(1:mk, 1) = part(1:mk); dots(1:mk, 2) = part(mk + 1:2*mk)
             self%gram(1:mk, slot) = dots(1:mk, 1); self%gram(slot, 1:mk) = dots(1:mk, 1)
-            gtmp(1:mk, 1:mk) = self%gram(1:mk, 1:mk)
-            do k = 1, mk
-                gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp)
-            end do
-            coef(1:mk) = dots(1:mk, 2)
-            call dposv('U', mk, 1, gtmp, size(gtmp, 1), coef, size(coef), info)
+            call anderson_coefficients(self%gram, mk, dots(1:mk, 2), coef, info)
             if (info /= 0) then
                 self%stored = 0; mk = 0; coef = 0.0_dp
             end if
@@ -114,7 +115,7 @@ contains
             do i = 1, n
                 zn = z(i) + f(i)
                 do k = 1, mk
-                    zn = zn - self%gm(i, k)*coef(k)
+                    zn = zn - real(self%gm(i, k), dp)*coef(k)
                 end do
                 self%zprev(i) = z(i); self%fprev(i) = f(i)
                 z(i) = zn
@@ -126,6 +127,24 @@ contains
         end if
         self%have_prev = .true.
     end function anderson_step
+
+    !> The mixing coefficients c = argmin |f - dF c| from the Gram matrix dF^T dF (leading mk x mk
+    !> block of `gram`) and rhs = dF^T f: regularised normal equations (relative diagonal shift
+    !> 1e-10), LAPACK dposv. info /= 0: not positive definite (c undefined)
+    subroutine anderson_coefficients(gram, mk, rhs, coef, info)
+        real(dp), intent(in) :: gram(:, :), rhs(:)
+        integer, intent(in) :: mk
+        real(dp), intent(out) :: coef(:)
+        integer, intent(out) :: info
+        real(dp) :: gtmp(mk, mk)
+        integer :: k
+        gtmp = gram(1:mk, 1:mk)
+        do k = 1, mk
+            gtmp(k, k) = gtmp(k, k)*(1.0_dp + 1.0e-10_dp)
+        end do
+        coef(1:mk) = rhs(1:mk)
+        call dposv('U', mk, 1, gtmp, mk, coef, size(coef), info)
+    end subroutine anderson_coefficients
 
     !> z <- z_prev + f_prev (the plain step from the previous point, replacing a rejected
     !> accelerated step), and the history cleared

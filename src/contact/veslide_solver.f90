@@ -3,19 +3,34 @@
 !>    `veslide_solver_pk`;
 !>  - 'dr': Douglas-Rachford splitting with Anderson acceleration, convergent without symmetry
 !>    (the viscoelastic case), `veslide_solver_dr`;
-!>  - 'auto': pk when the kernel is symmetric, else dr.
-!> A new solver is one module with the signature of the two above and one `case` here.
+!>  - 'bccg': bound-constrained conjugate gradient with the FFT preconditioner (symmetric
+!>    operators), `veslide_solver_bccg`: its iteration count barely grows with the grid;
+!>  - 'pdr': Douglas-Rachford in the metric of |K| with BCCG for the metric projection
+!>    (any operator), `veslide_solver_pdr`: its iteration count barely grows with the grid;
+!>  - 'auto': bccg when the kernel is symmetric; else pdr on grids of at least `pdr_min_cells`
+!>    cells whose operator is not too anisotropic (`modulus_spread` at most `pdr_max_spread`),
+!>    and dr otherwise (docs/solver-scaling.md: the measurements behind the two thresholds).
+!> A new solver is one module with the signature of the ones above and one `case` here.
 module veslide_solver
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
     use veslide_fftw, only: fft2d_t
     use veslide_contact, only: contact_problem_t, contact_state_t
-    use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR
+    use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR
     use veslide_solver_pk, only: polonsky_keer
     use veslide_solver_dr, only: douglas_rachford
+    use veslide_solver_bccg, only: bccg_solve
+    use veslide_solver_pdr, only: preconditioned_douglas_rachford
     implicit none
     private
-    public :: solve_contact
+    public :: solve_contact, auto_method
+
+    !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (512^2: below it the
+    !> splitting dr is as cheap, and cheaper on contacts near full)...
+    integer, parameter :: pdr_min_cells = 512*512
+    !> ...when the operator's anisotropy is at most this (pdr's inner problems slow down for
+    !> strongly anisotropic operators: Einf/E0 of 100 and more in motion)
+    real(dp), parameter :: pdr_max_spread = 20.0_dp
 
 contains
 
@@ -35,7 +50,7 @@ contains
             call fatal_error(error, "veslide:solver:solve_contact: problem and FFT grids differ"); return
         end if
         method = opts%method
-        if (method == SOLVER_AUTO) method = merge(SOLVER_PK, SOLVER_DR, problem%kernel%symmetric)
+        if (method == SOLVER_AUTO) method = auto_method(problem)
         call problem%start(state, p_init)
         select case (method)
         case (SOLVER_PK)
@@ -44,15 +59,40 @@ contains
                     " kernel; use 'dr' or 'auto'"); return
             end if
             call polonsky_keer(problem, fft, opts, state)
+        case (SOLVER_BCCG)
+            if (.not. problem%kernel%symmetric) then
+                call fatal_error(error, "veslide:solver:solve_contact: method 'bccg' needs a symmetric (elastic)"// &
+                    " kernel; use 'pdr', 'dr' or 'auto'"); return
+            end if
+            call bccg_solve(problem, fft, opts, state)
         case (SOLVER_DR)
             if (present(p_init) .and. present(g_init)) then
                 call douglas_rachford(problem, fft, opts, state, gap0=g_init)
             else
                 call douglas_rachford(problem, fft, opts, state)
             end if
+        case (SOLVER_PDR)
+            if (present(p_init) .and. present(g_init)) then
+                call preconditioned_douglas_rachford(problem, fft, opts, state, gap0=g_init)
+            else
+                call preconditioned_douglas_rachford(problem, fft, opts, state)
+            end if
         case default
             call fatal_error(error, "veslide:solver:solve_contact: unknown method"); return
         end select
     end subroutine solve_contact
+
+    !> The method 'auto' takes for a problem (see the module's header)
+    integer function auto_method(problem) result(method)
+        type(contact_problem_t), intent(in) :: problem
+        if (problem%kernel%symmetric) then
+            method = SOLVER_BCCG
+        else if (problem%kernel%grid%cells() >= pdr_min_cells .and. &
+                 problem%kernel%modulus_spread() <= pdr_max_spread) then
+            method = SOLVER_PDR
+        else
+            method = SOLVER_DR
+        end if
+    end function auto_method
 
 end module veslide_solver

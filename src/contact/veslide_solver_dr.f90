@@ -6,7 +6,7 @@
 !> not K is symmetric, so the splitting converges without symmetry. In units p/p_mean,
 !> h/h_s, with step gamma, one iteration is
 !>   x = (I + gamma K)^-1 (z + gamma h), mean(x) = 1   (one FFT pair: the kernel's resolvent)
-!>   y = max(2x - z, 0),  f = y - x,   z <- z + f      (accelerated by `anderson_t`).
+!>   y = max(2x - z, 0),  f = y - x,   z <- z + f      (accelerated by Anderson mixing).
 !> At the fixed point x = y = p and z = p + gamma g. The step is balanced every
 !> `balance_every` iterations between the pressure residual (x where y = 0) and the gap
 !> residual (f/gamma where y > 0), by factors of `balance_factor`, with z remapped to the new
@@ -15,19 +15,35 @@
 !> Lions & Mercier, SIAM J. Numer. Anal. 16 (1979) 964; docs/solvers.md for the measurements.
 module veslide_solver_dr
     use, intrinsic :: iso_c_binding, only: c_f_pointer, c_loc
+    use, intrinsic :: iso_fortran_env, only: real32
     use veslide_kinds, only: dp
     use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: resolvent_t
     use veslide_contact, only: contact_problem_t, contact_state_t
-    use veslide_solver_options, only: solver_options_t
-    use veslide_anderson, only: anderson_t
+    use veslide_solver_options, only: solver_options_t, progress_ticker_t
+    use veslide_anderson, only: anderson_coefficients
     use veslide_collective, only: ordered_sum, global_max
     implicit none
     private
     public :: douglas_rachford
 
+    !> Kind of the Anderson history (the differences of the residuals and of the iterates): single
+    !> precision halves the memory traffic of the mixing; the mixing is then exact to about 1e-7
+    !> of the step, which the fixed-point iteration absorbs (the residual itself is double)
+    integer, parameter :: hk = real32
+
 contains
 
+    !> The iteration is memory-bound outside its FFT pair, so the map and the Anderson mixing
+    !> (type II, as `anderson_t`, memory m) are fused into two passes over the grid:
+    !>   A  the map (y = max(2x - z, 0), f = y - x, the residuals) with the new history columns
+    !>      dF = f - f_prev, G = (z - z_prev) + dF and their inner products with the history;
+    !>   B  z <- z + f - G c (f recomputed from x and z), keeping (z, f), and the next map's input
+    !>      written straight into the FFT buffer.
+    !> y and f are never stored. A path that skips pass B (the safeguard, balancing) clears the
+    !> history, whose newest column pass A has already written. Pass A sums row by row and then
+    !> over the rows in order (veslide_collective), so the path is the same for any number of
+    !> threads or processes.
     subroutine douglas_rachford(problem, fft, opts, state, gap0)
         type(contact_problem_t), intent(in) :: problem
         type(fft2d_t), intent(inout) :: fft
@@ -39,78 +55,100 @@ contains
         real(dp), parameter :: aa_growth = 2.0_dp
         real(dp), allocatable, target :: zz(:, :)
         real(dp), pointer :: z(:), xb(:)
-        real(dp), allocatable :: y(:), f(:)
-        complex(dp), allocatable :: hk(:, :)
+        real(dp), allocatable :: zprev(:), fprev(:), gram(:, :)
+        real(hk), allocatable :: df(:, :), gm(:, :)
+        complex(dp), allocatable :: hkern(:, :)
         type(resolvent_t) :: res
-        type(anderson_t) :: aa
-        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, xv, scale, p_mean, ext(2), tot(1), r1
+        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, xv, zv, yv, fv, dfv, zn, scale, p_mean
+        real(dp) :: coef(max(opts%anderson_memory, 1)), dots(max(opts%anderson_memory, 1), 2)
+        real(dp) :: part(1 + 2*max(opts%anderson_memory, 1)), ext(2)
         real(dp), allocatable :: rows(:, :)
-        integer :: nx, ny, n, since_balance, i, j
-        logical :: accelerated
+        integer :: nx, ny, n, since_balance, i, j, k, m, slot, mk, stored, info
+        logical :: accelerated, have_prev
+        type(progress_ticker_t) :: ticker
 
         nx = size(problem%hc, 1); ny = size(problem%hc, 2); n = nx*ny
         hs = problem%height_scale_m
         p_mean = problem%p_mean_pa
         state%method = 'dr'
+        call ticker%start(opts, 'dr')
         scale = p_mean/hs                       ! K in units of h_s per p_mean
         fft%x = problem%hc/hs
         call fft%forward()
-        hk = fft%k
+        hkern = fft%k
         gamma = opts%step
         if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp/problem%kernel%typical_abs(scale)
         call problem%kernel%resolvent(gamma, scale, res)
 
-        allocate (zz(nx, ny), y(n), f(n), rows(1, ny))
-        call aa%init(n, opts%anderson_memory, problem%kernel%grid)
+        m = max(0, opts%anderson_memory)
+        allocate (zz(nx, ny), zprev(n), fprev(n), df(n, max(m, 1)), gm(n, max(m, 1)), gram(max(m, 1), max(m, 1)))
+        allocate (rows(1 + 2*max(m, 1), ny))
         z(1:n) => zz
         call c_f_pointer(c_loc(fft%x), xb, [n])    ! a flat view of the FFT buffer
         zz = state%p/p_mean                     ! z = p + gamma g
         if (present(gap0)) zz = zz + gamma*gap0/hs
+        have_prev = .false.; stored = 0; slot = 0
         accelerated = .false.
         fnorm_prev = huge(1.0_dp); since_balance = 0
         inner_tol = opts%tolerance
+        fft%x = zz
 
         do
-            ! the map: x = resolvent(z) (left in the FFT buffer), y = projection, f = y - x
-            fft%x = zz
-            call res%solve(fft, hk, gamma, 1.0_dp)
+            ! the map: x = resolvent(z) (left in the FFT buffer, which holds z on entry)
+            call res%solve(fft, hkern, gamma, 1.0_dp)
             state%operator_applications = state%operator_applications + 1
+
+            ! pass A: y, f = y - x and the residuals; the new history column and its products
+            mk = 0
+            if (m > 0 .and. have_prev) then
+                slot = modulo(slot, m) + 1; mk = min(stored + 1, m)
+            end if
             rp = 0.0_dp; rg = 0.0_dp
-            !$omp parallel do private(i, xv, r1) reduction(max:rp, rg)
+            !$omp parallel do private(i, xv, zv, yv, fv, dfv, k, part) reduction(max:rp, rg)
             do j = 1, ny
-                r1 = 0.0_dp
+                part(1:1 + 2*mk) = 0.0_dp
                 do i = (j - 1)*nx + 1, j*nx
-                    xv = xb(i)
-                    y(i) = max(2.0_dp*xv - z(i), 0.0_dp)
-                    f(i) = y(i) - xv
-                    if (y(i) > 0.0_dp) then
-                        rg = max(rg, abs(f(i)))
+                    xv = xb(i); zv = z(i)
+                    yv = max(2.0_dp*xv - zv, 0.0_dp)
+                    fv = yv - xv
+                    if (yv > 0.0_dp) then
+                        rg = max(rg, abs(fv))
                     else
                         rp = max(rp, abs(xv))
                     end if
-                    r1 = r1 + f(i)**2
+                    part(1) = part(1) + fv**2
+                    if (mk > 0) then
+                        df(i, slot) = real(fv - fprev(i), hk)
+                        gm(i, slot) = real((zv - zprev(i)) + (fv - fprev(i)), hk)
+                        dfv = real(df(i, slot), dp)
+                        do k = 1, mk
+                            part(1 + k) = part(1 + k) + real(df(i, k), dp)*dfv
+                            part(1 + mk + k) = part(1 + mk + k) + real(df(i, k), dp)*fv
+                        end do
+                    end if
                 end do
-                rows(1, j) = r1
+                rows(1:1 + 2*mk, j) = part(1:1 + 2*mk)
             end do
             !$omp end parallel do
-            call ordered_sum(problem%kernel%grid, rows, tot)
+            call ordered_sum(problem%kernel%grid, rows(1:1 + 2*mk, :), part(1:1 + 2*mk))
             ext = [rp, rg]
             call global_max(problem%kernel%grid, ext)
-            rp = ext(1); rsq = tot(1)
-            rg = ext(2)/gamma
+            rsq = part(1); rp = ext(1); rg = ext(2)/gamma
+            dots(1:mk, 1) = part(2:1 + mk); dots(1:mk, 2) = part(2 + mk:1 + 2*mk)
             fnorm = sqrt(rsq)
 
             ! safeguard: an accelerated step that made |f| grow is replaced by the plain step
             if (accelerated) then          ! (nested: fnorm_prev may still be huge() otherwise)
                 if (fnorm > aa_growth*fnorm_prev) then
-                    call aa%plain_step_from_previous(z)
-                    accelerated = .false.
+                    z = zprev + fprev
+                    call clear_history()
+                    fft%x = zz
                     cycle
                 end if
             end if
 
             if (max(rp, rg) <= inner_tol) then
-                state%p = p_mean*reshape(y, [nx, ny])
+                state%p = p_mean*max(2.0_dp*fft%x - zz, 0.0_dp)
                 call problem%kernel%apply(fft, state%p, state%u)
                 state%operator_applications = state%operator_applications + 1
                 call problem%residuals(state)
@@ -119,15 +157,19 @@ contains
                 end if
                 inner_tol = inner_tol/10.0_dp
                 if (inner_tol < 1.0e-15_dp) exit
-                cycle      ! the buffer no longer holds x: evaluate the map again at z
+                ! evaluate the map again at z (the same point: pass A rewrites the same column)
+                if (mk > 0) slot = modulo(slot - 2, m) + 1
+                fft%x = zz
+                cycle
             end if
             if (state%iterations >= opts%max_iterations) then
-                state%p = p_mean*reshape(y, [nx, ny])
+                state%p = p_mean*max(2.0_dp*fft%x - zz, 0.0_dp)
                 call problem%kernel%apply(fft, state%p, state%u)
                 call problem%residuals(state)
                 exit
             end if
             state%iterations = state%iterations + 1
+            call ticker%tick(state%iterations, max(rp, rg), state%operator_applications)
 
             ! step balancing between pressure and gap residuals
             since_balance = since_balance + 1
@@ -137,17 +179,60 @@ contains
                 if (rg > opts%balance_ratio*rp) s = opts%balance_factor
                 if (rp > opts%balance_ratio*rg) s = 1.0_dp/opts%balance_factor
                 if (s /= 1.0_dp) then
-                    z = y + s*(z - y)           ! z = p + gamma g, remapped to the new gamma
+                    ! z = y + s (z - y): z = p + gamma g remapped to the new gamma
+                    !$omp parallel do private(yv)
+                    do i = 1, n
+                        yv = max(2.0_dp*xb(i) - z(i), 0.0_dp)
+                        z(i) = yv + s*(z(i) - yv)
+                        xb(i) = z(i)
+                    end do
+                    !$omp end parallel do
                     gamma = gamma*s
                     call problem%kernel%resolvent(gamma, scale, res)
-                    call aa%reset(); accelerated = .false.; fnorm_prev = huge(1.0_dp)
+                    call clear_history()
+                    fnorm_prev = huge(1.0_dp)
                     cycle
                 end if
             end if
 
-            accelerated = aa%step(z, f)
+            ! the mixing coefficients from the updated Gram matrix
+            info = 1
+            if (mk > 0) then
+                gram(1:mk, slot) = dots(1:mk, 1); gram(slot, 1:mk) = dots(1:mk, 1)
+                call anderson_coefficients(gram, mk, dots(1:mk, 2), coef, info)
+            end if
+            if (info /= 0) then
+                mk = 0; stored = 0
+            else
+                stored = mk
+            end if
+            accelerated = mk > 0
+
+            ! pass B: z <- z + f - G c, keeping (z, f); the next map's input into the buffer
+            !$omp parallel do private(xv, zv, fv, zn, k)
+            do i = 1, n
+                xv = xb(i); zv = z(i)
+                fv = max(2.0_dp*xv - zv, 0.0_dp) - xv
+                zn = zv + fv
+                do k = 1, mk
+                    zn = zn - real(gm(i, k), dp)*coef(k)
+                end do
+                zprev(i) = zv; fprev(i) = fv
+                z(i) = zn
+                xb(i) = zn
+            end do
+            !$omp end parallel do
+            have_prev = .true.
             fnorm_prev = fnorm
         end do
+
+    contains
+
+        !> Forget the mixing history (after a change of the map, or a rejected step)
+        subroutine clear_history()
+            have_prev = .false.; stored = 0; slot = 0; accelerated = .false.
+        end subroutine clear_history
+
     end subroutine douglas_rachford
 
 end module veslide_solver_dr

@@ -1,15 +1,22 @@
-!> The knobs of the contact solvers and the names of the methods
+!> The knobs of the contact solvers, the names of the methods, and the progress a long solve
+!> reports: every `progress_every_s` seconds a solver tells the caller's callback (if any) its
+!> iteration, its own residual measure and the FFT pairs spent. On a distributed grid those
+!> numbers are the whole grid's (each process calls its own callback; the program gives one to
+!> the first process only). The callback must not print from a library: the app supplies it.
 module veslide_solver_options
     use veslide_kinds, only: dp
     use veslide_strings, only: name_index
+    use veslide_clock, only: wall_seconds
     implicit none
     private
     public :: solver_options_t, solver_method_id, solver_method_names
-    public :: SOLVER_AUTO, SOLVER_PK, SOLVER_DR
+    public :: solver_progress_t, solver_progress_callback, progress_ticker_t, progress_line
+    public :: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR
 
-    integer, parameter :: SOLVER_AUTO = 1, SOLVER_PK = 2, SOLVER_DR = 3
+    integer, parameter :: SOLVER_AUTO = 1, SOLVER_PK = 2, SOLVER_DR = 3, SOLVER_BCCG = 4, SOLVER_PDR = 5
     !> Names of the methods, indexed by their SOLVER_* id (the namelist's `&solver method`)
-    character(len=*), parameter :: solver_method_names(3) = [character(len=4) :: 'auto', 'pk', 'dr']
+    character(len=*), parameter :: solver_method_names(5) = [character(len=4) :: 'auto', 'pk', 'dr', 'bccg', &
+                                                             'pdr']
 
     type :: solver_options_t
         integer :: method = SOLVER_AUTO         !! SOLVER_* id
@@ -17,11 +24,43 @@ module veslide_solver_options
         integer :: max_iterations = 20000       !! iteration cap
         integer :: refresh_every = 200          !! recompute K p exactly this often (pk)
         integer :: anderson_memory = 5          !! Anderson mixing depth (dr); 0 switches it off
-        integer :: balance_every = 50           !! step-size balancing interval (dr)
+        integer :: balance_every = 50           !! step-size balancing interval (dr; docs/solver-scaling.md)
         real(dp) :: step = 0.0_dp               !! initial dimensionless step (dr); 0: automatic
         real(dp) :: balance_ratio = 10.0_dp     !! imbalance of the residuals that changes the step (dr)
         real(dp) :: balance_factor = 3.0_dp     !! factor the step changes by (dr)
+        !> told about the solve every `progress_every_s` seconds (none: silent)
+        procedure(solver_progress_callback), pointer, nopass :: progress => null()
+        real(dp) :: progress_every_s = 5.0_dp
     end type solver_options_t
+
+    !> What a solver's progress callback is told
+    type :: solver_progress_t
+        character(len=4) :: method = ''         !! the method running
+        integer :: iterations = 0               !! iterations so far (pdr: inner bccg iterations)
+        real(dp) :: residual = huge(1.0_dp)     !! the method's current residual measure [-]
+        real(dp) :: tolerance = 0.0_dp          !! its target [-]
+        integer :: operator_applications = 0    !! FFT pairs so far
+        real(dp) :: seconds = 0.0_dp            !! since the solve began [s]
+    end type solver_progress_t
+
+    abstract interface
+        subroutine solver_progress_callback(info)
+            import :: solver_progress_t
+            type(solver_progress_t), intent(in) :: info
+        end subroutine solver_progress_callback
+    end interface
+
+    !> A solver's clock for its progress reports: `tick` each iteration, it calls the options'
+    !> callback when `progress_every_s` seconds have passed since the last report (reads the
+    !> clock only when a callback is set)
+    type :: progress_ticker_t
+        procedure(solver_progress_callback), pointer, nopass :: callback => null()
+        character(len=4) :: method = ''
+        real(dp) :: every = 5.0_dp, tolerance = 0.0_dp, t0 = 0.0_dp, last = 0.0_dp
+    contains
+        procedure :: start => ticker_start
+        procedure :: tick => ticker_tick
+    end type progress_ticker_t
 
 contains
 
@@ -30,5 +69,42 @@ contains
         character(len=*), intent(in) :: name
         id = name_index(name, solver_method_names)
     end function solver_method_id
+
+    !> The line a program prints for a progress report
+    function progress_line(info) result(line)
+        type(solver_progress_t), intent(in) :: info
+        character(len=:), allocatable :: line
+        character(len=160) :: buf
+        write (buf, '("solver ",a,": iteration ",i0,", residual ",es9.2," (target ",es8.1,"), ",i0, &
+            &" FFT pairs, ",f0.1," s")') trim(info%method), info%iterations, info%residual, info%tolerance, &
+            info%operator_applications, info%seconds
+        line = trim(buf)
+    end function progress_line
+
+    !> Start the clock of a solve by `method` with the options' callback and interval
+    subroutine ticker_start(self, opts, method)
+        class(progress_ticker_t), intent(out) :: self
+        type(solver_options_t), intent(in) :: opts
+        character(len=*), intent(in) :: method
+        self%callback => opts%progress
+        self%method = method; self%every = opts%progress_every_s; self%tolerance = opts%tolerance
+        if (associated(self%callback)) then
+            self%t0 = wall_seconds(); self%last = self%t0
+        end if
+    end subroutine ticker_start
+
+    !> One iteration done: report it if the interval has passed
+    subroutine ticker_tick(self, iterations, residual, operator_applications)
+        class(progress_ticker_t), intent(inout) :: self
+        integer, intent(in) :: iterations, operator_applications
+        real(dp), intent(in) :: residual
+        real(dp) :: t
+        if (.not. associated(self%callback)) return
+        t = wall_seconds()
+        if (t - self%last < self%every) return
+        self%last = t
+        call self%callback(solver_progress_t(self%method, iterations, residual, self%tolerance, &
+                                             operator_applications, t - self%t0))
+    end subroutine ticker_tick
 
 end module veslide_solver_options

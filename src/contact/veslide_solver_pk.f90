@@ -7,7 +7,7 @@ module veslide_solver_pk
     use veslide_kinds, only: dp
     use veslide_fftw, only: fft2d_t
     use veslide_contact, only: contact_problem_t, contact_state_t, residual_measures
-    use veslide_solver_options, only: solver_options_t
+    use veslide_solver_options, only: solver_options_t, progress_ticker_t
     use veslide_collective, only: ordered_sum, global_min
     implicit none
     private
@@ -42,7 +42,9 @@ contains
         real(dp) :: r1, r2, r3, r4, r5, e1, e2
         integer :: nx, ny, i, j, since_fresh, ic, jc
         logical :: fresh, have_green
+        type(progress_ticker_t) :: ticker
 
+        call ticker%start(opts, 'pk')
         nx = size(problem%hc, 1); ny = size(problem%hc, 2)
         hs = problem%height_scale_m
         p_mean = problem%p_mean_pa
@@ -100,6 +102,7 @@ contains
             end if
             if (state%iterations >= opts%max_iterations) exit
             state%iterations = state%iterations + 1
+            call ticker%tick(state%iterations, state%residual, state%operator_applications)
 
             ! pass C: conjugate direction on the contact set, straight into the FFT buffer
             beta = delta*gg/gg_old

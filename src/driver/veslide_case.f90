@@ -18,7 +18,7 @@ module veslide_case
     use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id, KERNEL_SPECTRAL
     use veslide_persson, only: persson_t, persson_estimate
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
-    use veslide_solver_options, only: solver_options_t, solver_method_id
+    use veslide_solver_options, only: solver_options_t, solver_method_id, solver_progress_callback
     use veslide_solver, only: solve_contact
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation, slope_force
     use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta
@@ -223,12 +223,13 @@ contains
 
     !> Build and solve one case; with `comm` (an MPI communicator, the MPI build) on a grid shared
     !> by its processes, `node_ranks` of them on this machine (collective: every process returns
-    !> the same verdict)
-    subroutine run_case(cfg, c, error, comm, node_ranks)
+    !> the same verdict); `progress` is told about the solve every few seconds
+    subroutine run_case(cfg, c, error, comm, node_ranks, progress)
         type(config_t), intent(inout) :: cfg
         type(case_t), intent(out) :: c
         type(error_t), allocatable, intent(out) :: error
         integer, intent(in), optional :: comm, node_ranks
+        procedure(solver_progress_callback), optional :: progress
         type(fft2d_t) :: fft
         real(dp) :: t0
         integer :: ranks
@@ -254,7 +255,7 @@ contains
         if (allocated(error)) return
         call build_material(cfg, c%mat, error); if (allocated(error)) return
         call build_kernel(cfg, c%grid, c%mat, c%kernel, c%kernel_seconds, error); if (allocated(error)) return
-        call solve_prepared(cfg, fft, c, error)
+        call solve_prepared(cfg, fft, c, error, progress=progress)
         call share_error(c%grid, error)
         call fft%destroy()
     end subroutine run_case
@@ -273,14 +274,17 @@ contains
     end function solver_options
 
     !> Solve a case whose heights, material and kernel are set, then derive its quantities;
-    !> `p_init`, `g_init` warm-start the solver (a speed sweep passes the previous speed's solution)
-    subroutine solve_prepared(cfg, fft, c, error, p_init, g_init)
+    !> `p_init`, `g_init` warm-start the solver (a speed sweep passes the previous speed's solution);
+    !> `progress` is told about the solve every few seconds
+    subroutine solve_prepared(cfg, fft, c, error, p_init, g_init, progress)
         type(config_t), intent(in) :: cfg
         type(fft2d_t), intent(inout) :: fft
         type(case_t), intent(inout) :: c
         type(error_t), allocatable, intent(out) :: error
         real(dp), intent(in), optional :: p_init(:, :), g_init(:, :)
+        procedure(solver_progress_callback), optional :: progress
         type(contact_problem_t) :: problem
+        type(solver_options_t) :: opts
         real(dp) :: t0
         c%grid = c%kernel%grid
         c%velocity_m_s = c%kernel%velocity_m_s
@@ -288,7 +292,9 @@ contains
         call add_context(error, "veslide: "//cfg%path//": ")
         if (allocated(error)) return
         t0 = wall_seconds()
-        call solve_contact(problem, fft, solver_options(cfg), c%state, error, p_init=p_init, g_init=g_init)
+        opts = solver_options(cfg)
+        if (present(progress)) opts%progress => progress
+        call solve_contact(problem, fft, opts, c%state, error, p_init=p_init, g_init=g_init)
         if (allocated(error)) return
         call problem%confirm(fft, c%state, cfg%solver%tolerance)     ! the reported residual decides
         c%solve_seconds = wall_seconds() - t0

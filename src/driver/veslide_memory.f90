@@ -5,9 +5,13 @@
 !> The estimate is the largest of the phases of a run, in bytes per grid cell (N = nx ny), plus a
 !> fixed allowance for the libraries, the FFTW plans and the output. Resident during a solve: the
 !> heights (8), the FFT buffers (16), the case's kernel (8), the contact problem's copy of the
-!> kernel and its heights (16), the solution p, u, g (24); then per solver: splitting 48 for its
-!> five fields (z, y, f, the transform of h, the resolvent) and 16 (m + 1) for Anderson with memory
-!> m; Polonsky-Keer 16 (t and one influence column). Surface generation is transient (16 for its
+!> kernel and its heights (16), the solution p, u, g (24); then per solver (measured peaks at
+!> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 48 (the pressure, direction, preconditioner,
+!> operator, the transforms of heights and pressure, the contact set); the splitting dr 40 + 8 m
+!> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
+!> history of memory m); pdr 104 + 8 m (bccg's fields, K, the resolvent's constant part, z, f, x,
+!> y, Anderson); Polonsky-Keer 16 (t and one influence column). `auto` is taken as bccg for a
+!> symmetric kernel and as pdr from 512^2 cells up (dr below). Surface generation is transient (16 for its
 !> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
 !> kernels hold 32 while they are summed. Analyses after the solve:
 !> slope force 8, patches 32, Persson 24. A study adds one kernel per speed (8 each), the previous
@@ -30,17 +34,31 @@ contains
     pure integer(i8) function memory_estimate_bytes(cfg, ranks) result(bytes)
         type(config_t), intent(in) :: cfg
         integer, intent(in), optional :: ranks
-        real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
+        real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell, m
+        logical :: symmetric
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
         solve = 8 + 16 + 8 + 16 + 24
-        if (cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
-            size(cfg%sweep%speeds) == 0) .or. cfg%solver%method == 'pk') then
+        m = cfg%solver%anderson_memory
+        symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
+                                                          size(cfg%sweep%speeds) == 0)
+        select case (cfg%solver%method)
+        case ('pk')
             solver = 16
-        else
-            solver = 48 + 16*(cfg%solver%anderson_memory + 1)
-        end if
-        if (cfg%solver%method == 'auto' .and. size(cfg%sweep%speeds) > 0) &
-            solver = max(solver, 48 + 16*(cfg%solver%anderson_memory + 1.0_dp))
+        case ('bccg')
+            solver = 48
+        case ('dr')
+            solver = 40 + 8*m
+        case ('pdr')
+            solver = 104 + 8*m
+        case default                              ! auto (veslide_solver's rule)
+            if (symmetric) then
+                solver = 48
+            else if (n >= 512.0_dp**2) then
+                solver = 104 + 8*m
+            else
+                solver = 40 + 8*m
+            end if
+        end select
         analysis = 8
         if (cfg%analysis%patches) analysis = analysis + 32
         if (cfg%analysis%persson) analysis = analysis + 24

@@ -18,7 +18,7 @@ module veslide_collective
     implicit none
     private
     public :: ordered_sum, ordered_sum_scalar, global_min, global_max, global_count, global_any, halo_rows, share_error
-    public :: mpi_enabled, gather_to_root, broadcast_from_root, ordered_rank_sum, collective_seconds
+    public :: mpi_enabled, gather_all, gather_to_root, broadcast_from_root, ordered_rank_sum, collective_seconds
 
     !> Wall time this process has spent in the collectives of the solver's loop (ordered sums,
     !> extrema, counts) so far [s]: what a distributed grid costs beyond the transforms
@@ -308,6 +308,39 @@ contains
 
 #endif
     end subroutine halo_rows
+
+    !> On every process: the columns of `a` of every process, in rank order (a few values each:
+    !> points a solver must see whoever holds them)
+    subroutine gather_all(grid, a, all)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: a(:, :)
+        real(dp), allocatable, intent(out) :: all(:, :)
+#ifdef VESLIDE_MPI
+        integer, allocatable :: counts(:), displs(:)
+        real(dp), allocatable :: mine(:, :)
+        integer :: r, n
+        type(MPI_Comm) :: comm
+        real(dp) :: t0
+        if (grid%is_distributed()) then
+            comm%MPI_VAL = grid%comm
+            t0 = wall_seconds()
+            allocate (counts(grid%ranks), displs(grid%ranks))
+            n = size(a, 2)*size(a, 1)
+            call MPI_Allgather(n, 1, MPI_INTEGER, counts, 1, MPI_INTEGER, comm)
+            displs(1) = 0
+            do r = 2, grid%ranks
+                displs(r) = displs(r - 1) + counts(r - 1)
+            end do
+            allocate (all(size(a, 1), sum(counts)/max(1, size(a, 1))))
+            mine = a
+            call MPI_Allgatherv(mine, size(mine), MPI_DOUBLE_PRECISION, all, counts, displs, &
+                                MPI_DOUBLE_PRECISION, comm)
+            collective_seconds = collective_seconds + (wall_seconds() - t0)
+            return
+        end if
+#endif
+        all = a
+    end subroutine gather_all
 
     !> On the first process: the columns of `a` of every process, in rank order, and how many
     !> each gave (elsewhere `all` is empty)

@@ -21,7 +21,7 @@ module veslide_config_solver
         integer :: alias_max = 64                        !! alias sums: largest zone index
         character(len=:), allocatable :: fft_planner     !! one of fft_planner_names
         integer :: threads = 1                           !! threads per FFT
-        integer :: anderson_memory = 5, balance_every = 50
+        integer :: anderson_memory = 5, balance_every = 50    ! docs/solver-scaling.md: why not 100
         real(dp) :: balance_ratio = 10.0_dp, balance_factor = 3.0_dp
     end type solver_config_t
 

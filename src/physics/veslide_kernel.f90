@@ -20,7 +20,11 @@
 !>  - `impulse_response`: K applied to a unit pressure on cell (1, 1) (one column of the matrix);
 !>  - `resolvent`: the multiplier of (I + gamma s K)^-1 as a `resolvent_t`, whose `solve` gives
 !>    x = (I + gamma s K)^-1 (z + gamma r) with the mean of x fixed;
-!>  - `tangential_force`: F = <p grad w> of a pressure field, exact for the discrete operator.
+!>  - `tangential_force`: F = <p grad w> of a pressure field, exact for the discrete operator;
+!>  - `multiplier`: s K_d/(nx ny), for solvers that build operators of their own from it (the
+!>    symmetric part or the modulus as a metric, their inverses as preconditioners);
+!>  - `modulus_spread`: the largest max/min of |K_d| |q| within one shell of |q|: the operator's
+!>    anisotropy (1 for an elastic solid; up to Einf/E0 for a viscoelastic one in motion).
 module veslide_kernel
     use veslide_kinds, only: dp, two_pi
     use veslide_error, only: error_t, fatal_error
@@ -57,6 +61,8 @@ module veslide_kernel
         procedure :: resolvent => kernel_resolvent
         procedure :: tangential_force => kernel_tangential_force
         procedure :: value => kernel_value
+        procedure :: multiplier => kernel_multiplier
+        procedure :: modulus_spread => kernel_modulus_spread
         procedure :: max_abs => kernel_max_abs
         procedure :: typical_abs => kernel_typical_abs
     end type kernel_t
@@ -388,6 +394,47 @@ contains
         integer, intent(in) :: i, j
         k = self%kd(i, j)
     end function kernel_value
+
+    !> s K_d/(nx ny) on the grid's spectral storage (`grid%spectral_shape()`: the half-spectrum
+    !> (nx/2+1, ny), or this process's transposed share), FFTW's normalisation folded in [s m/Pa]
+    pure function kernel_multiplier(self, s) result(m)
+        class(kernel_t), intent(in) :: self
+        real(dp), intent(in) :: s
+        complex(dp), allocatable :: m(:, :)
+        m = self%kd*(s/self%grid%cells())
+    end function kernel_multiplier
+
+    !> The largest ratio max/min of |K_d(q)| |q| among the modes of one shell of |q| (shells one
+    !> fundamental wavenumber wide): how anisotropic the operator is at a fixed scale. 1 for an
+    !> elastic solid (up to the variants' cell factors), up to Einf/E0 for a viscoelastic one in
+    !> motion, whose modes along v are glassier than those across it. On a distributed grid the
+    !> shells' extremes are taken over all processes (every process gets the same value).
+    real(dp) function kernel_modulus_spread(self) result(spread)
+        class(kernel_t), intent(in) :: self
+        real(dp), allocatable :: lo(:), hi(:)
+        real(dp) :: dq, c
+        integer :: a, b, k, nshell, ij(2)
+        dq = min(two_pi/self%grid%lx_m, two_pi/self%grid%ly_m)
+        nshell = nint(norm2(self%grid%wavevector(self%grid%nq(), self%grid%ny/2 + 1))/dq) + 2
+        allocate (lo(0:nshell), hi(0:nshell))
+        lo = huge(1.0_dp); hi = 0.0_dp
+        do b = 1, size(self%kd, 2)
+            do a = 1, size(self%kd, 1)
+                ij = self%grid%spectral_index(a, b)
+                if (ij(1) == 1 .and. ij(2) == 1) cycle
+                c = norm2(self%grid%wavevector(ij(1), ij(2)))
+                k = min(nint(c/dq), nshell)
+                c = abs(self%kd(a, b))*c
+                lo(k) = min(lo(k), c); hi(k) = max(hi(k), c)
+            end do
+        end do
+        call global_min(self%grid, lo)
+        call global_max(self%grid, hi)
+        spread = 1.0_dp
+        do k = 0, nshell
+            if (hi(k) > 0.0_dp) spread = max(spread, hi(k)/lo(k))
+        end do
+    end function kernel_modulus_spread
 
     !> max |K_d| [m/Pa]
     real(dp) function kernel_max_abs(self) result(k)

@@ -1,0 +1,204 @@
+!> Preconditioned Douglas-Rachford splitting ('pdr'): the splitting of `solver_dr` carried out
+!> in the metric of the operator's modulus |K|, with the metric projection onto the constraints
+!> solved by the bound-constrained CG of `solver_bccg`. For the viscoelastic (non-symmetric)
+!> problem in motion; its outer iteration count does not depend on the grid.
+!>
+!> The problem is the variational inequality: p in C = {p >= 0, mean p = p_mean} with
+!> <K p - h, p' - p> >= 0 for all p' in C. In the inner product <a, b>_M = <a, M b>, M the
+!> symmetric positive multiplier |K(q)| (zero on the mean mode, where C fixes p), it reads
+!> 0 in T(p) + N_C(p) with T(p) = M^-1 (K p - h), and T is a Fourier multiplier of symbol
+!> K/|K| = exp(i delta(q)) (delta the loss angle of the mode): bounded and monotone whatever the
+!> grid, where the plain splitting works with the symbol K itself, whose spread grows with the
+!> grid. Douglas-Rachford in that metric, in units p/p_mean, h/h_s, with step gamma:
+!>   x = (I + gamma T)^-1 z:   x^ = (M z^ + gamma h^)/(M + gamma K^)   (one FFT pair)
+!>   y = argmin over C of |2x - z - y|_M: an elastic contact problem with the operator M and the
+!>       heights M (2x - z), solved by BCCG warm-started from the previous y
+!>   z <- z + y - x, accelerated by Anderson mixing (`anderson_t`).
+!> At the fixed point x = y = p. The inner problems are solved to a tolerance that follows the
+!> outer residual (a tenth of it, and never below a third of the target); every outer
+!> iteration confirms the residual of y on a fresh K y. Measured in docs/solver-scaling.md.
+!> Sums row by row and then over the rows in order (veslide_collective): the same path for any
+!> number of threads or processes.
+module veslide_solver_pdr
+    use, intrinsic :: iso_c_binding, only: c_f_pointer, c_loc
+    use, intrinsic :: iso_fortran_env, only: i8 => int64
+    use veslide_kinds, only: dp
+    use veslide_fftw, only: fft2d_t
+    use veslide_contact, only: contact_problem_t, contact_state_t, residual_measures
+    use veslide_solver_options, only: solver_options_t, progress_ticker_t
+    use veslide_anderson, only: anderson_t
+    use veslide_solver_bccg, only: bccg_t
+    use veslide_collective, only: ordered_sum, global_min, global_count
+    implicit none
+    private
+    public :: preconditioned_douglas_rachford
+
+contains
+
+    subroutine preconditioned_douglas_rachford(problem, fft, opts, state, gap0)
+        type(contact_problem_t), intent(in) :: problem
+        type(fft2d_t), intent(inout) :: fft
+        type(solver_options_t), intent(in) :: opts
+        !> on entry the starting pressure (problem%start); on exit the solution
+        type(contact_state_t), intent(inout) :: state
+        !> gap of the starting pressure [m] (default: zero gap)
+        real(dp), intent(in), optional :: gap0(:, :)
+        real(dp), parameter :: inner_fraction = 0.2_dp
+        type(bccg_t) :: b
+        type(anderson_t) :: aa
+        complex(dp), allocatable :: kn(:, :), cm(:, :)
+        real(dp), allocatable :: y(:, :), x(:, :)
+        real(dp), allocatable, target :: zz(:, :), ff(:, :)
+        real(dp), pointer :: z(:), f(:)
+        real(dp) :: hs, p_mean, gamma, n, itol, res_prev, d, s1, gmin, spg, sp, g, t2(2)
+        real(dp), allocatable :: rows(:, :)
+        integer :: nx, ny, na, nb, its, i, j, sh(2)
+        integer(i8) :: nc, cnt(1)
+        logical :: accelerated
+        type(progress_ticker_t) :: ticker
+
+        nx = size(problem%hc, 1); ny = size(problem%hc, 2)
+        sh = problem%kernel%grid%spectral_shape(); na = sh(1); nb = sh(2)
+        n = problem%kernel%grid%cells()
+        allocate (rows(2, ny))
+        hs = problem%height_scale_m
+        p_mean = problem%p_mean_pa
+        state%method = 'pdr'
+        call ticker%start(opts, 'pdr')
+        gamma = opts%step
+        if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp
+
+        ! multipliers: K/N and M/N = |K|/N (held by the inner solver as b%ks), dimensionless; the
+        ! resolvent's constant part cm
+        kn = problem%kernel%multiplier(p_mean/hs)
+        call b%init(fft, abs(kn), problem%kernel%grid)
+        fft%x = problem%hc/hs
+        call fft%forward()
+        b%pairs = 0.5_dp
+        call set_step()
+
+        ! start: y = p, z = p + gamma M^-1 g (g the gap of the start, when given)
+        allocate (zz(nx, ny), ff(nx, ny), x(nx, ny))
+        y = state%p/p_mean
+        zz = y
+        if (present(gap0)) then
+            fft%x = gap0/hs
+            call fft%forward()
+            where (b%ks > 0.0_dp)
+                fft%k = fft%k*(gamma/(b%ks*n*n))
+            elsewhere
+                fft%k = (0.0_dp, 0.0_dp)
+            end where
+            call fft%backward_unscaled()
+            zz = zz + fft%x
+            b%pairs = b%pairs + 1.0_dp
+        end if
+        z(1:nx*ny) => zz
+        f(1:nx*ny) => ff
+        call aa%init(nx*ny, opts%anderson_memory, problem%kernel%grid)
+        its = 0
+        res_prev = 1.0_dp
+        do
+            ! x = resolvent of z; the inner heights M (2x - z)
+            fft%x = zz
+            call fft%forward()
+            !$omp parallel do private(i)
+            do j = 1, nb
+                do i = 1, na
+                    b%hk(i, j) = fft%k(i, j)
+                    if (b%ks(i, j) > 0.0_dp) then
+                        fft%k(i, j) = b%ks(i, j)*fft%k(i, j)/((b%ks(i, j) + gamma*kn(i, j))*n) + cm(i, j)
+                    else
+                        fft%k(i, j) = fft%k(i, j)/n
+                    end if
+                    b%hk(i, j) = b%ks(i, j)*(2.0_dp*n*fft%k(i, j) - b%hk(i, j))
+                end do
+            end do
+            !$omp end parallel do
+            call fft%backward_unscaled()
+            b%pairs = b%pairs + 1.0_dp
+            x = fft%x
+
+            ! y = the metric projection of 2x - z onto C
+            itol = max(opts%tolerance/3.0_dp, inner_fraction*res_prev)
+            call b%solve(fft, y, itol, opts%max_iterations, its, same_start=.true.)
+
+            ! the residual of y on a fresh K y (from the transform of y the inner solve kept), in
+            ! two fused passes with veslide_contact's measures; confirmed by problem%residuals
+            fft%k = kn*b%pk
+            call fft%backward_unscaled()
+            b%pairs = b%pairs + 0.5_dp
+            nc = 0
+            !$omp parallel do private(i, g) reduction(+:nc)
+            do j = 1, ny
+                g = 0.0_dp
+                do i = 1, nx
+                    if (y(i, j) > 0.0_dp) then
+                        nc = nc + 1; g = g + (fft%x(i, j) - problem%hc(i, j)/hs)
+                    end if
+                end do
+                rows(1, j) = g
+            end do
+            !$omp end parallel do
+            call ordered_sum(problem%kernel%grid, rows(1:1, :), t2(1:1))
+            cnt(1) = nc; call global_count(problem%kernel%grid, cnt); nc = cnt(1)
+            s1 = t2(1)
+            d = -s1/real(max(nc, 1_i8), dp)
+            gmin = huge(1.0_dp)
+            !$omp parallel do private(i, g, t2) reduction(min:gmin)
+            do j = 1, ny
+                t2 = 0.0_dp
+                do i = 1, nx
+                    g = fft%x(i, j) - problem%hc(i, j)/hs + d
+                    gmin = min(gmin, g)
+                    t2(1) = t2(1) + y(i, j)*g
+                    t2(2) = t2(2) + y(i, j)
+                end do
+                rows(:, j) = t2
+            end do
+            !$omp end parallel do
+            call ordered_sum(problem%kernel%grid, rows, t2)
+            call global_min(problem%kernel%grid, gmin)
+            spg = t2(1); sp = t2(2)
+            ! (y >= 0 by construction: the negative-pressure measure is 0)
+            call residual_measures(state, hs*gmin, p_mean*hs*spg, p_mean*sp, 0.0_dp, p_mean*sp, n, p_mean, hs)
+            if (state%residual <= opts%tolerance .or. its >= opts%max_iterations) then
+                state%p = p_mean*y
+                state%u = hs*fft%x
+                call problem%residuals(state)
+                if (state%residual <= opts%tolerance) then
+                    state%converged = .true.; exit
+                end if
+                if (its >= opts%max_iterations) exit
+            end if
+            res_prev = state%residual
+            call ticker%tick(its, state%residual, ceiling(b%pairs))
+
+            ff = y - x
+
+            accelerated = aa%step(z, f)
+        end do
+        state%iterations = its
+        state%operator_applications = ceiling(b%pairs)
+
+    contains
+
+        !> The resolvent for the step gamma: x^/N = M z^/((M + gamma K) N) + cm, with the constant
+        !> part cm = gamma h^/(M + gamma K)/N^2 from h^ in fft%k (x^/N = z^/N on the mean mode)
+        subroutine set_step()
+            integer :: i, j
+            allocate (cm(na, nb))
+            do j = 1, nb
+                do i = 1, na
+                    if (b%ks(i, j) > 0.0_dp) then
+                        cm(i, j) = gamma*fft%k(i, j)/(b%ks(i, j) + gamma*kn(i, j))/(n*n)
+                    else
+                        cm(i, j) = (0.0_dp, 0.0_dp)
+                    end if
+                end do
+            end do
+        end subroutine set_step
+
+    end subroutine preconditioned_douglas_rachford
+
+end module veslide_solver_pdr

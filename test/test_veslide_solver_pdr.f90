@@ -1,0 +1,237 @@
+!> The preconditioned splitting (method 'pdr'): exact dense references, exact full-contact forces,
+!> agreement with the plain splitting, warm start from a pressure and its gap, an iteration count
+!> that does not grow with the grid, and the choice 'auto' makes between pdr and dr
+module test_veslide_solver_pdr
+    use veslide_kinds, only: dp, pi
+    use veslide_grid, only: grid_t, new_grid
+    use veslide_fftw, only: fft2d_t
+    use veslide_material, only: material_t, new_elastic
+    use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION
+    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
+    use veslide_solver_options, only: solver_options_t, solver_method_id, solver_method_names, SOLVER_PDR, &
+                                      SOLVER_DR, SOLVER_BCCG
+    use veslide_solver, only: solve_contact, auto_method
+    use veslide_analysis, only: contact_area_fraction
+    use testsuite, only: error_t, unittest_t, new_unittest, check, report
+    use test_support, only: solve_case
+    use dense_reference, only: influence_matrix, solve_dense
+    use reference_oracles, only: paper_rough, paper_solid, peak_speed, full_contact_force, lcell
+    use test_veslide_solver_bccg, only: fixed_spectrum_surface
+    implicit none
+    private
+    public :: collect_solver_pdr
+
+contains
+
+    subroutine collect_solver_pdr(tests)
+        type(unittest_t), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest("dense-16-elastic", test_dense_16_elastic), &
+            new_unittest("dense-32-visco-ratio-100", test_dense_32_visco), &
+            new_unittest("dense-32-anisotropic-45", test_dense_32_aniso), &
+            new_unittest("full-contact-forces-exact", test_full_contact_forces), &
+            new_unittest("matches-dr", test_matches_dr), &
+            new_unittest("warm-start-from-pressure-and-gap", test_warm_start), &
+            new_unittest("iterations-flat-in-the-grid", test_flat_iterations), &
+            new_unittest("modulus-spread", test_spread), &
+            new_unittest("auto-choice", test_auto) &
+            ]
+    end subroutine collect_solver_pdr
+
+    !> pdr against the dense exact solution; max |dp|/max p <= 1e-9 (as the splitting's tests)
+    subroutine dense_compare(h, mat, v, p_mean, error)
+        real(dp), intent(in) :: h(:, :), v(2), p_mean
+        type(material_t), intent(in) :: mat
+        type(error_t), allocatable, intent(out) :: error
+        type(contact_state_t) :: s
+        type(kernel_t) :: k
+        real(dp), allocatable :: a(:, :), p(:)
+        real(dp) :: d, kkt, diff
+        integer :: n
+        n = size(h)
+        call solve_case(h, lcell, lcell, p_mean, s, error, mat=mat, velocity=v, tol=1.0e-13_dp, kernel=k, method='pdr')
+        if (allocated(error)) return
+        call check(error, s%method == 'pdr', "method used: "//s%method); if (allocated(error)) return
+        call influence_matrix(k, a, error); if (allocated(error)) return
+        allocate (p(n))
+        call solve_dense(a, reshape(h - sum(h)/n, [n]), p_mean, p, d, kkt, error); if (allocated(error)) return
+        diff = maxval(abs(reshape(s%p, [n]) - p))/maxval(p)
+        call report("dense KKT", kkt); call report("max |dp|/max p", diff)
+        call report("area", contact_area_fraction(s%p)); call report("iterations", real(s%iterations, dp))
+        call check(error, kkt <= 1.0e-11_dp, "dense solution not certified"); if (allocated(error)) return
+        call check(error, diff <= 1.0e-9_dp, "pdr differs from the dense solution")
+    end subroutine dense_compare
+
+    subroutine test_dense_16_elastic(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: h(16, 16)
+        call paper_rough(16, h, error); if (allocated(error)) return
+        call new_elastic(m, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
+        call dense_compare(h, m, [0.0_dp, 0.0_dp], 5.0e4_dp, error)
+    end subroutine test_dense_16_elastic
+
+    subroutine test_dense_32_visco(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: h(32, 32)
+        call paper_rough(32, h, error); if (allocated(error)) return
+        call paper_solid(100.0_dp, m, error); if (allocated(error)) return
+        call dense_compare(h, m, [peak_speed(100.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
+    end subroutine test_dense_32_visco
+
+    subroutine test_dense_32_aniso(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: h(32, 32)
+        call paper_rough(32, h, error, eps=0.3_dp, alpha=pi/4); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
+    end subroutine test_dense_32_aniso
+
+    !> In full contact P(q) = H(q)/K(q): the forces in closed form
+    subroutine test_full_contact_forces(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 32
+        type(material_t) :: m
+        type(kernel_t) :: k
+        type(fft2d_t) :: fft
+        type(contact_state_t) :: s
+        real(dp) :: h(n, n), f(2), fe(2)
+        call paper_rough(n, h, error); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        call solve_case(h, lcell, lcell, 2.0e7_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
+                        kernel=k, method='pdr')
+        if (allocated(error)) return
+        call check(error, contact_area_fraction(s%p), 1.0_dp, "not in full contact", abs=0.0_dp)
+        if (allocated(error)) return
+        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
+        f = k%tangential_force(fft, s%p)
+        fe = full_contact_force(k, fft, h)
+        call report("rel. error Fx", abs(f(1) - fe(1))/abs(fe(1)))
+        call check(error, f(1), fe(1), "Fx", rel=1.0e-10_dp); if (allocated(error)) return
+        call check(error, f(2), fe(2), "Fy", abs=1.0e-10_dp*abs(fe(1)))
+    end subroutine test_full_contact_forces
+
+    !> pdr and the plain splitting agree on a rough viscoelastic contact near the loss peak, and
+    !> the work pdr reports covers its iterations (at least two FFT pairs each)
+    subroutine test_matches_dr(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 64
+        type(material_t) :: m
+        real(dp) :: h(n, n), v(2)
+        type(contact_state_t) :: s, sd
+        call paper_rough(n, h, error); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        v = [peak_speed(11.0_dp, 4.0_dp), 0.0_dp]
+        call solve_case(h, lcell, lcell, 3.2e4_dp, s, error, mat=m, velocity=v, method='pdr'); if (allocated(error)) return
+        call solve_case(h, lcell, lcell, 3.2e4_dp, sd, error, mat=m, velocity=v, method='dr'); if (allocated(error)) return
+        call report("pdr FFT pairs", real(s%operator_applications, dp))
+        call report("dr FFT pairs", real(sd%operator_applications, dp))
+        call report("max |dp|/max p", maxval(abs(s%p - sd%p))/maxval(s%p))
+        call check(error, maxval(abs(s%p - sd%p))/maxval(s%p) <= 1.0e-9_dp, "pressures differ")
+        if (allocated(error)) return
+        call check(error, s%operator_applications >= 2*s%iterations, "fewer than two FFT pairs per iteration")
+    end subroutine test_matches_dr
+
+    !> Started from a converged pressure and its gap (a sweep's warm start), pdr stops at once
+    subroutine test_warm_start(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 64
+        type(material_t) :: m
+        type(kernel_t) :: k
+        type(grid_t) :: grid
+        type(fft2d_t) :: fft
+        type(contact_problem_t) :: problem
+        type(solver_options_t) :: opts
+        type(contact_state_t) :: s, sw
+        real(dp) :: h(n, n)
+        call paper_rough(n, h, error); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
+        call new_kernel(k, grid, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], KERNEL_SPECTRAL, error)
+        if (allocated(error)) return
+        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
+        call new_contact_problem(problem, k, h, 3.2e4_dp, error); if (allocated(error)) return
+        opts%method = SOLVER_PDR
+        call solve_contact(problem, fft, opts, s, error); if (allocated(error)) return
+        call solve_contact(problem, fft, opts, sw, error, p_init=s%p, g_init=s%g); if (allocated(error)) return
+        call report("cold", real(s%iterations, dp)); call report("warm", real(sw%iterations, dp))
+        call check(error, sw%converged .and. sw%iterations <= 2 .and. s%iterations > 10, "warm start did not help")
+    end subroutine test_warm_start
+
+    !> The same surface on 64^2 .. 256^2 (q0 .. 16 q0), ratio 11 near the loss peak, tolerance
+    !> 1e-8: pdr's FFT pairs grow by at most 1.5 from the coarsest grid to the finest
+    subroutine test_flat_iterations(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), allocatable :: h(:, :)
+        type(material_t) :: m
+        type(contact_state_t) :: s
+        integer :: k, n, pairs(3)
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        do k = 1, 3
+            n = 32*2**k
+            call fixed_spectrum_surface(n, 16.0_dp, h, error); if (allocated(error)) return
+            call solve_case(h, lcell, lcell, 3.2e4_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
+                            tol=1.0e-8_dp, method='pdr')
+            if (allocated(error)) return
+            pairs(k) = s%operator_applications
+        end do
+        call report("FFT pairs 64^2", real(pairs(1), dp)); call report("128^2", real(pairs(2), dp))
+        call report("256^2", real(pairs(3), dp))
+        call check(error, pairs(3) <= 1.5_dp*pairs(1), "FFT pairs grow with the grid")
+    end subroutine test_flat_iterations
+
+    !> The anisotropy measure behind 'auto': 1 for an elastic solid (spectral kernel); for a
+    !> one-term solid far above the loss peak, Einf/E0 (glassy along v, rubbery across it)
+    subroutine test_spread(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        type(kernel_t) :: k
+        type(grid_t) :: grid
+        call new_grid(grid, 64, 64, lcell, lcell, error); if (allocated(error)) return
+        call new_elastic(m, 1.0e7_dp, 0.3_dp, error); if (allocated(error)) return
+        call new_kernel(k, grid, m, [0.0_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
+        call report("elastic", k%modulus_spread())
+        call check(error, k%modulus_spread(), 1.0_dp, "elastic spread", rel=1.0e-12_dp); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        call new_kernel(k, grid, m, [1.0e3_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
+        call report("ratio 11 at v tau/L0 = 1e3", k%modulus_spread())
+        call check(error, k%modulus_spread(), 11.0_dp, "glassy/rubbery spread", rel=1.0e-3_dp)
+    end subroutine test_spread
+
+    !> 'auto': bccg when symmetric; pdr from 512^2 for a moderately anisotropic operator; dr on
+    !> smaller grids and for strongly anisotropic operators (ratio 1000 in motion)
+    subroutine test_auto(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect(512, 11.0_dp, peak_speed(11.0_dp, 8.0_dp), KERNEL_SPECTRAL, SOLVER_PDR, error)
+        if (allocated(error)) return
+        call expect(512, 11.0_dp, peak_speed(11.0_dp, 8.0_dp), KERNEL_COLLOCATION, SOLVER_PDR, error)
+        if (allocated(error)) return
+        call expect(256, 11.0_dp, peak_speed(11.0_dp, 8.0_dp), KERNEL_SPECTRAL, SOLVER_DR, error)
+        if (allocated(error)) return
+        call expect(512, 1000.0_dp, peak_speed(1000.0_dp, 8.0_dp), KERNEL_SPECTRAL, SOLVER_DR, error)
+        if (allocated(error)) return
+        call expect(512, 1000.0_dp, 0.0_dp, KERNEL_SPECTRAL, SOLVER_BCCG, error)
+    contains
+        subroutine expect(n, ratio, speed, variant, method, error)
+            integer, intent(in) :: n, variant, method
+            real(dp), intent(in) :: ratio, speed
+            type(error_t), allocatable, intent(out) :: error
+            type(material_t) :: m
+            type(kernel_t) :: k
+            type(grid_t) :: grid
+            type(contact_problem_t) :: problem
+            real(dp), allocatable :: h(:, :)
+            allocate (h(n, n)); h = 0.0_dp
+            call paper_solid(ratio, m, error); if (allocated(error)) return
+            call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
+            call new_kernel(k, grid, m, [speed, 0.0_dp], variant, error); if (allocated(error)) return
+            call new_contact_problem(problem, k, h, 1.0e4_dp, error); if (allocated(error)) return
+            call check(error, auto_method(problem) == method, "auto takes '"// &
+                       trim(solver_method_names(auto_method(problem)))//"', expected '"// &
+                       trim(solver_method_names(method))//"'")
+        end subroutine expect
+    end subroutine test_auto
+
+end module test_veslide_solver_pdr
