@@ -10,7 +10,11 @@ usage: python postproc/study_tables.py band|cells RESULTS_DIR OUT_DIR
          limit against alpha for cells of L0 .. 8 L0; writes OUT_DIR/cells_alpha.png.
   cellspeed  the same tables for inputs/studies/cellspeed (intermediate speeds, L0 and 4 L0);
          writes OUT_DIR/cellspeed_alpha.png.
-Tables are markdown, printed to stdout and written to RESULTS_DIR/table.md.
+  persson  RESULTS_DIR holds fig4_5_7.h5 and/or fig6.h5 (inputs/paper, &analysis persson): the
+         boundary elements against Persson's theory on the same surfaces, friction and contact
+         area against speed (ratios BEM/theory taken seed by seed), and the theory's cost
+         against the solve; writes OUT_DIR/persson_ratio.png and RESULTS_DIR/persson.md.
+Tables are markdown, printed to stdout and written to RESULTS_DIR/table.md (persson: persson.md).
 """
 import glob
 import os
@@ -289,8 +293,95 @@ def cells(results, outdir):
     print("wrote", out)
 
 
+# -------------------------------------------------------------------------------------- persson
+
+PERSSON_Q = (("friction_coefficient", "f"), ("contact_area_fraction", "A/A0"))
+
+
+def _persson_rows(p, key, member):
+    """[(v tau/L0, {quantity: (BEM mean, BEM SE, theory mean, theory SE, ratio mean, ratio SE)})]
+    of one member (key = member) of a study with Persson columns; ratios BEM/theory seed by seed."""
+    s = vr.table(p)
+    rows = []
+    for v in np.unique(s["speed_m_s"]):
+        sel = np.isclose(s[key], member) & (s["speed_m_s"] == v)
+        if not sel.any():
+            continue
+        rec = {}
+        for q, _ in PERSSON_Q + (("lateral_force_ratio", ""),):
+            b, t = s[q][sel], s["persson_" + q][sel]
+            rec[q] = stats(b)[:2] + stats(t)[:2] + (stats(b / t)[:2] if q != "lateral_force_ratio" else (np.nan, np.nan))
+        rows.append((float(vr.dimensionless_speed(p, v)), rec))
+    return sorted(rows, key=lambda r: r[0])
+
+
+def persson(results, outdir):
+    studies = [(name, key, sym) for name, key, sym in (("fig4_5_7", "alpha_deg", "alpha"), ("fig6", "eccentricity", "eps"))
+               if os.path.exists(os.path.join(results, name + ".h5"))]
+    if not studies:
+        raise SystemExit("no fig4_5_7.h5 or fig6.h5 in " + results)
+    lines = []
+    data = {}
+    for name, key, sym in studies:
+        p = os.path.join(results, name + ".h5")
+        s = vr.table(p)
+        if "persson_friction_coefficient" not in s:
+            raise SystemExit(p + " was run without &analysis persson")
+        members = np.unique(s[key])
+        data[name] = (key, sym, {float(m): _persson_rows(p, key, m) for m in members})
+        n = len(np.unique(s["seed"]))
+        for m in members:
+            label = ("alpha = %g deg" % m) if sym == "alpha" else ("eps = %g" % m)
+            lines += ["", "%s, %s (%d seeds; BEM mean +- SE, theory mean +- SE, ratio BEM/theory seed by seed):"
+                      % (name, label, n), "",
+                      "| v tau/L0 | f, BEM | f, theory | f: BEM/theory | A/A0, BEM | A/A0, theory | A: BEM/theory |"
+                      " F_y/F_n, BEM | F_y/F_n, theory |",
+                      "|---" * 9 + "|"]
+            for x, rec in data[name][2][float(m)]:
+                f, a, fy = rec["friction_coefficient"], rec["contact_area_fraction"], rec["lateral_force_ratio"]
+                lines.append("| %g | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                    float("%.3g" % x), fmt_sci(*f[:2]), fmt_sci(*f[2:4]), fmt(*f[4:], digits=3),
+                    fmt(*a[:2], digits=4), fmt(*a[2:4], digits=4), fmt(*a[4:], digits=3),
+                    fmt_sci(*fy[:2]), fmt_sci(*fy[2:4])))
+        solve = s["solve_seconds"]
+        lines += ["", "%s: solve_seconds per case: median %.2f s, mean %.2f s, range %.2f-%.2f s (%d cases)"
+                  % (name, np.median(solve), solve.mean(), solve.min(), solve.max(), len(solve))]
+    table = "\n".join(lines)
+    print(table)
+    with open(os.path.join(results, "persson.md"), "w") as fh:
+        fh.write(table + "\n")
+
+    fig, axs = plt.subplots(len(studies), 2, figsize=(11, 4.2 * len(studies)), squeeze=False)
+    for row, (name, key, sym) in enumerate(studies):
+        _, _, fam = data[name]
+        p = os.path.join(results, name + ".h5")
+        for k, (m, rows) in enumerate(fam.items()):
+            x = np.array([r[0] for r in rows])
+            lab = (r"$\alpha$ = %.1f°" % m) if sym == "alpha" else (r"$\varepsilon$ = %.1f" % m)
+            for col, (q, qlab) in enumerate(PERSSON_Q):
+                g = np.array([r[1][q][4:] for r in rows])
+                axs[row, col].errorbar(x, g[:, 0], yerr=g[:, 1], marker="o", ms=3, capsize=2, color="C%d" % k, label=lab)
+        v = vr.namelist_value(p, "ratio", None)
+        for col, (q, qlab) in enumerate(PERSSON_Q):
+            ax = axs[row, col]
+            ax.set_xscale("log"); ax.axhline(1.0, color="k", lw=0.5)
+            ax.set_xlabel(r"$v\tau/L_0$"); ax.set_ylabel(r"%s: BEM / Persson" % qlab)
+            ax.grid(True, which="major", lw=0.3, color="0.85")
+            if v is not None:
+                lo, hi = ax.get_xlim()
+                ax.axvspan(v * vr.namelist_value(p, "k_roll", 1.0) / (2 * np.pi), hi, color="0.9", zorder=0, lw=0)
+                ax.set_xlim(lo, hi)
+            ax.set_title("%s: %s, mean $\\pm$ SE of the ratio over seeds" % (name, qlab), fontsize=9)
+        axs[row, 0].legend(fontsize=8)
+    fig.suptitle("Boundary elements against Persson's theory (S = 1) on the same realised surfaces; grey: cell artefact",
+                 fontsize=10)
+    fig.tight_layout(); out = os.path.join(outdir, "persson_ratio.png")
+    fig.savefig(out, dpi=110); plt.close(fig)
+    print("wrote", out)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("band", "cells", "cellspeed"):
+    if len(sys.argv) != 4 or sys.argv[1] not in ("band", "cells", "cellspeed", "persson"):
         raise SystemExit(__doc__)
     os.makedirs(sys.argv[3], exist_ok=True)
-    {"band": band, "cells": cells, "cellspeed": cells}[sys.argv[1]](sys.argv[2], sys.argv[3])
+    {"band": band, "cells": cells, "cellspeed": cells, "persson": persson}[sys.argv[1]](sys.argv[2], sys.argv[3])
