@@ -10,10 +10,10 @@ usage: python postproc/study_tables.py band|cells RESULTS_DIR OUT_DIR
          limit against alpha for cells of L0 .. 8 L0; writes OUT_DIR/cells_alpha.png.
   cellspeed  the same tables for inputs/studies/cellspeed (intermediate speeds, L0 and 4 L0);
          writes OUT_DIR/cellspeed_alpha.png.
-  persson  RESULTS_DIR holds fig4_5_7.h5 and/or fig6.h5 (inputs/paper, &analysis persson): the
-         boundary elements against Persson's theory on the same surfaces, friction and contact
-         area against speed (ratios BEM/theory taken seed by seed), and the theory's cost
-         against the solve; writes OUT_DIR/persson_ratio.png and RESULTS_DIR/persson.md.
+  persson  every study in RESULTS_DIR run with &analysis persson (e.g. results/paper: fig4_5_7.h5,
+         fig6.h5): the boundary elements against Persson's theory on the same surfaces, friction,
+         contact area and lateral force against speed per alpha (or eps), ratios BEM/theory taken
+         seed by seed, and the solve times; writes OUT_DIR/<RESULTS_DIR's name>_persson.png.
 Tables are markdown, printed to stdout and written to RESULTS_DIR/table.md (persson: persson.md).
 """
 import glob
@@ -315,29 +315,40 @@ def _persson_rows(p, key, member):
     return sorted(rows, key=lambda r: r[0])
 
 
+def _s_correction(p):
+    """Whether the study used Persson's S(q) = 1/2 + P^2/2 (&analysis persson_correction)."""
+    with h5py.File(p, "r") as fh:
+        text = fh["/input/namelist"][()].decode()
+    return re.search(r"persson_correction\s*=\s*\.t", text, re.IGNORECASE) is not None
+
+
 def persson(results, outdir):
-    studies = [(name, key, sym) for name, key, sym in (("fig4_5_7", "alpha_deg", "alpha"), ("fig6", "eccentricity", "eps"))
-               if os.path.exists(os.path.join(results, name + ".h5"))]
+    studies = []
+    for p in sorted(glob.glob(os.path.join(results, "*.h5"))):
+        with h5py.File(p, "r") as fh:
+            if "/summary" not in fh or "persson_friction_coefficient" not in fh["/summary"].dtype.names:
+                continue
+        s = vr.table(p)
+        key, sym = ("eccentricity", "eps") if len(np.unique(s["eccentricity"])) > 1 else ("alpha_deg", "alpha")
+        studies.append((os.path.basename(p)[:-3], p, key, sym))
     if not studies:
-        raise SystemExit("no fig4_5_7.h5 or fig6.h5 in " + results)
+        raise SystemExit("no study run with &analysis persson in " + results)
     lines = []
     data = {}
-    for name, key, sym in studies:
-        p = os.path.join(results, name + ".h5")
+    for name, p, key, sym in studies:
         s = vr.table(p)
-        if "persson_friction_coefficient" not in s:
-            raise SystemExit(p + " was run without &analysis persson")
         members = np.unique(s[key])
-        data[name] = (key, sym, {float(m): _persson_rows(p, key, m) for m in members})
+        data[name] = {float(m): _persson_rows(p, key, m) for m in members}
         n = len(np.unique(s["seed"]))
+        theory = "S = 1/2 + P^2/2" if _s_correction(p) else "S = 1"
         for m in members:
             label = ("alpha = %g deg" % m) if sym == "alpha" else ("eps = %g" % m)
-            lines += ["", "%s, %s (%d seeds; BEM mean +- SE, theory mean +- SE, ratio BEM/theory seed by seed):"
-                      % (name, label, n), "",
+            lines += ["", "%s, %s (%d seeds; theory %s; BEM mean +- SE, theory mean +- SE, ratio BEM/theory seed by seed):"
+                      % (name, label, n, theory), "",
                       "| v tau/L0 | f, BEM | f, theory | f: BEM/theory | A/A0, BEM | A/A0, theory | A: BEM/theory |"
                       " F_y/F_n, BEM | F_y/F_n, theory |",
                       "|---" * 9 + "|"]
-            for x, rec in data[name][2][float(m)]:
+            for x, rec in data[name][float(m)]:
                 f, a, fy = rec["friction_coefficient"], rec["contact_area_fraction"], rec["lateral_force_ratio"]
                 lines.append("| %g | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                     float("%.3g" % x), fmt_sci(*f[:2]), fmt_sci(*f[2:4]), fmt(*f[4:], digits=3),
@@ -352,30 +363,30 @@ def persson(results, outdir):
         fh.write(table + "\n")
 
     fig, axs = plt.subplots(len(studies), 2, figsize=(11, 4.2 * len(studies)), squeeze=False)
-    for row, (name, key, sym) in enumerate(studies):
-        _, _, fam = data[name]
-        p = os.path.join(results, name + ".h5")
-        for k, (m, rows) in enumerate(fam.items()):
+    for row, (name, p, key, sym) in enumerate(studies):
+        for k, (m, rows) in enumerate(data[name].items()):
             x = np.array([r[0] for r in rows])
             lab = (r"$\alpha$ = %.1f°" % m) if sym == "alpha" else (r"$\varepsilon$ = %.1f" % m)
             for col, (q, qlab) in enumerate(PERSSON_Q):
                 g = np.array([r[1][q][4:] for r in rows])
                 axs[row, col].errorbar(x, g[:, 0], yerr=g[:, 1], marker="o", ms=3, capsize=2, color="C%d" % k, label=lab)
-        v = vr.namelist_value(p, "ratio", None)
+        ratio = vr.namelist_value(p, "ratio", None)
+        theory = r"$S = 1/2 + P^2/2$" if _s_correction(p) else r"$S = 1$"
         for col, (q, qlab) in enumerate(PERSSON_Q):
             ax = axs[row, col]
             ax.set_xscale("log"); ax.axhline(1.0, color="k", lw=0.5)
             ax.set_xlabel(r"$v\tau/L_0$"); ax.set_ylabel(r"%s: BEM / Persson" % qlab)
             ax.grid(True, which="major", lw=0.3, color="0.85")
-            if v is not None:
+            if ratio is not None:             # the cell artefact's speeds (make_figures.cell_artefact_speed)
                 lo, hi = ax.get_xlim()
-                ax.axvspan(v * vr.namelist_value(p, "k_roll", 1.0) / (2 * np.pi), hi, color="0.9", zorder=0, lw=0)
+                ax.axvspan(ratio * vr.namelist_value(p, "k_roll", 1.0) / (2 * np.pi), hi, color="0.9", zorder=0, lw=0)
                 ax.set_xlim(lo, hi)
-            ax.set_title("%s: %s, mean $\\pm$ SE of the ratio over seeds" % (name, qlab), fontsize=9)
+            ax.set_title("%s, theory with %s: %s, mean $\\pm$ SE of the ratio over seeds" % (name, theory, qlab),
+                         fontsize=9)
         axs[row, 0].legend(fontsize=8)
-    fig.suptitle("Boundary elements against Persson's theory (S = 1) on the same realised surfaces; grey: cell artefact",
+    fig.suptitle("Boundary elements against Persson's theory on the same realised surfaces; grey: cell artefact",
                  fontsize=10)
-    fig.tight_layout(); out = os.path.join(outdir, "persson_ratio.png")
+    fig.tight_layout(); out = os.path.join(outdir, os.path.basename(os.path.normpath(results)) + "_persson.png")
     fig.savefig(out, dpi=110); plt.close(fig)
     print("wrote", out)
 
