@@ -208,9 +208,26 @@ def cell_artefact_speed(src):
     return ratio * vr.namelist_value(src, "k_roll", 1.0) / (2 * np.pi)
 
 
-def _speed_plot(ax, fam, ylabel, logy=False, src=None):
-    for label, x, m, s in fam:
-        ax.errorbar(x, m, yerr=s, marker="o", ms=3, capsize=2, label=label)
+PERSSON = "dashed: Persson theory (realised PSD)"
+
+
+def _theory(src, key, column, fmt):
+    """The seed mean of Persson's theory per member of a family, [(label, v tau/L0, mean, sem)],
+    or None when the study was run without &analysis persson (no such column in /summary)."""
+    if column not in vr.table(src):
+        return None
+    return _family(src, key, column, fmt)
+
+
+def _speed_plot(ax, fam, ylabel, logy=False, src=None, theory=None):
+    """One curve per member of `fam` (mean with standard-error bars over the seeds); `theory`,
+    when given, the same members' Persson estimate (its seed mean), drawn dashed in the same colour."""
+    for k, (label, x, m, s) in enumerate(fam):
+        ax.errorbar(x, m, yerr=s, marker="o", ms=3, capsize=2, color="C%d" % (k % 10), label=label)
+    if theory is not None:
+        for k, (label, x, m, _) in enumerate(theory):
+            ax.plot(x, m, ls="--", lw=1.2, color="C%d" % (k % 10))
+        ax.plot([], [], ls="--", lw=1.2, color="0.3", label=PERSSON)
     ax.set_xscale("log")
     if logy:
         ax.set_yscale("log")
@@ -222,6 +239,16 @@ def _speed_plot(ax, fam, ylabel, logy=False, src=None):
         if v < hi:
             ax.axvspan(v, hi, color="0.9", zorder=0, lw=0, label=r"cell artefact: $\mathbf{q}\cdot\mathbf{v} = 0$ modes rubbery")
             ax.set_xlim(lo, hi)
+    return theory is not None
+
+
+def _legend(ax, fam, reverse=False, **kw):
+    """The legend with the family's curves first (reversed if asked), then the notes (theory, band)."""
+    h, l = ax.get_legend_handles_labels()
+    names = [f[0] for f in fam]
+    curves = sorted((i for i in range(len(l)) if l[i] in names), key=lambda i: names.index(l[i]), reverse=reverse)
+    rest = [i for i in range(len(l)) if l[i] not in names]
+    ax.legend([h[i] for i in curves + rest], [l[i] for i in curves + rest], **kw)
 
 
 def _ecc_text(src):
@@ -230,36 +257,48 @@ def _ecc_text(src):
 
 def fig4(src, out):
     fig, (a, b) = plt.subplots(1, 2, figsize=(10.5, 4.3))
-    _speed_plot(a, _family(src, "alpha_deg", "contact_area_fraction", ALPHA), r"contact area $A/A_0$", src=src)
+    fam = _family(src, "alpha_deg", "contact_area_fraction", ALPHA)
+    drawn = _speed_plot(a, fam, r"contact area $A/A_0$", src=src,
+                        theory=_theory(src, "alpha_deg", "persson_contact_area_fraction", ALPHA))
     _speed_plot(b, _family(src, "alpha_deg", lambda t: t["mean_separation_m"] / t["rms_height_m"], ALPHA),
                 r"separation $s/h_\mathrm{rms}$", src=src)
-    a.legend(fontsize=8)
+    _legend(a, fam, fontsize=8)
     fig.suptitle(_note(src, _ecc_text(src)), fontsize=10)
     fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    return drawn
 
 
 def fig5(src, out):
     fig, ax = plt.subplots(figsize=(6.4, 4.5))
-    _speed_plot(ax, _family(src, "alpha_deg", "friction_coefficient", ALPHA), r"friction $f = F_x/F_n$", src=src)
+    fam = _family(src, "alpha_deg", "friction_coefficient", ALPHA)
+    drawn = _speed_plot(ax, fam, r"friction $f = F_x/F_n$", src=src,
+                        theory=_theory(src, "alpha_deg", "persson_friction_coefficient", ALPHA))
     ax.set_title(_note(src, _ecc_text(src)), fontsize=9)
-    ax.legend(fontsize=8); fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    _legend(ax, fam, fontsize=8); fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    return drawn
 
 
 def fig6(src, out):
     fig, ax = plt.subplots(figsize=(6.4, 4.5))
-    _speed_plot(ax, _family(src, "eccentricity", "friction_coefficient", EPS), r"friction $f = F_x/F_n$", src=src)
+    fam = _family(src, "eccentricity", "friction_coefficient", EPS)
+    drawn = _speed_plot(ax, fam, r"friction $f = F_x/F_n$", src=src,
+                        theory=_theory(src, "eccentricity", "persson_friction_coefficient", EPS))
     ax.set_title(_note(src, r"$\alpha$ = %.0f°" % vr.table(src)["alpha_deg"][0]), fontsize=9)
-    h, l = ax.get_legend_handles_labels()
-    ax.legend(h[::-1], l[::-1], fontsize=8); fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    _legend(ax, fam, reverse=True, fontsize=8)        # eps descending, as the curves stack
+    fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    return drawn
 
 
 def fig7(src, out):
     fig, ax = plt.subplots(figsize=(6.4, 4.5))
-    _speed_plot(ax, _family(src, "alpha_deg", "lateral_force_ratio", ALPHA), r"lateral force $F_y/F_n$", src=src)
+    fam = _family(src, "alpha_deg", "lateral_force_ratio", ALPHA)
+    drawn = _speed_plot(ax, fam, r"lateral force $F_y/F_n$", src=src,
+                        theory=_theory(src, "alpha_deg", "persson_lateral_force_ratio", ALPHA))
     ax.axhline(0, color="k", lw=0.5)
     ax.set_title(_note(src, _ecc_text(src)) + "\n" + r"$F_y$: along +y, 90° counter-clockwise from $\mathbf{v}$",
                  fontsize=9)
-    ax.legend(fontsize=8); fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    _legend(ax, fam, fontsize=8); fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    return drawn
 
 
 def fig8(src, out):
@@ -292,8 +331,8 @@ def main(results="results/paper", outdir="docs/figures/paper"):
         if not os.path.exists(path):
             print("skipped %s: no %s" % (name, path))
             continue
-        draw(path, os.path.join(outdir, name))
-        print("wrote", os.path.join(outdir, name))
+        with_theory = draw(path, os.path.join(outdir, name))
+        print("wrote", os.path.join(outdir, name) + (" (with Persson's theory)" if with_theory else ""))
         made += 1
     return made
 

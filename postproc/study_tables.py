@@ -10,7 +10,11 @@ usage: python postproc/study_tables.py band|cells RESULTS_DIR OUT_DIR
          limit against alpha for cells of L0 .. 8 L0; writes OUT_DIR/cells_alpha.png.
   cellspeed  the same tables for inputs/studies/cellspeed (intermediate speeds, L0 and 4 L0);
          writes OUT_DIR/cellspeed_alpha.png.
-Tables are markdown, printed to stdout and written to RESULTS_DIR/table.md.
+  persson  every study in RESULTS_DIR run with &analysis persson (e.g. results/paper: fig4_5_7.h5,
+         fig6.h5): the boundary elements against Persson's theory on the same surfaces, friction,
+         contact area and lateral force against speed per alpha (or eps), ratios BEM/theory taken
+         seed by seed, and the solve times; writes OUT_DIR/<RESULTS_DIR's name>_persson.png.
+Tables are markdown, printed to stdout and written to RESULTS_DIR/table.md (persson: persson.md).
 """
 import glob
 import os
@@ -289,8 +293,106 @@ def cells(results, outdir):
     print("wrote", out)
 
 
+# -------------------------------------------------------------------------------------- persson
+
+PERSSON_Q = (("friction_coefficient", "f"), ("contact_area_fraction", "A/A0"))
+
+
+def _persson_rows(p, key, member):
+    """[(v tau/L0, {quantity: (BEM mean, BEM SE, theory mean, theory SE, ratio mean, ratio SE)})]
+    of one member (key = member) of a study with Persson columns; ratios BEM/theory seed by seed."""
+    s = vr.table(p)
+    rows = []
+    for v in np.unique(s["speed_m_s"]):
+        sel = np.isclose(s[key], member) & (s["speed_m_s"] == v)
+        if not sel.any():
+            continue
+        rec = {}
+        for q, _ in PERSSON_Q + (("lateral_force_ratio", ""),):
+            b, t = s[q][sel], s["persson_" + q][sel]
+            rec[q] = stats(b)[:2] + stats(t)[:2] + (stats(b / t)[:2] if q != "lateral_force_ratio" else (np.nan, np.nan))
+        rows.append((float(vr.dimensionless_speed(p, v)), rec))
+    return sorted(rows, key=lambda r: r[0])
+
+
+def _s_correction(p):
+    """Whether the study used Persson's S(q) = 1/2 + P^2/2 (&analysis persson_correction)."""
+    with h5py.File(p, "r") as fh:
+        text = fh["/input/namelist"][()].decode()
+    return re.search(r"persson_correction\s*=\s*\.t", text, re.IGNORECASE) is not None
+
+
+def persson(results, outdir):
+    studies = []
+    for p in sorted(glob.glob(os.path.join(results, "*.h5"))):
+        with h5py.File(p, "r") as fh:
+            if "/summary" not in fh or "persson_friction_coefficient" not in fh["/summary"].dtype.names:
+                continue
+        s = vr.table(p)
+        key, sym = ("eccentricity", "eps") if len(np.unique(s["eccentricity"])) > 1 else ("alpha_deg", "alpha")
+        studies.append((os.path.basename(p)[:-3], p, key, sym))
+    if not studies:
+        raise SystemExit("no study run with &analysis persson in " + results)
+    lines = []
+    data = {}
+    for name, p, key, sym in studies:
+        s = vr.table(p)
+        members = np.unique(s[key])
+        data[name] = {float(m): _persson_rows(p, key, m) for m in members}
+        n = len(np.unique(s["seed"]))
+        theory = "S = 1/2 + P^2/2" if _s_correction(p) else "S = 1"
+        for m in members:
+            label = ("alpha = %g deg" % m) if sym == "alpha" else ("eps = %g" % m)
+            lines += ["", "%s, %s (%d seeds; theory %s; BEM mean +- SE, theory mean +- SE, ratio BEM/theory seed by seed):"
+                      % (name, label, n, theory), "",
+                      "| v tau/L0 | f, BEM | f, theory | f: BEM/theory | A/A0, BEM | A/A0, theory | A: BEM/theory |"
+                      " F_y/F_n, BEM | F_y/F_n, theory |",
+                      "|---" * 9 + "|"]
+            for x, rec in data[name][float(m)]:
+                f, a, fy = rec["friction_coefficient"], rec["contact_area_fraction"], rec["lateral_force_ratio"]
+                lines.append("| %g | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                    float("%.3g" % x), fmt_sci(*f[:2]), fmt_sci(*f[2:4]), fmt(*f[4:], digits=3),
+                    fmt(*a[:2], digits=4), fmt(*a[2:4], digits=4), fmt(*a[4:], digits=3),
+                    fmt_sci(*fy[:2]), fmt_sci(*fy[2:4])))
+        solve = s["solve_seconds"]
+        lines += ["", "%s: solve_seconds per case: median %.2f s, mean %.2f s, range %.2f-%.2f s (%d cases)"
+                  % (name, np.median(solve), solve.mean(), solve.min(), solve.max(), len(solve))]
+    table = "\n".join(lines)
+    print(table)
+    with open(os.path.join(results, "persson.md"), "w") as fh:
+        fh.write(table + "\n")
+
+    fig, axs = plt.subplots(len(studies), 2, figsize=(11, 4.2 * len(studies)), squeeze=False)
+    for row, (name, p, key, sym) in enumerate(studies):
+        for k, (m, rows) in enumerate(data[name].items()):
+            x = np.array([r[0] for r in rows])
+            lab = (r"$\alpha$ = %.1f°" % m) if sym == "alpha" else (r"$\varepsilon$ = %.1f" % m)
+            for col, (q, qlab) in enumerate(PERSSON_Q):
+                g = np.array([r[1][q][4:] for r in rows])
+                axs[row, col].errorbar(x, g[:, 0], yerr=g[:, 1], marker="o", ms=3, capsize=2, color="C%d" % k, label=lab)
+        ratio = vr.namelist_value(p, "ratio", None)
+        theory = r"$S = 1/2 + P^2/2$" if _s_correction(p) else r"$S = 1$"
+        for col, (q, qlab) in enumerate(PERSSON_Q):
+            ax = axs[row, col]
+            ax.set_xscale("log"); ax.axhline(1.0, color="k", lw=0.5)
+            ax.set_xlabel(r"$v\tau/L_0$"); ax.set_ylabel(r"%s: BEM / Persson" % qlab)
+            ax.grid(True, which="major", lw=0.3, color="0.85")
+            if ratio is not None:             # the cell artefact's speeds (make_figures.cell_artefact_speed)
+                lo, hi = ax.get_xlim()
+                ax.axvspan(ratio * vr.namelist_value(p, "k_roll", 1.0) / (2 * np.pi), hi, color="0.9", zorder=0, lw=0)
+                ax.set_xlim(lo, hi)
+            ax.set_title("%s, theory with %s: %s, mean $\\pm$ SE of the ratio over seeds" % (name, theory, qlab),
+                         fontsize=9)
+        axs[row, 0].legend(fontsize=8)
+    fig.suptitle("Boundary elements against Persson's theory on the same realised surfaces; grey: cell artefact",
+                 fontsize=10)
+    fig.tight_layout(); out = os.path.join(outdir, os.path.basename(os.path.normpath(results)) + "_persson.png")
+    fig.savefig(out, dpi=110); plt.close(fig)
+    print("wrote", out)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("band", "cells", "cellspeed"):
+    if len(sys.argv) != 4 or sys.argv[1] not in ("band", "cells", "cellspeed", "persson"):
         raise SystemExit(__doc__)
     os.makedirs(sys.argv[3], exist_ok=True)
-    {"band": band, "cells": cells, "cellspeed": cells}[sys.argv[1]](sys.argv[2], sys.argv[3])
+    {"band": band, "cells": cells, "cellspeed": cells, "persson": persson}[sys.argv[1]](sys.argv[2], sys.argv[3])

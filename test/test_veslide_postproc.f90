@@ -1,4 +1,5 @@
-!> The figure scripts of postproc/ run (headless) on small studies made here, and draw every figure
+!> The figure scripts of postproc/ run (headless) on small studies made here, and draw every figure;
+!> the speed studies (figures 4-7) carry Persson's theory, which the script must draw beside them
 module test_veslide_postproc
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t, read_config
@@ -19,7 +20,7 @@ contains
 
     subroutine test_figures(error)
         type(error_t), allocatable, intent(out) :: error
-        character(len=:), allocatable :: dir, base, python
+        character(len=:), allocatable :: dir, base, pbase, python
         character(len=*), parameter :: figs(8) = [character(len=25) :: 'fig1.png', 'fig2.png', 'fig3.png', &
             'fig4.png', 'fig5.png', 'fig6.png', 'fig7.png', 'fig8_stretch_rotation.png']
         character(len=256) :: buf
@@ -28,15 +29,17 @@ contains
         dir = unique_name('figs')
         call execute_command_line('mkdir -p '//dir//'/out', exitstat=stat)
         base = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.6 / &material model='one_term' /"// &
-               " &solver fft_planner='estimate', tolerance = 1e-8 / &analysis anisotropy = .true. /"
+               " &solver fft_planner='estimate', tolerance = 1e-8 / &analysis anisotropy = .true."
+        pbase = base//", persson = .true. /"
+        base = base//" /"
         call single('fig1', base//" &motion speed_m_s = 0.13 /", .true., error); if (allocated(error)) return
         call study('fig2', base//" &motion speed_m_s = 0.13 / &sweep n_seeds = 2 /", error)
         if (allocated(error)) return
         call study('fig3', base//" &motion speed_m_s = 0.13 / &sweep alphas_deg = 0, 45, 90, n_seeds = 2 /", error)
         if (allocated(error)) return
-        call study('fig4_5_7', base//" &sweep speeds_m_s = 0.01, 0.1, 1, alphas_deg = 0, 90, n_seeds = 2 /", error)
+        call study('fig4_5_7', pbase//" &sweep speeds_m_s = 0.01, 0.1, 1, alphas_deg = 0, 90, n_seeds = 2 /", error)
         if (allocated(error)) return
-        call study('fig6', base//" &sweep speeds_m_s = 0.01, 0.1, eccentricities = 1, 0.5 /", error)
+        call study('fig6', pbase//" &sweep speeds_m_s = 0.01, 0.1, eccentricities = 1, 0.5 /", error)
         if (allocated(error)) return
         python = 'python3'
         call get_environment_variable('VESLIDE_PYTHON', buf, n, stat)
@@ -50,6 +53,11 @@ contains
             if (.not. exists) then
                 call fatal_error(error, "no "//trim(figs(k))); return
             end if
+        end do
+        do k = 4, 7                                  ! the script reports each figure it drew the theory in
+            call check(error, log_has(dir//'/log.txt', 'out/'//trim(figs(k))//" (with Persson's theory)"), &
+                       trim(figs(k))//" drawn without Persson's theory (see "//dir//"/log.txt)")
+            if (allocated(error)) return
         end do
         call execute_command_line('rm -rf '//dir)
 
@@ -67,6 +75,24 @@ contains
             call run_case(cfg, c, error); if (allocated(error)) return
             call write_case(dir//'/'//name//'.h5', cfg, c, error)
         end subroutine single
+
+        !> whether a line of the text file `path` contains `text`
+        logical function log_has(path, text) result(found)
+            character(len=*), intent(in) :: path, text
+            character(len=1024) :: line
+            integer :: u, ios
+            found = .false.
+            open (newunit=u, file=path, status='old', action='read', iostat=ios)
+            if (ios /= 0) return
+            do
+                read (u, '(a)', iostat=ios) line
+                if (ios /= 0) exit
+                if (index(line, text) > 0) then
+                    found = .true.; exit
+                end if
+            end do
+            close (u)
+        end function log_has
 
         subroutine study(name, text, error)
             character(len=*), intent(in) :: name, text
