@@ -14,7 +14,7 @@ program veslide_main
     use veslide_study, only: run_study, study_progress_t
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_version, only: version_string
-    use veslide_system, only: ignore_file_size_signal, exit_now
+    use veslide_system, only: ignore_file_size_signal, exit_now, prefer_passive_wait
     implicit none
     type(config_t) :: cfg
     type(case_t) :: c
@@ -23,6 +23,7 @@ program veslide_main
     logical :: overwrite, quiet, output_given, memory_only
     integer :: i, n, lock, processes
 
+    call prefer_passive_wait()            ! threads that wait sleep (docs/solver-scaling.md)
     overwrite = .false.; quiet = .false.; lock = -1; memory_only = .false.; processes = 1
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
     output = ''

@@ -21,7 +21,7 @@ program veslide_bench
     use veslide_solver_options, only: solver_options_t
     use veslide_solver, only: solve_contact
     use veslide_surface, only: cosine_surface
-    use veslide_analysis, only: contact_area_fraction, mean_separation
+    use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation
     use veslide_scenes, only: hard_case_count, hard_case
     implicit none
     character(len=64) :: arg
@@ -31,22 +31,35 @@ program veslide_bench
     arg = 'solver'
     if (command_argument_count() >= 1) call get_command_argument(1, arg)
     select case (trim(arg))
-    case ('solver')
+    case ('solver')             ! solver [--method M] N ...: the elastic bench case (method: auto)
         allocate (sizes(0))
-        do k = 2, command_argument_count()
-            call get_command_argument(k, arg); read (arg, *) n
-            sizes = [sizes, n]
-        end do
-        if (size(sizes) == 0) sizes = [256, 512, 1024]
-        call bench_solver(sizes)
+        block
+            character(len=16) :: method
+            method = 'auto'
+            k = 2
+            do while (k <= command_argument_count())
+                call get_command_argument(k, arg)
+                if (trim(arg) == '--method') then
+                    k = k + 1; call get_command_argument(k, method)
+                else
+                    read (arg, *) n
+                    sizes = [sizes, n]
+                end if
+                k = k + 1
+            end do
+            if (size(sizes) == 0) sizes = [256, 512, 1024]
+            call bench_solver(sizes, trim(method))
+        end block
     case ('kernels')
         call bench_kernels()
-    case ('accuracy')
+    case ('accuracy')           ! accuracy [NMAX [KERNEL]]: the grid study to NMAX (one kernel, or all)
         n = 1024
         if (command_argument_count() >= 2) then
             call get_command_argument(2, arg); read (arg, *) n
         end if
-        call bench_accuracy(n)
+        arg = ''
+        if (command_argument_count() >= 3) call get_command_argument(3, arg)
+        call bench_accuracy(n, trim(arg))
     case ('scaling')
         call bench_scaling()
     case ('iteration')
@@ -127,8 +140,9 @@ contains
         tp = median(t)
     end function fft_pair_seconds
 
-    subroutine bench_solver(sizes)
+    subroutine bench_solver(sizes, method)
         integer, intent(in) :: sizes(:)
+        character(len=*), intent(in) :: method
         type(config_t) :: cfg
         type(case_t) :: c
         type(error_t), allocatable :: error
@@ -141,7 +155,7 @@ contains
         threads = 1
         call get_environment_variable('OMP_NUM_THREADS', env, nenv, stat)
         if (stat == 0 .and. nenv > 0) read (env, *) threads
-        write (stdout, '(a,i0,a)') "threads: ", threads, " (OMP_NUM_THREADS; FFTW plans use as many)"
+        write (stdout, '(a,i0,a)') "threads: ", threads, " (OMP_NUM_THREADS; FFTW plans use as many); method "//method
         write (stdout, '(a)') "| N | FFT pair [ms] | solve [s] (median of 3) | iterations | FFT pairs | "// &
             "time/iteration [ms] | time/iteration / FFT pair | area | mean gap / h_rms |"
         write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|"
@@ -153,6 +167,7 @@ contains
             cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e7_dp; cfg%material%poisson = 0.5_dp
             cfg%solver%tolerance = 1.0e-10_dp
             cfg%solver%threads = threads
+            cfg%solver%method = method
             cfg%output%file = 'results/bench-solver-'//trim(buf)//'.h5'; cfg%output%overwrite = .true.
             call complete_config(cfg, error); call check(error)
             do r = 1, size(t)
@@ -374,8 +389,9 @@ contains
     !> against time and error w.r.t. a 1e-13 solution at 256^2; (2) grid size 128^2 .. NMAX^2
     !> against time and the change of area, separation and friction, per kernel variant.
     !> Writes results/bench-accuracy.csv for postproc/plot_benchmarks.py.
-    subroutine bench_accuracy(nmax)
+    subroutine bench_accuracy(nmax, only)
         integer, intent(in) :: nmax
+        character(len=*), intent(in) :: only      !! one kernel variant ('' = all)
         type(config_t) :: cfg
         type(case_t) :: c, ref
         type(error_t), allocatable :: error
@@ -389,7 +405,7 @@ contains
             'd_area,d_separation,d_friction'
         call paper_like(256, 'spectral', 1.0e-13_dp, cfg)
         call run_case(cfg, ref, error); call check(error)
-        a0 = contact_area_fraction(ref%state%p); s0 = mean_separation(ref%state%g)
+        a0 = contact_area_subcell(ref%state%p, ref%state%g, ref%grid); s0 = mean_separation(ref%state%g)
         f0 = -ref%force_pa(1)/cfg%load%mean_pressure_pa
         write (stdout, '(a)') "tolerance study, 256^2, reference tolerance 1e-13"
         write (stdout, '(a)') "| tolerance | solve [s] | FFT pairs | area rel. error | separation rel. error |"// &
@@ -410,6 +426,7 @@ contains
             " friction | friction <p grad h> | d area | d separation | d friction |"
         write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|---|"
         do v = 1, size(kernels)
+            if (len(only) > 0 .and. only /= trim(kernels(v))) cycle
             n = 128; prev = 0
             do while (n <= nmax)
                 call paper_like(n, kernels(v), 1.0e-10_dp, cfg)
@@ -435,7 +452,7 @@ contains
         type(case_t), intent(in) :: c
         type(config_t), intent(in) :: cfg
         real(dp), intent(out) :: a, s, f, fs
-        a = contact_area_fraction(c%state%p); s = mean_separation(c%state%g)
+        a = contact_area_subcell(c%state%p, c%state%g, c%grid); s = mean_separation(c%state%g)
         f = -c%force_pa(1)/cfg%load%mean_pressure_pa; fs = -c%slope_force_pa(1)/cfg%load%mean_pressure_pa
     end subroutine measures
 

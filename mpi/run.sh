@@ -12,4 +12,4 @@ nml=$(realpath "$1"); shift
 exe=$(bash "$root/mpi/build.sh")
 extra=()
 [ "$(id -u)" -eq 0 ] && extra=(--allow-run-as-root)
-OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} exec mpirun "${extra[@]}" --oversubscribe -n "$np" "$exe" "$nml" "$@"
+OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} exec mpirun "${extra[@]}" --oversubscribe -n "$np" "$exe" "$nml" "$@"

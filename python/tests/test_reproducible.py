@@ -5,20 +5,23 @@ import subprocess
 
 import h5py
 import numpy as np
+import pytest
 
 CASE = """&grid nx = 192, ny = 160 / &surface k_cut = 24, eccentricity = 0.7, alpha_deg = 20 /
-&material model = 'one_term' / &motion speed_m_s = 0.05, direction_deg = 30 /
-&solver fft_planner = 'measure', tolerance = 1e-10 /
+&material model = '{model}' / &motion speed_m_s = 0.05, direction_deg = 30 /
+&solver fft_planner = 'measure', tolerance = 1e-10, method = '{method}' /
 &analysis anisotropy = .true., patches = .true. / &output file = '{out}' /
 """
+# every solver: the splitting, the metric splitting with its inner CG, and the CG of the elastic case
+SOLVERS = [("one_term", "dr"), ("one_term", "pdr"), ("elastic", "bccg")]
 TIMING = ("seconds", "memory_peak")
 
 
-def solve(exe, tmp_path, name, threads, wisdom):
+def solve(exe, tmp_path, name, threads, wisdom, model, method):
     """The same input file and output name every time (both are recorded in the file)"""
     out = tmp_path / "out.h5"
     nml = tmp_path / "case.nml"
-    nml.write_text(CASE.format(out=out))
+    nml.write_text(CASE.format(out=out, model=model, method=method))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), VESLIDE_FFTW_WISDOM=str(wisdom))
     r = subprocess.run([exe, str(nml), "--quiet"], capture_output=True, text=True, env=env, timeout=600)
     assert r.returncode == 0, r.stderr
@@ -40,12 +43,13 @@ def contents(path):
     return items
 
 
-def test_same_bits_on_one_and_two_threads_and_on_a_rerun(tmp_path, exe):
+@pytest.mark.parametrize("model, method", SOLVERS)
+def test_same_bits_on_one_and_two_threads_and_on_a_rerun(tmp_path, exe, model, method):
     wisdom = tmp_path / "wisdom"
-    first = contents(solve(exe, tmp_path, "a", 1, wisdom))       # plans measured, kept in the file
+    first = contents(solve(exe, tmp_path, "a", 1, wisdom, model, method))   # plans measured, kept in the file
     assert wisdom.exists()
-    again = contents(solve(exe, tmp_path, "b", 2, wisdom))
-    third = contents(solve(exe, tmp_path, "c", 1, wisdom))
+    again = contents(solve(exe, tmp_path, "b", 2, wisdom, model, method))
+    third = contents(solve(exe, tmp_path, "c", 1, wisdom, model, method))
     assert first.keys() == again.keys() == third.keys()
     assert "fields/pressure_pa" in first and "scalars/friction_coefficient" in first
     differ = [k for k in first if first[k] != again[k] or first[k] != third[k]]

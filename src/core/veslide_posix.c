@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
 #include <sys/resource.h>
@@ -148,4 +149,31 @@ long long veslide_rss_bytes(void)
     if (fscanf(f, "%lld %lld", &pages_total, &pages_res) != 2) pages_res = -1;
     fclose(f);
     return pages_res < 0 ? -1 : pages_res * sysconf(_SC_PAGESIZE);
+}
+
+/* OpenMP's threads should sleep, not spin, while they wait at a barrier: on a machine where
+ * another process holds a core, a spinning thread takes the core its partner needs (measured in
+ * docs/solver-scaling.md). libgomp reads OMP_WAIT_POLICY once, when it is loaded, so a program
+ * that wants the passive policy without asking its user re-executes itself once with the variable
+ * set (the same arguments, read back from /proc/self/cmdline). Nothing happens when the variable
+ * is already set (the user's choice stands) or when /proc is not available; returns only then. */
+void veslide_prefer_passive_wait(void)
+{
+    static char buf[65536];
+    char *argv[1024];
+    ssize_t n = 0, r;
+    int fd, argc = 0;
+    if (getenv("OMP_WAIT_POLICY") != NULL) return;
+    fd = open("/proc/self/cmdline", O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return;
+    while ((r = read(fd, buf + n, sizeof(buf) - 1 - (size_t)n)) > 0) n += r;
+    close(fd);
+    if (r < 0 || n <= 0 || (size_t)n >= sizeof(buf) - 1) return;
+    buf[n] = '\0';
+    for (char *p = buf; p < buf + n && argc < 1023; p += strlen(p) + 1) argv[argc++] = p;
+    if (argc == 0 || argc >= 1023) return;
+    argv[argc] = NULL;
+    if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
+    execv("/proc/self/exe", argv);
+    unsetenv("OMP_WAIT_POLICY");     /* exec failed: go on with the library's default */
 }

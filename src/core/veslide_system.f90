@@ -1,5 +1,6 @@
 !> The operating system, through a small C file (veslide_posix.c): the kind of a path, an
-!> advisory lock, SIGXFSZ made an ordinary write error, and the memory a process may use
+!> advisory lock, SIGXFSZ made an ordinary write error, the memory a process may use, and
+!> OpenMP's passive wait chosen for a program whose user did not choose (prefer_passive_wait)
 module veslide_system
     use, intrinsic :: iso_c_binding, only: c_int, c_long_long, c_char, c_null_char
     use veslide_kinds, only: i8
@@ -7,7 +8,7 @@ module veslide_system
     private
     public :: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, PATH_OTHER
     public :: lock_file, unlock_file, LOCK_BUSY, ignore_file_size_signal
-    public :: available_memory_bytes, peak_memory_bytes, resident_memory_bytes, exit_now
+    public :: available_memory_bytes, peak_memory_bytes, resident_memory_bytes, exit_now, prefer_passive_wait
 
     integer, parameter :: PATH_MISSING = -1, PATH_REGULAR = 0, PATH_DIRECTORY = 1, PATH_OTHER = 2
     !> lock_file's result when another process holds the lock
@@ -28,6 +29,10 @@ module veslide_system
         end subroutine c_unlock
         subroutine ignore_file_size_signal() bind(c, name='veslide_ignore_sigxfsz')
         end subroutine ignore_file_size_signal
+        !> Unless OMP_WAIT_POLICY is set, run this program again with it 'passive' (first thing
+        !> in a program: before any OpenMP region; returns when nothing was done)
+        subroutine prefer_passive_wait() bind(c, name='veslide_prefer_passive_wait')
+        end subroutine prefer_passive_wait
         subroutine c_exit(status) bind(c, name='veslide_exit')
             import :: c_int
             integer(c_int), value :: status
