@@ -100,7 +100,8 @@ def test_map_window_wraps_around_the_periodic_cell(case):
     assert (x0, x1) == pytest.approx((-2.5 * dx * 1e3, 3.5 * dx * 1e3))
     assert (y0, y1) == pytest.approx((13.5 * dy * 1e3, 17.5 * dy * 1e3))
     vp.contact_map(case, window=(0, 0, lx / 2, ly / 2), arrow=False)
-    vp.gap_map(case, window=(0, 0, lx / 2, ly / 2))
+    ax = vp.gap_map(case, contact_color="deepskyblue")
+    assert np.ma.getmaskarray(ax.images[0].get_array()).tolist() == (p.T > 0).tolist()
 
 
 def test_psd_options():
@@ -110,6 +111,8 @@ def test_psd_options():
     assert ax.get_xlabel() == "$q/q_0$" and len(ax.lines) == 2            # the curve and the slope
     x = ax.lines[0].get_xdata()
     assert x[0] == pytest.approx(1.0)
+    ax = vp.psd(h, length_m=L, relative=True, q_max=10)
+    assert ax.lines[0].get_xdata().max() == pytest.approx(10)
     ax = vp.psd_2d(h, length_m=L, q_max=5)
     assert ax.get_xlim() == (-5, 5) and ax.get_ylim() == (-5, 5)
 
@@ -170,5 +173,6 @@ def test_save_writes_png_pdf_and_svg(tmp_path):
     assert all(os.path.getsize(p) > 0 for p in paths)
     from PIL import Image
     with Image.open(paths[0]) as im:
-        assert im.size == (1020, 750)                  # 300 dpi
+        assert im.info["dpi"] == pytest.approx((300, 300), abs=0.01)
+        assert 900 < im.size[0] <= 1020 and 650 < im.size[1] <= 750     # 3.4 x 2.5 in, trimmed to the ink
     assert b"CreationDate" not in open(paths[1], "rb").read()

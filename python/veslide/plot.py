@@ -67,7 +67,7 @@ PAPER_RC = {
     "legend.frameon": True, "legend.framealpha": 0.9, "legend.edgecolor": "0.8", "legend.borderpad": 0.3,
     "legend.labelspacing": 0.3, "legend.handlelength": 1.8,
     "mathtext.fontset": "dejavusans", "pdf.fonttype": 42, "ps.fonttype": 42, "svg.fonttype": "path",
-    "savefig.dpi": 300, "figure.dpi": 100, "image.interpolation": "nearest",
+    "savefig.dpi": 300, "savefig.bbox": "tight", "savefig.pad_inches": 0.02, "figure.dpi": 100, "image.interpolation": "nearest", "svg.hashsalt": "veslide",
     "figure.constrained_layout.use": True,
 }
 FORMATS = ("png", "pdf", "svg")
@@ -229,12 +229,24 @@ def pressure_map(source, ax=None, *, length_m=None, unit="kPa", cmap="viridis", 
     return ax
 
 
-def gap_map(source, ax=None, *, length_m=None, unit="um", cmap="magma", colorbar=True, window=None):
+def gap_map(source, ax=None, *, length_m=None, unit="um", cmap="magma", colorbar=True, window=None,
+            contact_color=None):
     """The gap g = w - h + d (zero in contact) in `unit` ('m', 'mm', 'um', 'nm'); window =
-    (x0, y0, width, height) [m]: that part of the periodic cell only."""
+    (x0, y0, width, height) [m]: that part of the periodic cell only. contact_color (e.g.
+    'deepskyblue'): the contact cells (p > 0 for a Result, else g <= 0) in that colour, told apart
+    from small gaps."""
     ax = _new_axes(ax)
     g, lx, ly, _ = _field(source, "gap_m", length_m)
-    im = _map(ax, g * _SCALE[unit], lx, ly, window, cmap=cmap, vmin=0.0)
+    values = g * _SCALE[unit]
+    kw = {"cmap": cmap}
+    if contact_color is not None:
+        if getattr(source, "has_fields", False) and "pressure_pa" in source.fields:
+            contact = source.fields["pressure_pa"].transpose("x", "y").values > 0
+        else:
+            contact = g <= 0
+        values = np.ma.masked_where(contact, values)
+        kw["cmap"] = mpl.colormaps[cmap].with_extremes(bad=contact_color)
+    im = _map(ax, values, lx, ly, window, vmin=0.0, **kw)
     if colorbar:
         ax.figure.colorbar(im, ax=ax, label=label("gap_m", unit))
     ax.set_title(r"gap, mean separation $\bar{u}$ = %.3g %s" % (g.mean() * _SCALE[unit], unit_tex(unit)))
@@ -250,16 +262,20 @@ def _heights(source, length_m):
     return h, lx, ly
 
 
-def psd(source, ax=None, *, length_m=None, relative=False, hurst=None, **kw):
+def psd(source, ax=None, *, length_m=None, relative=False, hurst=None, q_max=None, **kw):
     """The radial (shell-averaged) power spectral density C(q) of the heights, log-log; against
     q/q0 (q0 = 2 pi/Lx) when `relative`. hurst: a dashed reference line with the self-affine
-    slope q^(-2(1+H)) through the middle of the curve. Other keywords go to `loglog`."""
+    slope q^(-2(1+H)) through the middle of the curve. q_max (in the units of the x axis): the
+    shells up to it only (e.g. the spectrum's cut-off, whose shell is partly empty). Other
+    keywords go to `loglog`."""
     ax = _new_axes(ax)
     h, lx, ly = _heights(source, length_m)
     q, c = _topo.psd_radial(h, lx, ly)
     keep = c > c.max() * ZERO_POWER
     q, c = q[keep], c[keep]
     x = q / (2 * np.pi / lx) if relative else q
+    if q_max is not None:
+        x, c = x[x <= q_max], c[x <= q_max]
     kw.setdefault("marker", ".")
     ax.loglog(x, c, **kw)
     if hurst is not None and len(x) > 2:
