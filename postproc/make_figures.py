@@ -1,10 +1,16 @@
 #!/usr/bin/env python3
-"""Draw the paper's figures from veslide results.
+"""Draw the paper's figures from veslide results, with the plot helpers of the package
+(python/veslide/plot.py), at their printed size.
 
-usage: python postproc/make_figures.py RESULTS_DIR OUT_DIR
+usage: python postproc/make_figures.py RESULTS_DIR OUT_DIR [NAME ...]
 RESULTS_DIR holds fig1.h5, fig2.h5, fig3.h5, fig4_5_7.h5 and fig6.h5 (the studies of
-inputs/paper/); figures missing their input are skipped with a message. Writes fig1.png ...
-fig7.png and fig8_stretch_rotation.png (sigma1, sigma2, phi against speed and alpha).
+inputs/paper/, or their small versions in inputs/quick/); figures missing their input are
+skipped with a message. Every figure is written as NAME.png (300 dpi), NAME.pdf and NAME.svg:
+fig1 .. fig7 (the paper's), fig8_stretch_rotation (sigma1, sigma2, phi against speed and
+alpha), fig9_pressure_gap (pressure and gap over the whole cell of the fig1 case),
+fig10_surface_psd (the PSD of the fig1 surface, radial and 2-D) and fig11_friction_direction
+(friction against the direction of sliding, from the fig4_5_7 study). NAMEs (e.g. fig2
+fig9_pressure_gap) draw only those.
 """
 import os
 import sys
@@ -12,328 +18,423 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
-import h5py  # noqa: E402
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [os.path.join(os.path.dirname(HERE), "python"), HERE]   # this checkout's package first
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import veslide  # noqa: E402
+import veslide.plot as vp  # noqa: E402
 import veslide_results as vr  # noqa: E402
 
-
-def fig1(src, out):
-    """Contact map with a zoomed patch."""
-    p, _ = vr.field(src, "pressure_pa")
-    lx = vr.namelist_value(src, "lx_m", 0.01)
-    contact = p > 0
-    ny, nx = p.shape
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4.8))
-    ext = [0, lx * 1e3, 0, lx * 1e3 * ny / nx]
-    a.imshow(contact, origin="lower", cmap="gray_r", extent=ext, interpolation="nearest")
-    a.set_xlabel("x [mm]"); a.set_ylabel("y [mm]")
-    a.set_title(r"contact (black), $A/A_0$ = %.4f; $\mathbf{v}$ along +x" % contact.mean())
-    iy, ix = np.unravel_index(np.argmax(p), p.shape)
-    w = max(nx // 16, 4)
-    rows = np.arange(iy - w, iy + w) % ny
-    cols = np.arange(ix - w, ix + w) % nx
-    zoom = p[np.ix_(rows, cols)]
-    dx = lx * 1e3 / nx                                   # cell size [mm]
-    x0, y0 = (ix - w) * dx, (iy - w) * dx                # zoom window, unwrapped coordinates [mm]
-    for sx in (-ext[1], 0.0, ext[1]):                    # the window wraps around the periodic cell
-        for sy in (-ext[3], 0.0, ext[3]):
-            a.add_patch(plt.Rectangle((x0 % ext[1] + sx, y0 % ext[3] + sy), 2 * w * dx, 2 * w * dx,
-                                      fill=False, ec="C3", lw=1.2))
-    a.set_xlim(0, ext[1]); a.set_ylim(0, ext[3])
-    im = b.imshow(zoom / 1e6, origin="lower", cmap="viridis", interpolation="nearest",
-                  extent=[x0, x0 + 2 * w * dx, y0, y0 + 2 * w * dx])
-    b.set_title("zoom (red box) on the patch of highest pressure", fontsize=10)
-    b.set_xlabel("x [mm]"); b.set_ylabel("y [mm]")
-    fig.colorbar(im, ax=b, label="pressure [MPa]")
-    fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+PAGE = 7.0                         # width [in] of a figure across a journal page
+XLABEL = r"$v\tau/L_0$"
+ALPHA = r"$\alpha$ = %.4g°"
+EPS = r"$\varepsilon$ = %.2g"
+PERSSON = "Persson's theory"
 
 
-def _closed(theta, r):
-    """A polar curve over [0, 2 pi] from samples over [0, pi) (m2 and mu2 have period pi)."""
-    return np.concatenate([theta, theta + np.pi, theta[:1] + 2 * np.pi]), np.concatenate([r, r, r[:1]])
+def _speed_scale(r):
+    """tau/L0: v times it is the dimensionless speed v tau/L0 (veslide_results.dimensionless_speed)."""
+    return float(vr.dimensionless_speed(r.path, 1.0))
 
 
-def _members(src):
-    """[(parameters, group prefix)] of every case of a study, or [({}, "")] for a single run."""
-    with h5py.File(src) as f:
-        if "/summary" not in f:
-            return [({}, "")]
-    t = vr.table(src)
-    return [({k: t[k][i] for k in ("seed", "eccentricity", "alpha_deg")}, vr.case_group(src, int(t["case"][i])))
-            for i in range(len(t["case"]))]
-
-
-def _ensemble_row(src, **match):
-    """{quantity: (mean, sem, n)} over the seeds of the cases whose parameters match, from
-    /ensemble when the study has several seeds, else from the single case (sem 0)."""
-    with h5py.File(src) as f:
-        if "/summary" not in f:
-            return {k: (f["/scalars/" + k][()], 0.0, 1) for k in f["/scalars"]}
-        has_ens = "/ensemble" in f
-    s = vr.table(src)
-    sel = np.ones(len(s["case"]), bool)
+def _stats(r, **match):
+    """{quantity: (mean, sem, n)} over the seeds of the cases whose parameters match: from
+    /ensemble when the study has several seeds, else the first matching case (sem 0)."""
+    if not r.is_study:
+        return {k: (v, 0.0, 1) for k, v in r.scalars.items()}
+    s = r.summary
+    sel = np.ones(len(s), bool)
     for k, v in match.items():
         sel &= np.isclose(s[k], v)
-    n = len(np.unique(s["seed"][sel]))
-    if has_ens:
-        e = vr.table(src, "/ensemble")
-        esel = np.ones(len(e["alpha_deg"]), bool)
+    n = s["seed"][sel].nunique()
+    if r.ensemble is not None:
+        e = r.ensemble
+        esel = np.ones(len(e), bool)
         for k, v in match.items():
             esel &= np.isclose(e[k], v)
-        i = int(np.flatnonzero(esel)[0])
-        row = {k: (e[k][i], 0.0, n) for k in e if not k.startswith(("mean_", "sem_"))}
-        row.update({k[5:]: (e[k][i], e["sem_" + k[5:]][i], n) for k in e if k.startswith("mean_")})
-        return row
-    i = int(np.flatnonzero(sel)[0])
-    return {k: (s[k][i], 0.0, 1) for k in s}
+        row = e[esel].iloc[0]
+        out = {k: (row[k], 0.0, n) for k in e.columns if not k.startswith(("mean_", "sem_"))}
+        out.update({k[5:]: (row[k], row["sem_" + k[5:]], n) for k in e.columns if k.startswith("mean_")})
+        return out
+    row = s[sel].iloc[0]
+    return {k: (row[k], 0.0, 1) for k in s.columns}
 
 
-def _mean_polar(src, members):
-    """theta, the mean m2 and mu2 over the given cases, and every case's curves."""
-    curves = [vr.polar(src, prefix) for _, prefix in members]
-    theta = curves[0][0]
-    m2 = np.array([c[1] for c in curves]); mu2 = np.array([c[2] for c in curves])
-    return theta, m2.mean(axis=0), mu2.mean(axis=0), m2, mu2
+def _members(r, **match):
+    """The Results of a study's cases whose parameters match (every case without `match`), or
+    [r] for a single case."""
+    if not r.is_study:
+        return [r]
+    s = r.summary
+    sel = np.ones(len(s), bool)
+    for k, v in match.items():
+        sel &= np.isclose(s[k], v)
+    return [r.cases[int(c)] for c in s["case"][sel]]
 
 
-def _polar_axes(ax, title):
-    ax.set_title(title, fontsize=10, pad=12)
-    ax.set_thetagrids([0, 45, 90, 135, 180, 225, 270, 315],
-                      [r"0 ($\mathbf{v}$)", "45°", "90°", "135°", "180°", "225°", "270°", "315°"])
-    ax.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))
-    ax.yaxis.get_offset_text().set_fontsize(8)
-    ax.tick_params(axis="y", labelsize=7)
-    ax.set_rlabel_position(112.5)
+def _note(r, fixed):
+    """Subtitle: the fixed parameters, the pressure and the number of seeds behind each point."""
+    s = r.summary
+    n = s["seed"].nunique()
+    return r"%s, $p_0$ = %.0f kPa; %s" % (fixed, s["pressure_pa"].iloc[0] / 1e3,
+                                          r"mean $\pm$ standard error over %d seeds" % n if n > 1 else "one surface")
 
 
-def _band_text(src, prefix):
-    with h5py.File(src) as f:
-        z = f[prefix + "/anisotropy/band_zeta"][()]
-    return r"band %g $q_0$ .. %g $q_0$" % (z[0], z[1])
+def _band_text(r):
+    z = _members(r)[0].anisotropy["band_zeta"]
+    return r"tensor band %g$q_0$ .. %g$q_0$" % (z[0], z[1])
 
 
-def fig2(src, out):
-    """Polar plots of m2 and mu2 for the isotropic surface: the mean over the seeds of a study
-    (single surfaces in grey), or one surface."""
-    members = _members(src)
-    theta, m2, mu2, m2_all, mu2_all = _mean_polar(src, members)
-    r = _ensemble_row(src)
-    n = r["gamma_d"][2]
-    fig, (a, b) = plt.subplots(1, 2, subplot_kw=dict(projection="polar"), figsize=(10, 5.8), layout="constrained")
+# -- figure 1 and the maps of its case -----------------------------------------------------------
+
+def fig1(r):
+    """Contact map with a zoom on the patch of highest pressure."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(PAGE, 3.5), width_ratios=[1, 1.12])
+    vp.contact_map(r, a)
+    p = r.fields.pressure_pa.values                     # [ix, iy]
+    nx, ny = p.shape
+    lx, ly = r.scalars["length_x_m"], r.scalars["length_y_m"]
+    dx, dy = lx / nx, ly / ny
+    ix, iy = np.unravel_index(np.argmax(p), p.shape)
+    w = max(nx // 16, 4)                                # half-width of the zoom [cells]
+    window = ((ix - w) * dx, (iy - w) * dy, 2 * w * dx, 2 * w * dy)
+    x0, y0 = (window[0] % lx - dx / 2) * 1e3, (window[1] % ly - dy / 2) * 1e3     # its corner [mm]
+    for sx in (-lx, 0.0, lx):                           # the window wraps around the periodic cell
+        for sy in (-ly, 0.0, ly):
+            a.add_patch(plt.Rectangle((x0 + sx * 1e3, y0 + sy * 1e3), window[2] * 1e3, window[3] * 1e3,
+                                      fill=False, ec="C3", lw=1.0))
+    a.set_xlim((-dx / 2) * 1e3, (lx - dx / 2) * 1e3)
+    a.set_ylim((-dy / 2) * 1e3, (ly - dy / 2) * 1e3)
+    vp.pressure_map(r, b, unit="MPa", window=window, arrow=False, zero_color="white")
+    b.set_title("zoom (red box) on the patch of highest pressure")
+    fig.suptitle(_case_text(r))
+    return fig
+
+
+def _case_text(r):
+    s, inp = r.scalars, r.input
+    ecc = inp["surface"].get("eccentricity", 1.0)
+    what = "isotropic surface" if ecc == 1.0 else EPS % ecc
+    return r"%s (seed %d), $v\tau/L_0$ = %.2g, $p_0$ = %.0f kPa, %d$^2$ cells" % (
+        what, inp["surface"].get("seed", 1), s["speed_m_s"] * _speed_scale(r), s["mean_pressure_pa"] / 1e3, s["nx"])
+
+
+def fig9_pressure_gap(r):
+    """Pressure (white out of contact) and gap over the whole cell of the fig1 case."""
+    fig, (a, b) = plt.subplots(1, 2, figsize=(PAGE, 3.5))
+    vp.pressure_map(r, a, unit="MPa", zero_color="white")
+    a.set_title(r"pressure $p$, $p_\mathrm{max}$ = %.2f MPa" "\n" "(white: no contact)" % (r.scalars["max_pressure_pa"] / 1e6))
+    vp.gap_map(r, b, unit="um", contact_color="deepskyblue")
+    b.set_title(r"gap $g$, mean separation $s$ = %.2f $\mu$m" "\n" "(blue: contact)" % (r.scalars["mean_separation_m"] * 1e6))
+    fig.suptitle(_case_text(r))
+    return fig
+
+
+def _q(k):
+    return "$q_0$" if k == 1 else "%g$q_0$" % k
+
+
+def fig10_surface_psd(r):
+    """The fig1 surface's power spectral density: shell average against |q|/q0 with the
+    self-affine slope, and log10 C over the (qx, qy) plane."""
+    surf = r.input["surface"]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(PAGE, 3.0), width_ratios=[1, 1.1])
+    vp.psd(r, a, relative=True, hurst=surf.get("hurst", 0.8), q_max=surf.get("k_cut", 64.0) - 0.5, ms=2, lw=0.8,
+           color="C0", label="realised")     # the shell at k_cut lies half outside the spectrum
+    a.legend(loc="lower left")
+    a.set_title("shell average over $|\\mathbf{q}|$")
+    a.set_xlabel(r"$|\mathbf{q}|/q_0$")
+    vp.psd_2d(r, b, q_max=1.15 * surf.get("k_cut", 64.0))
+    b.set_title(r"over the plane ($q_0 = 2\pi/L$, $C = 0$ blank)")
+    ecc = surf.get("eccentricity", 1.0)
+    fig.suptitle(r"surface of figure 1: %s, $H$ = %g, spectrum %s .. %s (roll-off at %s), rms slope %g, %d$^2$ cells" % (
+        "isotropic" if ecc == 1.0 else EPS % ecc, surf.get("hurst", 0.8), _q(surf.get("k_low", 1.0)), _q(surf.get("k_cut", 64.0)),
+        _q(surf.get("k_roll", 1.0)), surf.get("rms_slope", 0.025), r.scalars["nx"]))
+    return fig
+
+
+# -- figures 2 and 3: polar plots of m2 and mu2 --------------------------------------------------
+
+def _polar_axes(ax, title, zero=r"0° ($\mathbf{v}$)", angle=22.5, nbins=4):
+    """Angles every 45° (0: `zero`); radial ticks labelled along `angle` on a white ground,
+    above the curves."""
+    ax.set_title(title, pad=10)
+    ax.figure.get_layout_engine().set(h_pad=0.1)     # room the layout misses above polar titles
+    ax.set_thetagrids(range(0, 360, 45), [zero] + ["%d°" % t for t in range(45, 360, 45)])
+    ax.tick_params(axis="x", pad=1)
+    rmax = ax.get_rmax()
+    ticks = [t for t in MaxNLocator(nbins, steps=[1, 2, 2.5, 5, 10]).tick_values(0, rmax) if 0 < t <= rmax]
+    ax.set_rgrids(ticks, [""] * len(ticks))
+    for t in ticks:
+        ax.text(np.radians(angle), t, "%g" % t, fontsize=6, ha="center", va="center", zorder=10,
+                bbox=dict(fc="white", ec="none", alpha=0.85, pad=0.4))
+
+
+def _decade(values):
+    return int(np.floor(np.log10(np.max(values))))
+
+
+def _curves(members):
+    theta = members[0].anisotropy["theta_rad"]
+    m2 = np.array([c.anisotropy["m2_surface"] for c in members])
+    mu2 = np.array([c.anisotropy["mu2_deformed"] for c in members])
+    return theta, m2, mu2
+
+
+def fig2(r):
+    """m2 and mu2 of the isotropic surface: the mean over the seeds (single surfaces in grey)."""
+    members = _members(r)
+    theta, m2_all, mu2_all = _curves(members)
+    m2, mu2 = m2_all.mean(axis=0), mu2_all.mean(axis=0)
+    st = _stats(r)
+    n = st["gamma_d"][2]
+    em, ed = _decade(m2_all), _decade(mu2_all)
+    fig, axs = plt.subplots(1, 2, subplot_kw=dict(projection="polar"), figsize=(PAGE, 3.7))
     if n > 1:
         for k in range(len(members)):
-            a.plot(*_closed(theta, m2_all[k]), color="0.8", lw=0.6)
-            b.plot(*_closed(theta, mu2_all[k]), color="0.8", lw=0.6)
-    a.plot(*_closed(theta, m2), color="C0", lw=2)
-    b.plot(*_closed(theta, mu2), color="C3", lw=2)
+            vp.anisotropy_polar((theta, m2_all[k] / 10.0 ** em, mu2_all[k] / 10.0 ** ed), axs, titles=False, marks={},
+                                color="0.78", lw=0.5, label=None)
+    vp.anisotropy_polar((theta, m2 / 10.0 ** em, mu2 / 10.0 ** ed), axs, titles=False,
+                        marks={"theta_d_rad": st["theta_d_rad"][0]}, color="C3", lw=1.6, label=None)
 
     def pm(q, scale=1.0, digits=3):
-        m, se, _ = r[q]
+        m, se, _ = st[q]
         return ("%.*f" % (digits, m * scale)) + ((r" $\pm$ %.*f" % (digits, se * scale)) if n > 1 else "")
-    what = "mean of %d surfaces (grey: each surface)" % n if n > 1 else "one surface"
-    _polar_axes(a, r"rigid surface $m_2(\theta)$" + "\n" + r"$\gamma_s$ = " + pm("gamma_s"))
-    _polar_axes(b, r"deformed solid $\mu_2(\theta)$" + "\n" + r"$\gamma_d$ = " + pm("gamma_d") +
-                r", $\theta_d$ = " + pm("theta_d_rad", 180 / np.pi, 1) + "°")
-    ecc = vr.namelist_value(src, "eccentricity", 1.0)
-    fig.suptitle(r"%s, $v\tau/L_0$ = %.2f, p = %.0f kPa; %s; %s" % (
-        "isotropic surface" if ecc == 1.0 else r"$\varepsilon$ = %.2g" % ecc, vr.dimensionless_speed(src, r["speed_m_s"][0]), r["mean_pressure_pa"][0] / 1e3,
-        _band_text(src, members[0][1]), what) + ("\n" + r"$\gamma$, $\theta$: mean $\pm$ SE of the single surfaces' values"
-                                                  if n > 1 else ""), fontsize=10)
-    fig.savefig(out, dpi=110); plt.close(fig)
+    _polar_axes(axs[0], r"rigid surface $m_2(\theta)\,/\,10^{%d}$" % em + "\n" + r"$\gamma_s$ = " + pm("gamma_s"))
+    _polar_axes(axs[1], r"deformed solid $\mu_2(\theta)\,/\,10^{%d}$" % ed + "\n" + r"$\gamma_d$ = " + pm("gamma_d") +
+                r", $\theta_d$ = " + pm("theta_d_rad", 180 / np.pi, 1) + "° (dashed)")
+    ecc = members[0].input["surface"].get("eccentricity", 1.0)
+    fig.suptitle(r"%s, $v\tau/L_0$ = %.2f, $p_0$ = %.0f kPa; %s; %s" % (
+        "isotropic surface" if ecc == 1.0 else EPS % ecc, st["speed_m_s"][0] * _speed_scale(r),
+        st["mean_pressure_pa"][0] / 1e3, _band_text(r),
+        "red: mean of %d surfaces, grey: each surface" % n if n > 1 else "one surface") +
+        ("\n" + r"$\gamma$, $\theta$: mean $\pm$ standard error of the single surfaces' values" if n > 1 else ""))
+    return fig
 
 
-def fig3(src, out):
-    """Polar plots of m2 and mu2 for eps = 0.6 and the alpha family: per alpha the mean over
-    the seeds of the study, or one surface."""
-    members = _members(src)
-    alphas = np.unique([m["alpha_deg"] for m, _ in members])
-    fig, (a, b) = plt.subplots(1, 2, subplot_kw=dict(projection="polar"), figsize=(12, 5.6), layout="constrained")
+def fig3(r):
+    """m2 and mu2 for eps = 0.6 and the alpha family: per alpha the mean over the seeds."""
+    alphas = np.unique(r.summary["alpha_deg"]) if r.is_study else [r.input["surface"].get("alpha_deg", 0.0)]
+    per = [(al, *_curves(_members(r, alpha_deg=al) if r.is_study else [r])) for al in alphas]
+    em = _decade(np.concatenate([c[2].ravel() for c in per]))
+    ed = _decade(np.concatenate([c[3].ravel() for c in per]))
+    fig, axs = plt.subplots(1, 2, subplot_kw=dict(projection="polar"), figsize=(PAGE, 4.35))
     n = 1
-    for k, al in enumerate(alphas):
-        sub = [(m, p) for m, p in members if np.isclose(m["alpha_deg"], al)]
-        theta, m2, mu2, _, _ = _mean_polar(src, sub)
-        r = _ensemble_row(src, alpha_deg=al)
-        n = r["gamma_d"][2]
-        g, t = r["gamma_d"], r["theta_d_rad"]
+    for k, (al, theta, m2, mu2) in enumerate(per):
+        st = _stats(r, alpha_deg=al) if r.is_study else _stats(r)
+        n = st["gamma_d"][2]
+        g, t = st["gamma_d"], st["theta_d_rad"]
         if n > 1:
             lab = r"$\alpha$ = %.1f°: $\gamma_d$ = %.2f $\pm$ %.2f, $\theta_d$ = %.0f $\pm$ %.0f°" % (
                 al, g[0], g[1], np.degrees(t[0]), np.degrees(t[1]))
         else:
             lab = r"$\alpha$ = %.1f°: $\gamma_d$ = %.2f, $\theta_d$ = %.0f°" % (al, g[0], np.degrees(t[0]))
-        a.plot(*_closed(theta, m2), color="C%d" % k, lw=1.5, label=lab)
-        b.plot(*_closed(theta, mu2), color="C%d" % k, lw=1.5, label=lab)
-    _polar_axes(a, r"rigid surface $m_2(\theta)$")
-    _polar_axes(b, r"deformed solid $\mu_2(\theta)$")
-    b.legend(loc="center left", bbox_to_anchor=(1.12, 0.5), fontsize=8,
-             title=("means over %d seeds" % n) if n > 1 else None, title_fontsize=8)
-    ecc = members[0][0].get("eccentricity", vr.namelist_value(src, "eccentricity", 0.6))
-    r0 = _ensemble_row(src, alpha_deg=alphas[0])
-    fig.suptitle(r"$\varepsilon$ = %.1f, $v\tau/L_0$ = %.2f, p = %.0f kPa; %s; %s" % (
-        ecc, vr.dimensionless_speed(src, r0["speed_m_s"][0]), r0["mean_pressure_pa"][0] / 1e3,
-        _band_text(src, members[0][1]),
-        ("curves: mean over %d seeds" % n) if n > 1 else "one surface per angle"), fontsize=10)
-    fig.savefig(out, dpi=110); plt.close(fig)
+        vp.anisotropy_polar((theta, m2.mean(axis=0) / 10.0 ** em, mu2.mean(axis=0) / 10.0 ** ed), axs, titles=False,
+                            marks={}, color="C%d" % k, lw=1.3, label=lab)
+    _polar_axes(axs[0], r"rigid surface $m_2(\theta)\,/\,10^{%d}$" % em)
+    _polar_axes(axs[1], r"deformed solid $\mu_2(\theta)\,/\,10^{%d}$" % ed)
+    h, l = axs[1].get_legend_handles_labels()
+    fig.legend(h, l, loc="outside lower center", ncol=2, title=("curves: means over %d seeds" % n) if n > 1 else None)
+    ecc = _members(r)[0].input["surface"].get("eccentricity", 0.6)
+    st0 = _stats(r, alpha_deg=alphas[0]) if r.is_study else _stats(r)
+    fig.suptitle(r"$\varepsilon$ = %.2g, $v\tau/L_0$ = %.2f, $p_0$ = %.0f kPa; %s; $\alpha$: angle of the PSD's major "
+                 r"axis from $\mathbf{v}$" % (ecc, st0["speed_m_s"][0] * _speed_scale(r),
+                                              st0["mean_pressure_pa"][0] / 1e3, _band_text(r)))
+    return fig
 
 
-ALPHA = r"$\alpha$ = %.1f°"
-EPS = r"$\varepsilon$ = %.1f"
-XLABEL = r"$v\tau/L_0$  ($\tau$ the creep time)"
+# -- figures 4 to 8: against speed ---------------------------------------------------------------
 
-
-def _family(src, key, quantity, fmt):
-    """[(label, v tau/L0, mean, sem)] per member of a family (key alpha_deg or eccentricity),
-    statistics over the seeds of every case (veslide_results.family_stats)."""
-    return [(fmt % member, x, m, se) for member, (x, m, se) in vr.family_stats(src, key, quantity).items()]
-
-
-def _note(src, fixed):
-    """Subtitle: the fixed parameters and the number of seeds behind each point."""
-    s = vr.table(src)
-    n = len(np.unique(s["seed"]))
-    return "%s, p = %.0f kPa; %s" % (fixed, s["pressure_pa"][0] / 1e3,
-                                     "mean $\\pm$ SE over %d seeds" % n if n > 1 else "one surface")
-
-
-def cell_artefact_speed(src):
+def cell_artefact_speed(r):
     """v tau/L0 above which the periodic cell's modes with q.v = 0 (k_x = 0) are the only rubbery
     ones: the column k_x = 1 (q_x = 2 pi/L) is glassy once q_x v tau > Einf/E0, i.e.
     v tau/L0 > (Einf/E0)(L/L0)/(2 pi) (docs/reproduction.md, cells larger than the punch).
     None unless the solid is the one-term law."""
-    ratio = vr.namelist_value(src, "ratio", None)
+    ratio = vr.namelist_value(r.path, "ratio", None)
     if ratio is None:
         return None
-    return ratio * vr.namelist_value(src, "k_roll", 1.0) / (2 * np.pi)
+    return ratio * vr.namelist_value(r.path, "k_roll", 1.0) / (2 * np.pi)
 
 
-PERSSON = "dashed: Persson theory (realised PSD)"
+def _speed_axes(ax, r):
+    """Grid, and the range of the cell artefact shaded grey and named in the widest vertical
+    gap the curves and their error bars leave in it."""
+    ax.grid(True, which="major", lw=0.3, color="0.88")
+    v = cell_artefact_speed(r)
+    lo, hi = ax.get_xlim()
+    if v is not None and v < hi:
+        ax.axvspan(v, hi, color="0.92", zorder=0, lw=0)
+        y0, y1 = ax.get_ylim()
+        pts = [xy for line in ax.get_lines() for xy in zip(*line.get_data())]
+        pts += [xy for c in ax.collections for seg in c.get_segments() for xy in seg]
+        inside = sorted((y - y0) / (y1 - y0) for x, y in pts if np.isfinite(y) and x >= v)
+        edges = [0.0] + [min(max(y, 0.0), 1.0) for y in inside] + [1.0]
+        gaps = [(b - a, a, b) for a, b in zip(edges[:-1], edges[1:])]
+        top_gap = 1.0 - edges[-2]
+        _, a, b = max(gaps)
+        at, va = ((0.98, "top") if top_gap > 0.15 else ((a + b) / 2, "center") if b < 1.0 else (0.98, "top"))
+        ax.text(np.sqrt(v * hi), at, "cell\nartefact", transform=ax.get_xaxis_transform(),
+                ha="center", va=va, fontsize=6, color="0.45")
+        ax.set_xlim(lo, hi)
+        ax.set_ylim(y0, y1)
 
 
-def _theory(src, key, column, fmt):
-    """The seed mean of Persson's theory per member of a family, [(label, v tau/L0, mean, sem)],
-    or None when the study was run without &analysis persson (no such column in /summary)."""
-    if column not in vr.table(src):
-        return None
-    return _family(src, key, column, fmt)
+def _theory(r, column):
+    return column if column in r.summary.columns else None
 
 
-def _speed_plot(ax, fam, ylabel, logy=False, src=None, theory=None):
-    """One curve per member of `fam` (mean with standard-error bars over the seeds); `theory`,
-    when given, the same members' Persson estimate (its seed mean), drawn dashed in the same colour."""
-    for k, (label, x, m, s) in enumerate(fam):
-        ax.errorbar(x, m, yerr=s, marker="o", ms=3, capsize=2, color="C%d" % (k % 10), label=label)
-    if theory is not None:
-        for k, (label, x, m, _) in enumerate(theory):
-            ax.plot(x, m, ls="--", lw=1.2, color="C%d" % (k % 10))
-        ax.plot([], [], ls="--", lw=1.2, color="0.3", label=PERSSON)
-    ax.set_xscale("log")
-    if logy:
-        ax.set_yscale("log")
-    ax.set_xlabel(XLABEL); ax.set_ylabel(ylabel)
-    ax.grid(True, which="major", lw=0.3, color="0.85")
-    v = cell_artefact_speed(src) if src is not None else None
-    if v is not None:
-        lo, hi = ax.get_xlim()
-        if v < hi:
-            ax.axvspan(v, hi, color="0.9", zorder=0, lw=0, label=r"cell artefact: $\mathbf{q}\cdot\mathbf{v} = 0$ modes rubbery")
-            ax.set_xlim(lo, hi)
+def _against_speed(r, quantity, ax, key, ylabel, theory=None, **kw):
+    """One curve per member of the family `key` (mean and standard error over the seeds) against
+    v tau/L0; the theory column, when the study has it, dashed in the same colours. Returns
+    whether the theory was drawn."""
+    fmt = {"alpha_deg": ALPHA, "eccentricity": EPS}
+    theory = _theory(r, theory) if theory else None
+    vp.force_vs_speed(r, quantity, ax, by=[key], speed_scale=_speed_scale(r), speed_label=XLABEL, ylabel=ylabel,
+                      theory=theory, theory_label=PERSSON, formats=fmt, ms=2.5, capsize=1.5, lw=1.0, **kw)
+    ax.set_title("")
+    if ax.get_legend() is not None:
+        ax.get_legend().remove()
     return theory is not None
 
 
-def _legend(ax, fam, reverse=False, **kw):
-    """The legend with the family's curves first (reversed if asked), then the notes (theory, band)."""
+def _legend(ax, reverse=False, where=None, **kw):
+    """The family's curves (reversed if asked, to stack as the curves do), then the theory; in
+    the axes, or outside them in the figure (where='right' or 'below')."""
     h, l = ax.get_legend_handles_labels()
-    names = [f[0] for f in fam]
-    curves = sorted((i for i in range(len(l)) if l[i] in names), key=lambda i: names.index(l[i]), reverse=reverse)
-    rest = [i for i in range(len(l)) if l[i] not in names]
-    ax.legend([h[i] for i in curves + rest], [l[i] for i in curves + rest], **kw)
+    curves = [i for i in range(len(l)) if l[i] != PERSSON]
+    rest = [i for i in range(len(l)) if l[i] == PERSSON]
+    if reverse:
+        curves = curves[::-1]
+    h, l = [h[i] for i in curves + rest], [l[i] for i in curves + rest]
+    if where == "right":
+        return ax.legend(h, l, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0, **kw)
+    if where == "below":
+        return ax.figure.legend(h, l, loc="outside lower center", ncol=len(l), **kw)
+    return ax.legend(h, l, **kw)
 
 
-def _ecc_text(src):
-    return EPS % vr.table(src)["eccentricity"][0]
+def _ecc_text(r):
+    return EPS % r.summary["eccentricity"].iloc[0]
 
 
-def fig4(src, out):
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10.5, 4.3))
-    fam = _family(src, "alpha_deg", "contact_area_fraction", ALPHA)
-    drawn = _speed_plot(a, fam, r"contact area $A/A_0$", src=src,
-                        theory=_theory(src, "alpha_deg", "persson_contact_area_fraction", ALPHA))
-    _speed_plot(b, _family(src, "alpha_deg", lambda t: t["mean_separation_m"] / t["rms_height_m"], ALPHA),
-                r"separation $s/h_\mathrm{rms}$", src=src)
-    _legend(a, fam, fontsize=8)
-    fig.suptitle(_note(src, _ecc_text(src)), fontsize=10)
-    fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
-    return drawn
+def fig4(r):
+    fig, (a, b) = plt.subplots(1, 2, figsize=(PAGE, 2.9))
+    drawn = _against_speed(r, "contact_area_fraction", a, "alpha_deg", r"contact area $A/A_0$",
+                           theory="persson_contact_area_fraction")
+    _against_speed(r, lambda s: s.mean_separation_m / s.rms_height_m, b, "alpha_deg",
+                   r"mean separation $s/h_\mathrm{rms}$")
+    _speed_axes(a, r)
+    _speed_axes(b, r)
+    _legend(a, where="below")
+    fig.suptitle(_note(r, _ecc_text(r)) + ("; dashed: " + PERSSON if drawn else ""))
+    return fig, drawn
 
 
-def fig5(src, out):
-    fig, ax = plt.subplots(figsize=(6.4, 4.5))
-    fam = _family(src, "alpha_deg", "friction_coefficient", ALPHA)
-    drawn = _speed_plot(ax, fam, r"friction $f = F_x/F_n$", src=src,
-                        theory=_theory(src, "alpha_deg", "persson_friction_coefficient", ALPHA))
-    ax.set_title(_note(src, _ecc_text(src)), fontsize=9)
-    _legend(ax, fam, fontsize=8); fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
-    return drawn
+def _single(r, quantity, key, ylabel, theory):
+    fig, ax = plt.subplots(figsize=(4.6, 2.9))
+    drawn = _against_speed(r, quantity, ax, key, ylabel, theory=theory)
+    _speed_axes(ax, r)
+    return fig, ax, drawn
 
 
-def fig6(src, out):
-    fig, ax = plt.subplots(figsize=(6.4, 4.5))
-    fam = _family(src, "eccentricity", "friction_coefficient", EPS)
-    drawn = _speed_plot(ax, fam, r"friction $f = F_x/F_n$", src=src,
-                        theory=_theory(src, "eccentricity", "persson_friction_coefficient", EPS))
-    ax.set_title(_note(src, r"$\alpha$ = %.0f°" % vr.table(src)["alpha_deg"][0]), fontsize=9)
-    _legend(ax, fam, reverse=True, fontsize=8)        # eps descending, as the curves stack
-    fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
-    return drawn
+def fig5(r):
+    fig, ax, drawn = _single(r, "friction_coefficient", "alpha_deg", r"friction $f = F_x/F_n$",
+                             "persson_friction_coefficient")
+    _legend(ax, where="right")
+    fig.suptitle(_note(r, _ecc_text(r)))
+    return fig, drawn
 
 
-def fig7(src, out):
-    fig, ax = plt.subplots(figsize=(6.4, 4.5))
-    fam = _family(src, "alpha_deg", "lateral_force_ratio", ALPHA)
-    drawn = _speed_plot(ax, fam, r"lateral force $F_y/F_n$", src=src,
-                        theory=_theory(src, "alpha_deg", "persson_lateral_force_ratio", ALPHA))
+def fig6(r):
+    fig, ax, drawn = _single(r, "friction_coefficient", "eccentricity", r"friction $f = F_x/F_n$",
+                             "persson_friction_coefficient")
+    _legend(ax, reverse=True, where="right")           # eps descending, as the curves stack
+    fig.suptitle(_note(r, r"$\alpha$ = %.0f°" % r.summary["alpha_deg"].iloc[0]))
+    return fig, drawn
+
+
+def fig7(r):
+    fig, ax, drawn = _single(r, "lateral_force_ratio", "alpha_deg", r"lateral force $F_y/F_n$",
+                             "persson_lateral_force_ratio")
     ax.axhline(0, color="k", lw=0.5)
-    ax.set_title(_note(src, _ecc_text(src)) + "\n" + r"$F_y$: along +y, 90° counter-clockwise from $\mathbf{v}$",
-                 fontsize=9)
-    _legend(ax, fam, fontsize=8); fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
-    return drawn
+    _legend(ax, where="right")
+    fig.suptitle(_note(r, _ecc_text(r)) + "\n" + r"$F_y$: along +y, 90° counter-clockwise from $\mathbf{v}$")
+    return fig, drawn
 
 
-def fig8(src, out):
+def fig8(r):
     """sigma1, sigma2 and phi against speed for the alpha family (described, not plotted, in the paper)."""
-    fig, axs = plt.subplots(1, 3, figsize=(14, 4.4))
-    for ax, q, lab in zip(axs, ("sigma1", "sigma2", "phi_rad"),
-                          (r"$\sigma_1$ (along the major axis of $M$)", r"$\sigma_2$ (along its minor axis)",
-                           r"rotation $\phi$ [deg]")):
-        fam = _family(src, "alpha_deg", q, ALPHA)
-        if q == "phi_rad":
-            fam = [(l, x, np.degrees(m), np.degrees(se)) for l, x, m, se in fam]
-        _speed_plot(ax, fam, lab, src=src)
+    fig, axs = plt.subplots(1, 3, figsize=(PAGE, 2.6))
+    for ax, q, lab, unit in zip(axs, ("sigma1", "sigma2", "phi_rad"),
+                                (r"stretch $\sigma_1$ (major axis of $M$)", r"stretch $\sigma_2$ (minor axis)",
+                                 r"rotation $\phi$ [°]"), (None, None, "deg")):
+        _against_speed(r, q, ax, "alpha_deg", lab, unit=unit)
+        _speed_axes(ax, r)
     axs[2].axhline(0, color="k", lw=0.5)
-    axs[0].legend(fontsize=8)
-    band = _band_text(src, vr.case_group(src, 1))
-    fig.suptitle(_note(src, _ecc_text(src)) + "; eq. (16) of the deformed slope tensor, " + band, fontsize=10)
-    fig.tight_layout(); fig.savefig(out, dpi=110); plt.close(fig)
+    _legend(axs[0], where="below")
+    fig.suptitle(_note(r, _ecc_text(r)) + "; eq. (16) of the deformed slope tensor, " + _band_text(r))
+    return fig, False
 
 
-JOBS = [("fig1.h5", fig1, "fig1.png"), ("fig2.h5", fig2, "fig2.png"), ("fig3.h5", fig3, "fig3.png"),
-        ("fig4_5_7.h5", fig4, "fig4.png"), ("fig4_5_7.h5", fig5, "fig5.png"), ("fig6.h5", fig6, "fig6.png"),
-        ("fig4_5_7.h5", fig7, "fig7.png"), ("fig4_5_7.h5", fig8, "fig8_stretch_rotation.png")]
+# -- friction against the direction of sliding ---------------------------------------------------
+
+def fig11_friction_direction(r, targets=(0.01, 0.1, 1.0)):
+    """Friction against the direction of sliding from the PSD's major axis at a few speeds: the
+    alpha family of the fig4_5_7 study (v along x, the surface turned by alpha: direction -alpha),
+    completed around the circle by the spectrum's symmetries."""
+    scale = _speed_scale(r)
+    speeds = np.unique(r.summary["speed_m_s"])
+    pick = sorted({float(speeds[np.argmin(np.abs(np.log(speeds * scale / t)))]) for t in targets})
+    fig, ax = plt.subplots(figsize=(4.2, 4.4), subplot_kw=dict(projection="polar"))
+    vp.friction_polar(r, ax, speeds=pick, mirror=True, legend=False, ms=3, capsize=1.5, lw=1.0,
+                      formats={"speed_m_s": lambda v: r"$v\tau/L_0$ = %.2g" % (v * scale)})
+    ax.set_rmax(1.12 * max(np.max(line.get_ydata()) for line in ax.get_lines() if len(line.get_ydata())))
+    _polar_axes(ax, r"friction $f$ against the direction $\theta$ of $\mathbf{v}$" "\n"
+                r"from the PSD's major axis ($\theta$ = 0: along it)", zero="0°", angle=202.5)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), ncol=len(pick), handletextpad=0.3, columnspacing=1.0)
+    alphas = np.unique(r.summary["alpha_deg"])
+    fig.suptitle((r"%s" "\n" r"filled: computed ($\mathbf{v}$ along $x$, surface turned by $\alpha$ = %g° .. %g°: "
+                  r"$\theta = -\alpha$)" "\n" r"open: their images under $C(\mathbf{q}) = C(-\mathbf{q})$ and the mirror "
+                  r"about the PSD's axes") % (_note(r, _ecc_text(r)), alphas[0], alphas[-1]), fontsize=7)
+    return fig
 
 
-def main(results="results/paper", outdir="docs/figures/paper"):
+JOBS = [("fig1.h5", fig1, "fig1"), ("fig2.h5", fig2, "fig2"), ("fig3.h5", fig3, "fig3"),
+        ("fig4_5_7.h5", fig4, "fig4"), ("fig4_5_7.h5", fig5, "fig5"), ("fig6.h5", fig6, "fig6"),
+        ("fig4_5_7.h5", fig7, "fig7"), ("fig4_5_7.h5", fig8, "fig8_stretch_rotation"),
+        ("fig1.h5", fig9_pressure_gap, "fig9_pressure_gap"), ("fig1.h5", fig10_surface_psd, "fig10_surface_psd"),
+        ("fig4_5_7.h5", fig11_friction_direction, "fig11_friction_direction")]
+NEEDS_FIELDS = (fig1, fig9_pressure_gap, fig10_surface_psd)
+
+
+def main(results="results/paper", outdir="docs/figures/paper", *only):
+    """Draw every figure of JOBS (or those named in `only`) from RESULTS_DIR into OUT_DIR."""
     os.makedirs(outdir, exist_ok=True)
-    made = 0
-    for src, draw, name in JOBS:
-        path = os.path.join(results, src)
-        if not os.path.exists(path):
-            print("skipped %s: no %s" % (name, path))
-            continue
-        with_theory = draw(path, os.path.join(outdir, name))
-        print("wrote", os.path.join(outdir, name) + (" (with Persson's theory)" if with_theory else ""))
-        made += 1
+    made, read = 0, {}
+    with vp.paper_style():
+        for src, draw, name in JOBS:
+            if only and name not in only:
+                continue
+            path = os.path.join(results, src)
+            if not os.path.exists(path):
+                print("skipped %s: no %s" % (name, path))
+                continue
+            if path not in read:
+                read[path] = veslide.read(path)
+            r = read[path]
+            if draw in NEEDS_FIELDS and not r.has_fields:
+                print("skipped %s: %s has no fields" % (name, path))
+                continue
+            out = os.path.join(outdir, name)
+            drawn = draw(r)
+            fig, with_theory = drawn if isinstance(drawn, tuple) else (drawn, False)
+            vp.save(fig, out)
+            plt.close(fig)
+            print("wrote %s.png%s, .pdf, .svg" % (out, " (with Persson's theory)" if with_theory else ""))
+            made += 1
     return made
 
 

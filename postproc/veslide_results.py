@@ -1,4 +1,7 @@
-"""Reading veslide HDF5 results (single runs and studies) with numpy/h5py/pandas-free helpers."""
+"""Small readers of veslide results for the postproc scripts (study_tables.py, make_figures.py), with
+h5py and numpy only: a study's table as a dict of arrays, values of the stored namelist, the
+dimensionless speed and seed statistics. Fields, polar curves and the seed ensemble are read with
+the package (veslide.read: .fields, .anisotropy, .ensemble) and drawn with veslide.plot."""
 import re
 
 import h5py
@@ -29,25 +32,6 @@ def dimensionless_speed(path, speed_m_s):
     return np.asarray(speed_m_s) * tau / (lx / k_roll)
 
 
-def case_group(path, k):
-    """Name of case k (1-based) of a study."""
-    return "/cases/%06d" % k
-
-
-def field(path, name, prefix=""):
-    """A 2-D field as a numpy array indexed [iy, ix], with its units."""
-    with h5py.File(path, "r") as f:
-        d = f[prefix + "/fields/" + name]
-        return d[()], d.attrs["units"].decode() if isinstance(d.attrs["units"], bytes) else d.attrs["units"]
-
-
-def polar(path, prefix=""):
-    """theta, m2 of the rigid surface and mu2 of the deformed solid."""
-    with h5py.File(path, "r") as f:
-        g = f[prefix + "/anisotropy"]
-        return g["theta_rad"][()], g["m2_surface"][()], g["mu2_deformed"][()]
-
-
 # angles defined modulo pi (axes): the range their mean is reported in, as /ensemble does
 AXIAL = {"theta_s_rad": "0..pi", "theta_d_rad": "0..pi", "patch_theta_rad": "0..pi", "phi_rad": "-pi/2..pi/2"}
 
@@ -69,22 +53,3 @@ def seed_stats(x, name=""):
         d = x - m
     se = np.sqrt((d ** 2).sum() / max(1, n - 1) / n)
     return m, se, (m + d).min(), (m + d).max()
-
-
-def family_stats(path, key, quantity):
-    """{member: (v tau/L0, mean, sem)} of a study per value of `key` (alpha_deg, eccentricity, ...)
-    and speed, over the seeds, from /summary. `quantity` is a column name or a function of the
-    summary table returning one value per case (e.g. separation over rms height)."""
-    s = table(path)
-    q = quantity(s) if callable(quantity) else s[quantity]
-    name = quantity if isinstance(quantity, str) else ""
-    out = {}
-    for member in np.unique(s[key]):
-        rows = []
-        for v in np.unique(s["speed_m_s"][s[key] == member]):
-            sel = (s[key] == member) & (s["speed_m_s"] == v)
-            m, se, _, _ = seed_stats(q[sel], name)
-            rows.append((float(dimensionless_speed(path, v)), m, se))
-        rows.sort()
-        out[member] = tuple(np.array(c) for c in zip(*rows))
-    return out

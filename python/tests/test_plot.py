@@ -1,4 +1,6 @@
 """veslide.plot: every helper draws from a result, labels with units, and maps are not transposed."""
+import os
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -83,3 +85,94 @@ def test_friction_against_the_direction_of_sliding(study):
     np.testing.assert_allclose(sorted(np.degrees(theta)), [-90.0, 0.0])   # v along x, alpha 0 and 90
     ax = vp.friction_polar([study.cases[1], study.cases[3]])      # single cases
     assert len(ax.lines) >= 1
+
+
+def test_map_window_wraps_around_the_periodic_cell(case):
+    p = case.fields.pressure_pa.values                       # [ix, iy], 32 x 16
+    lx, ly = case.scalars["length_x_m"], case.scalars["length_y_m"]
+    dx, dy = lx / 32, ly / 16
+    ax = vp.pressure_map(case, window=(-2 * dx, 14 * dy, 6 * dx, 4 * dy), unit="Pa", zero_color="white")
+    image = ax.images[0].get_array()
+    want = p[np.ix_(np.arange(-2, 4) % 32, np.arange(14, 18) % 16)].T
+    np.testing.assert_allclose(image.filled(0.0), want)
+    assert np.ma.getmaskarray(image).tolist() == (want <= 0).tolist()     # no contact: the 'bad' colour
+    x0, x1, y0, y1 = ax.images[0].get_extent()
+    assert (x0, x1) == pytest.approx((-2.5 * dx * 1e3, 3.5 * dx * 1e3))
+    assert (y0, y1) == pytest.approx((13.5 * dy * 1e3, 17.5 * dy * 1e3))
+    vp.contact_map(case, window=(0, 0, lx / 2, ly / 2), arrow=False)
+    ax = vp.gap_map(case, contact_color="deepskyblue")
+    assert np.ma.getmaskarray(ax.images[0].get_array()).tolist() == (p.T > 0).tolist()
+
+
+def test_psd_options():
+    n, L = 32, 0.01
+    h = np.random.default_rng(1).normal(size=(n, n)) * 1e-6
+    ax = vp.psd(h, length_m=L, relative=True, hurst=0.8)
+    assert ax.get_xlabel() == "$q/q_0$" and len(ax.lines) == 2            # the curve and the slope
+    x = ax.lines[0].get_xdata()
+    assert x[0] == pytest.approx(1.0)
+    ax = vp.psd(h, length_m=L, relative=True, q_max=10)
+    assert ax.lines[0].get_xdata().max() == pytest.approx(10)
+    ax = vp.psd_2d(h, length_m=L, q_max=5)
+    assert ax.get_xlim() == (-5, 5) and ax.get_ylim() == (-5, 5)
+
+
+def test_against_speed_scaled_with_theory_and_a_function_of_the_cases(study):
+    ax = vp.force_vs_speed(study, "friction_coefficient", speed_scale=2.0, speed_label="s", by=["alpha_deg"],
+                           formats={"alpha_deg": lambda a: "a%g" % a})
+    x = ax.containers[0].lines[0].get_xdata()
+    np.testing.assert_allclose(x, 2.0 * np.sort(study.ensemble.speed_m_s.unique()))
+    assert ax.get_xlabel() == "s" and ax.get_legend_handles_labels()[1] == ["a0", "a90"]
+    s = study.summary
+    ax = vp.force_vs_speed(study, lambda t: t.mean_separation_m / t.rms_height_m, ylabel="ratio")
+    e = vp.seed_means(s, s.mean_separation_m / s.rms_height_m)
+    e = e[e.alpha_deg == 0].sort_values("speed_m_s")
+    np.testing.assert_allclose(ax.containers[0].lines[0].get_ydata(), e["mean_value"])
+    seeds = s[(s.alpha_deg == 0) & (s.speed_m_s == e.speed_m_s.iloc[0])]
+    ratio = seeds.mean_separation_m / seeds.rms_height_m
+    assert e["sem_value"].iloc[0] == pytest.approx(ratio.std(ddof=1) / np.sqrt(len(ratio)))
+    assert ax.get_ylabel() == "ratio" and "2 seeds" in ax.get_title()
+    ax = vp.force_vs_speed(study, "max_pressure_pa", unit="kPa")
+    e = study.ensemble
+    np.testing.assert_allclose(ax.containers[0].lines[0].get_ydata(),
+                               e[e.alpha_deg == 0].sort_values("speed_m_s")["mean_max_pressure_pa"] / 1e3)
+    assert ax.get_ylabel() == r"$p_\mathrm{max}$ [kPa]"
+    assert vp.label("phi_rad", "deg") == r"$\phi$ [$^\circ$]" and vp._SCALE["deg"] == pytest.approx(180 / np.pi)
+
+
+def test_theory_dashed_in_the_colour_of_its_line(exe, tmp_path):
+    from conftest import params
+    p = params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8}, material={"model": "one_term"},
+               output={"fields": False}, analysis={"persson": True},
+               sweep={"speeds_m_s": [0.01, 0.1], "eccentricities": [1.0, 0.5]})
+    s = veslide.run(p, output=tmp_path / "t.h5", exe=exe, progress=None)
+    ax = vp.friction_vs_speed(s, theory="persson_friction_coefficient", theory_label="theory")
+    dashed = [line for line in ax.lines if line.get_linestyle() == "--" and len(line.get_xdata())]
+    assert len(dashed) == 2
+    assert dashed[0].get_color() == ax.containers[0].lines[0].get_color()
+    assert "theory" in ax.get_legend_handles_labels()[1]
+
+
+def test_friction_polar_mirrored_around_the_circle(study):
+    ax = vp.friction_polar(study, speeds=[study.summary.speed_m_s.min()], mirror=True)
+    filled, images = ax.containers[0], ax.containers[1]
+    assert sorted(np.degrees(filled.lines[0].get_xdata())) == pytest.approx([-90.0, 0.0])
+    assert sorted(np.degrees(images.lines[0].get_xdata())) == pytest.approx([90.0, 180.0])
+    np.testing.assert_allclose(sorted(images.lines[0].get_ydata()), sorted(filled.lines[0].get_ydata()))
+    theta, r = vp._mirrored(np.array([-30.0]), np.array([1.0]), np.array([0.1]), odd=True)[:2]
+    assert dict(zip(np.round(theta), r)) == {-150.0: -1.0, 30.0: -1.0, 150.0: 1.0}
+
+
+def test_save_writes_png_pdf_and_svg(tmp_path):
+    with vp.paper_style():
+        fig, ax = plt.subplots(figsize=(3.4, 2.5))
+        ax.plot([0, 1], [0, 1])
+        ax.set_xlabel(r"$v\tau/L_0$")
+        paths = vp.save(fig, tmp_path / "f.png")
+    assert [p[-3:] for p in paths] == ["png", "pdf", "svg"]
+    assert all(os.path.getsize(p) > 0 for p in paths)
+    from PIL import Image
+    with Image.open(paths[0]) as im:
+        assert im.info["dpi"] == pytest.approx((300, 300), abs=0.01)
+        assert 900 < im.size[0] <= 1020 and 650 < im.size[1] <= 750     # 3.4 x 2.5 in, trimmed to the ink
+    assert b"CreationDate" not in open(paths[1], "rb").read()

@@ -4,7 +4,14 @@ Every function takes a `Result` (or arrays: fields and heights indexed [ix, iy],
 side `length_m`), an optional `ax`, draws into it (a new figure when ax is None) and returns the
 Axes (its figure is `ax.figure`; a colorbar, when drawn, is `ax.images[0].colorbar`). Axes are
 labelled with symbols and units; maps are drawn with x to the right and y up, in mm.
+
+For print: `with paper_style(): ...` sets sizes for figures drawn at their printed size (8 pt
+text, TrueType fonts in PDF), and `save(fig, "out/name")` writes name.png (300 dpi), name.pdf
+and name.svg.
 """
+import os
+
+import matplotlib as mpl
 import numpy as np
 import matplotlib.pyplot as plt
 from matplotlib.ticker import MaxNLocator
@@ -33,7 +40,7 @@ SYMBOLS = {
     "gap_m": r"$g$",
     "displacement_m": r"$w$",
     "speed_m_s": r"$v$",
-    "eccentricity": r"$\epsilon$",
+    "eccentricity": r"$\varepsilon$",
     "alpha_deg": r"$\alpha$",
     "gamma_s": r"$\gamma_s$",
     "gamma_d": r"$\gamma_d$",
@@ -45,9 +52,53 @@ SYMBOLS = {
 }
 SHORT = {"friction_coefficient": r"$\mu$", "lateral_force_ratio": r"$F_\perp/p_0$",
          "friction_coefficient_slope": r"$\mu_{\nabla h}$"}
-_UNITS_TEX = {"-": "", "": "", "W/m^2": r"W/m$^2$", "1/m": r"m$^{-1}$", "degree": r"$^\circ$", "m/Pa": "m/Pa",
-              "um": r"$\mu$m", "µm": r"$\mu$m"}
-_SCALE = {"Pa": 1.0, "kPa": 1e-3, "MPa": 1e-6, "m": 1.0, "mm": 1e3, "um": 1e6, "µm": 1e6, "nm": 1e9}
+_UNITS_TEX = {"-": "", "": "", "W/m^2": r"W/m$^2$", "1/m": r"m$^{-1}$", "degree": r"$^\circ$", "deg": r"$^\circ$",
+              "m/Pa": "m/Pa", "um": r"$\mu$m", "µm": r"$\mu$m"}
+# a display unit -> its factor from the SI unit of the files (Pa, m, rad)
+_SCALE = {"Pa": 1.0, "kPa": 1e-3, "MPa": 1e-6, "m": 1.0, "mm": 1e3, "um": 1e6, "µm": 1e6, "nm": 1e9,
+          "rad": 1.0, "deg": 180 / np.pi}
+
+# sizes for figures drawn at their printed size (a journal column is ~3.4 in, a page ~7 in)
+PAPER_RC = {
+    "font.size": 8, "axes.titlesize": 8, "axes.labelsize": 8, "xtick.labelsize": 7, "ytick.labelsize": 7,
+    "legend.fontsize": 7, "legend.title_fontsize": 7, "figure.titlesize": 8, "lines.linewidth": 1.1,
+    "lines.markersize": 3, "errorbar.capsize": 1.5, "axes.linewidth": 0.6, "grid.linewidth": 0.4,
+    "xtick.major.width": 0.6, "ytick.major.width": 0.6, "xtick.minor.width": 0.4, "ytick.minor.width": 0.4,
+    "legend.frameon": True, "legend.framealpha": 0.9, "legend.edgecolor": "0.8", "legend.borderpad": 0.3,
+    "legend.labelspacing": 0.3, "legend.handlelength": 1.8,
+    "mathtext.fontset": "dejavusans", "pdf.fonttype": 42, "ps.fonttype": 42, "svg.fonttype": "path",
+    "savefig.dpi": 300, "savefig.bbox": "tight", "savefig.pad_inches": 0.02, "figure.dpi": 100, "image.interpolation": "nearest", "svg.hashsalt": "veslide",
+    "figure.constrained_layout.use": True,
+}
+FORMATS = ("png", "pdf", "svg")
+
+
+def paper_style(**overrides):
+    """A context (`with paper_style(): ...`) with PAPER_RC (and `overrides`) in force."""
+    return mpl.rc_context({**PAPER_RC, **overrides})
+
+
+def save(fig, path, formats=FORMATS, dpi=300):
+    """Write `fig` as path.png (at `dpi`), path.pdf and path.svg (vector; images inside them at
+    their own resolution). `path` may end in one of the formats' suffixes. Returns the paths."""
+    base, ext = os.path.splitext(str(path))
+    if ext.lstrip(".") not in formats:
+        base = str(path)
+    out = []
+    for fmt in formats:
+        name = "%s.%s" % (base, fmt)
+        fig.savefig(name, dpi=dpi if fmt == "png" else None, metadata=_metadata(fmt))
+        out.append(name)
+    return out
+
+
+def _metadata(fmt):
+    """No creation date in the vector files, so that a redrawn figure does not differ by it."""
+    if fmt == "pdf":
+        return {"CreationDate": None}
+    if fmt == "svg":
+        return {"Date": None}
+    return None
 
 
 def unit_tex(units):
@@ -95,12 +146,30 @@ def _field(source, name, length_m=None):
     return values, float(length_m), float(length_m) * ny / nx, ""
 
 
-def _map(ax, values, lx, ly, **kw):
-    """values [ix, iy] drawn with x to the right, y up, pixel centres on the grid points, in mm."""
+def _window(values, lx, ly, window):
+    """The part of a periodic field inside window = (x0, y0, width, height) [m] (wrapped around
+    the cell), as (values [ix, iy], x of its first column, y of its first row) [m]."""
+    nx, ny = values.shape
+    dx, dy = lx / nx, ly / ny
+    x0, y0, wx, wy = window
+    i0, j0 = int(round(x0 / dx)), int(round(y0 / dy))
+    ni, nj = max(1, int(round(wx / dx))), max(1, int(round(wy / dy)))
+    part = values[np.ix_(np.arange(i0, i0 + ni) % nx, np.arange(j0, j0 + nj) % ny)]
+    return part, i0 * dx, j0 * dy
+
+
+def _map(ax, values, lx, ly, window=None, **kw):
+    """values [ix, iy] drawn with x to the right, y up, pixel centres on the grid points, in mm;
+    only the periodic window (x0, y0, width, height) [m] when given."""
     nx, ny = values.shape
     dx, dy = lx / nx * 1e3, ly / ny * 1e3
+    x0 = y0 = 0.0
+    if window is not None:
+        values, x0, y0 = _window(values, lx, ly, window)
+        x0, y0 = x0 * 1e3, y0 * 1e3
+    mx, my = values.shape
     im = ax.imshow(values.T, origin="lower", interpolation="nearest",
-                   extent=[-dx / 2, lx * 1e3 - dx / 2, -dy / 2, ly * 1e3 - dy / 2], **kw)
+                   extent=[x0 - dx / 2, x0 + mx * dx - dx / 2, y0 - dy / 2, y0 + my * dy - dy / 2], **kw)
     ax.set_xlabel(r"$x$ [mm]")
     ax.set_ylabel(r"$y$ [mm]")
     ax.set_aspect("equal")
@@ -108,44 +177,76 @@ def _map(ax, values, lx, ly, **kw):
 
 
 def _velocity_arrow(ax, source):
+    """An arrow along v (of the rigid surface) in the upper left corner, labelled at its tail."""
     s = getattr(source, "scalars", None) or {}
     if s.get("speed_m_s", 0.0) > 0:
         th = np.radians(s.get("velocity_direction_deg", 0.0))
-        x0, y0, r = 0.1, 0.9, 0.07
-        ax.annotate("", xy=(x0 + r * np.cos(th), y0 + r * np.sin(th)), xytext=(x0, y0), xycoords="axes fraction",
-                    arrowprops=dict(arrowstyle="->", color="tab:red", lw=1.5))
-        ax.text(x0, y0 - 0.06, r"$\mathbf{v}$", transform=ax.transAxes, color="tab:red", ha="center", va="top")
+        d = np.array([np.cos(th), np.sin(th)])
+        c, half = np.array([0.16, 0.92]), 0.055
+        tail, tip = c - half * d, c + half * d
+        ax.annotate("", xy=tip, xytext=tail, xycoords="axes fraction",
+                    arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=1.5, mutation_scale=10))
+        ax.text(*(tail - 0.025 * d), r"$\mathbf{v}$", transform=ax.transAxes, color="tab:red",
+                ha="right" if d[0] >= -1e-9 else "left", va="center" if abs(d[1]) < 0.7 else ("top" if d[1] > 0 else "bottom"),
+                bbox=dict(fc="white", ec="none", alpha=0.7, pad=0.3))
 
 
-def contact_map(source, ax=None, *, length_m=None):
-    """Contact cells (p > 0) in black; the title gives A/A0; an arrow shows v (of the rigid
-    surface) when the source is a Result of a sliding case."""
+def contact_map(source, ax=None, *, length_m=None, window=None, arrow=True):
+    """Contact cells (p > 0) in black; the title gives A/A0 (the file's sub-cell estimate for a
+    Result, else the fraction of cells); an arrow shows v (of the rigid surface) when the source
+    is a Result of a sliding case (arrow=False: none). window = (x0, y0, width, height) [m]
+    draws that part of the periodic cell only."""
     ax = _new_axes(ax)
     p, lx, ly, _ = _field(source, "pressure_pa", length_m)
     contact = p > 0
-    _map(ax, contact.astype(float), lx, ly, cmap="gray_r", vmin=0, vmax=1)
-    ax.set_title(r"contact (black), $A/A_0$ = %.4f" % contact.mean())
-    _velocity_arrow(ax, source)
+    _map(ax, contact.astype(float), lx, ly, window, cmap="gray_r", vmin=0, vmax=1)
+    area = (getattr(source, "scalars", None) or {}).get("contact_area_fraction", contact.mean())
+    ax.set_title(r"contact (black), $A/A_0$ = %.4f" % area)
+    if arrow:
+        _velocity_arrow(ax, source)
     return ax
 
 
-def pressure_map(source, ax=None, *, length_m=None, unit="kPa", cmap="viridis", colorbar=True):
-    """The contact pressure map in `unit` ('Pa', 'kPa', 'MPa')."""
+def pressure_map(source, ax=None, *, length_m=None, unit="kPa", cmap="viridis", colorbar=True, window=None,
+                 zero_color=None, arrow=True):
+    """The contact pressure map in `unit` ('Pa', 'kPa', 'MPa'). zero_color (e.g. 'white'):
+    the cells out of contact (p = 0) in that colour instead of the colormap's lowest; window =
+    (x0, y0, width, height) [m]: that part of the periodic cell only."""
     ax = _new_axes(ax)
     p, lx, ly, _ = _field(source, "pressure_pa", length_m)
-    im = _map(ax, p * _SCALE[unit], lx, ly, cmap=cmap)
+    values = p * _SCALE[unit]
+    kw = {}
+    if zero_color is not None:
+        values = np.ma.masked_where(p <= 0, values)
+        kw["cmap"] = mpl.colormaps[cmap].with_extremes(bad=zero_color)
+        kw["vmin"] = 0.0
+    im = _map(ax, values, lx, ly, window, **(kw or {"cmap": cmap}))
     if colorbar:
         ax.figure.colorbar(im, ax=ax, label=label("pressure_pa", unit))
     ax.set_title(r"pressure, $p_\mathrm{max}$ = %.3g %s" % (p.max() * _SCALE[unit], unit))
-    _velocity_arrow(ax, source)
+    if arrow:
+        _velocity_arrow(ax, source)
     return ax
 
 
-def gap_map(source, ax=None, *, length_m=None, unit="um", cmap="magma", colorbar=True):
-    """The gap g = w - h + d (zero in contact) in `unit` ('m', 'mm', 'um', 'nm')."""
+def gap_map(source, ax=None, *, length_m=None, unit="um", cmap="magma", colorbar=True, window=None,
+            contact_color=None):
+    """The gap g = w - h + d (zero in contact) in `unit` ('m', 'mm', 'um', 'nm'); window =
+    (x0, y0, width, height) [m]: that part of the periodic cell only. contact_color (e.g.
+    'deepskyblue'): the contact cells (p > 0 for a Result, else g <= 0) in that colour, told apart
+    from small gaps."""
     ax = _new_axes(ax)
     g, lx, ly, _ = _field(source, "gap_m", length_m)
-    im = _map(ax, g * _SCALE[unit], lx, ly, cmap=cmap)
+    values = g * _SCALE[unit]
+    kw = {"cmap": cmap}
+    if contact_color is not None:
+        if getattr(source, "has_fields", False) and "pressure_pa" in source.fields:
+            contact = source.fields["pressure_pa"].transpose("x", "y").values > 0
+        else:
+            contact = g <= 0
+        values = np.ma.masked_where(contact, values)
+        kw["cmap"] = mpl.colormaps[cmap].with_extremes(bad=contact_color)
+    im = _map(ax, values, lx, ly, window, vmin=0.0, **kw)
     if colorbar:
         ax.figure.colorbar(im, ax=ax, label=label("gap_m", unit))
     ax.set_title(r"gap, mean separation $\bar{u}$ = %.3g %s" % (g.mean() * _SCALE[unit], unit_tex(unit)))
@@ -161,21 +262,37 @@ def _heights(source, length_m):
     return h, lx, ly
 
 
-def psd(source, ax=None, *, length_m=None, **kw):
-    """The radial (shell-averaged) power spectral density C(q) of the heights, log-log."""
+def psd(source, ax=None, *, length_m=None, relative=False, hurst=None, q_max=None, **kw):
+    """The radial (shell-averaged) power spectral density C(q) of the heights, log-log; against
+    q/q0 (q0 = 2 pi/Lx) when `relative`. hurst: a dashed reference line with the self-affine
+    slope q^(-2(1+H)) through the middle of the curve. q_max (in the units of the x axis): the
+    shells up to it only (e.g. the spectrum's cut-off, whose shell is partly empty). Other
+    keywords go to `loglog`."""
     ax = _new_axes(ax)
     h, lx, ly = _heights(source, length_m)
     q, c = _topo.psd_radial(h, lx, ly)
     keep = c > c.max() * ZERO_POWER
-    ax.loglog(q[keep], c[keep], marker=".", **kw)
-    ax.set_xlabel(r"$|\mathbf{q}|$ [m$^{-1}$]")
+    q, c = q[keep], c[keep]
+    x = q / (2 * np.pi / lx) if relative else q
+    if q_max is not None:
+        x, c = x[x <= q_max], c[x <= q_max]
+    kw.setdefault("marker", ".")
+    ax.loglog(x, c, **kw)
+    if hurst is not None and len(x) > 2:
+        slope = -2 * (1 + hurst)
+        i = len(x) // 2
+        xr = np.array([x[len(x) // 8], x[-1]])
+        ax.loglog(xr, 2 * c[i] * (xr / x[i]) ** slope, ls="--", lw=0.8, color="0.4",
+                  label=r"$\propto q^{-2(1+H)}$, $H$ = %g" % hurst)
+    ax.set_xlabel(r"$q/q_0$" if relative else r"$|\mathbf{q}|$ [m$^{-1}$]")
     ax.set_ylabel(r"$C(q)$ [m$^4$]")
     ax.set_title("surface PSD (shell average)")
     return ax
 
 
-def psd_2d(source, ax=None, *, length_m=None, cmap="viridis", colorbar=True):
-    """The 2-D power spectral density log10 C(qx, qy) over qx/q0, qy/q0 (q0 = 2 pi/Lx)."""
+def psd_2d(source, ax=None, *, length_m=None, cmap="viridis", colorbar=True, q_max=None):
+    """The 2-D power spectral density log10 C(qx, qy) over qx/q0, qy/q0 (q0 = 2 pi/Lx); q_max
+    (in q0) limits both axes to [-q_max, q_max]."""
     ax = _new_axes(ax)
     h, lx, ly = _heights(source, length_m)
     qx, qy, c = _topo.psd_2d(h, lx, ly)
@@ -193,6 +310,9 @@ def psd_2d(source, ax=None, *, length_m=None, cmap="viridis", colorbar=True):
     ax.set_xlabel(r"$q_x/q_0$")
     ax.set_ylabel(r"$q_y/q_0$")
     ax.set_aspect("equal")
+    if q_max is not None:
+        ax.set_xlim(-q_max, q_max)
+        ax.set_ylim(-q_max, q_max)
     ax.set_title("surface PSD")
     return ax
 
@@ -202,43 +322,49 @@ def _around(theta, r):
     return np.concatenate([theta, theta + np.pi, theta[:1] + 2 * np.pi]), np.concatenate([r, r, r[:1]])
 
 
-def anisotropy_polar(source, ax=None, *, normalise=False):
+def anisotropy_polar(source, ax=None, *, normalise=False, titles=True, marks=None, **kw):
     """m2(theta) of the rigid surface and mu2(theta) of the deformed solid (polar), with their
     major axes theta_s, theta_d dashed. source: a Result with &analysis anisotropy, or a tuple
     (theta_rad, m2, mu2). ax: a pair of polar axes (m2 left, mu2 right; made when None) or one
     polar axes holding both curves. normalise divides each curve by its mean (compare shapes).
-    Returns the axes (a pair when drawn in two)."""
+    titles=False leaves the axes' titles alone (to draw several curves on the same axes);
+    marks: {theta_s_rad, theta_d_rad, gamma_s, gamma_d} to mark (a Result's scalars by default);
+    other keywords (color, lw, label, ...) go to the curves. Returns the axes (a pair when drawn
+    in two)."""
     if ax is None:
         _, ax = plt.subplots(1, 2, figsize=(9, 4.5), subplot_kw=dict(projection="polar"))
     pair = np.ndim(ax) == 1
     axes_list = list(ax) if pair else [ax, ax]
     for a in axes_list:
         _new_axes(a, polar=True)
-    marks = {}
+    found = {}
     if hasattr(source, "anisotropy"):
         if source.anisotropy is None:
             raise ValueError("%s has no /anisotropy (run with &analysis anisotropy = .true.)" % source.path)
         a = source.anisotropy
         theta, m2, mu2 = a["theta_rad"], a["m2_surface"], a["mu2_deformed"]
         s = source.scalars or {}
-        marks = {k: s[k] for k in ("theta_s_rad", "theta_d_rad", "gamma_s", "gamma_d") if k in s}
+        found = {k: s[k] for k in ("theta_s_rad", "theta_d_rad", "gamma_s", "gamma_d") if k in s}
     else:
         theta, m2, mu2 = (np.asarray(v, dtype=float) for v in source)
+    marks = found if marks is None else marks
     for a, r, lab, key, g, title in (
             (axes_list[0], m2, r"$m_2(\theta)$", "theta_s_rad", "gamma_s", "rigid surface"),
             (axes_list[1], mu2, r"$\mu_2(\theta)$", "theta_d_rad", "gamma_d", "deformed solid")):
         r = r / r.mean() if normalise else r
         t, rr = _around(theta, r)
-        (line,) = a.plot(t, rr, label=lab + (" / mean" if normalise else "") + ", " + title)
+        line_kw = dict(kw)
+        line_kw.setdefault("label", lab + (" / mean" if normalise else "") + ", " + title)
+        (line,) = a.plot(t, rr, **line_kw)
         if key in marks:
             for t0 in (marks[key], marks[key] + np.pi):
                 a.plot([t0, t0], [0, rr.max()], ls="--", lw=0.8, color=line.get_color())
-        if pair:
+        if pair and titles:
             extra = ""
             if key in marks and g in marks:
                 extra = "\n" + r"$\gamma$ = %.3f, $\theta$ = %.1f$^\circ$" % (marks[g], np.degrees(marks[key]))
             a.set_title("%s%s of the %s%s" % (lab, " / mean" if normalise else "", title, extra), fontsize="medium")
-    if not pair:
+    if not pair and titles:
         ax.set_title(r"slope variance along $\theta$", fontsize="medium")
         ax.legend(loc="lower left", bbox_to_anchor=(0.75, -0.05), fontsize="small")
     return ax
@@ -256,18 +382,25 @@ def _table(source):
     raise ValueError("a study result (with /summary) or a DataFrame is needed")
 
 
-_GROUP_FORMATS = {"eccentricity": r"$\epsilon$ = %.3g", "alpha_deg": r"$\alpha$ = %.4g$^\circ$",
+_GROUP_FORMATS = {"eccentricity": r"$\varepsilon$ = %.3g", "alpha_deg": r"$\alpha$ = %.4g$^\circ$",
                   "pressure_pa": r"$p_0$ = %.4g Pa", "seed": "seed %d", "speed_m_s": r"$v$ = %.3g m/s"}
+# the parameters of a study's cases other than the seed (the columns /ensemble is grouped by)
+PARAMETERS = ("eccentricity", "alpha_deg", "pressure_pa", "speed_m_s")
 
 
-def _groups(table, keys):
+def _format(fmt, value):
+    return fmt(value) if callable(fmt) else fmt % value
+
+
+def _groups(table, keys, formats=None):
     keys = [k for k in keys if k in table.columns and table[k].nunique() > 1]
     if not keys:
         return [("", table)]
+    fmts = {**_GROUP_FORMATS, **(formats or {})}
     out = []
     for values, part in table.groupby(keys, sort=True):
         values = values if isinstance(values, tuple) else (values,)
-        out.append((", ".join(_GROUP_FORMATS.get(k, k + " = %s") % v for k, v in zip(keys, values)), part))
+        out.append((", ".join(_format(fmts.get(k, k + " = %s"), v) for k, v in zip(keys, values)), part))
     return out
 
 
@@ -279,23 +412,61 @@ def _column(table, is_ensemble, quantity):
     return table[quantity].to_numpy(), None
 
 
-def force_vs_speed(source, quantity="friction_coefficient", ax=None, *, by=None, errorbars=True):
+def seed_means(summary, values, name="value"):
+    """An /ensemble-like DataFrame of `values` (one per row of a study's /summary, e.g. a ratio
+    of two columns): per combination of the other parameters, `n_seeds` and the mean and standard
+    error over the seeds as columns mean_<name>, sem_<name> (0 for a single seed)."""
+    keys = [k for k in PARAMETERS if k in summary.columns]
+    df = summary[keys].copy()
+    df[name] = np.asarray(values, dtype=float)
+    out = df.groupby(keys, sort=True)[name].agg(["mean", "std", "count"]).reset_index()
+    out = out.rename(columns={"mean": "mean_" + name, "count": "n_seeds"})
+    out["sem_" + name] = (out.pop("std") / np.sqrt(out["n_seeds"])).fillna(0.0)
+    return out
+
+
+def force_vs_speed(source, quantity="friction_coefficient", ax=None, *, by=None, errorbars=True, speed_scale=1.0,
+                   speed_label=None, unit=None, theory=None, theory_label=None, formats=None, ylabel=None, **kw):
     """A study's `quantity` against the sliding speed (log axis): from /ensemble (mean with the
     standard error over seeds as error bars) when the study has several seeds, else /summary.
-    One line per combination of the other parameters that vary (or of the columns `by`)."""
+    One line per combination of the other parameters that vary (or of the columns `by`).
+
+    quantity     a column name, or a function of the /summary DataFrame giving one value per case
+                 (e.g. lambda s: s.mean_separation_m / s.rms_height_m), averaged over the seeds here.
+    speed_scale  x = speed * speed_scale (e.g. tau/L0 for v tau/L0), labelled `speed_label`.
+    unit         display unit of the quantity ('kPa', 'um', 'deg' for an angle in rad, ...).
+    theory       a column drawn dashed in the colour of each line (e.g. 'persson_friction_coefficient'),
+                 with one legend entry `theory_label`.
+    formats      {column: format string or function} of the lines' legend labels.
+    Other keywords (ms, capsize, lw, ...) go to `errorbar`."""
     ax = _new_axes(ax)
     table, ens = _table(source)
     units = table.attrs.get("units", {})
-    keys = by if by is not None else ["eccentricity", "alpha_deg", "pressure_pa"] + ([] if ens else ["seed"])
-    for lab, part in _groups(table, keys):
+    if callable(quantity):
+        if ens and isinstance(source, pd.DataFrame):
+            raise ValueError("a function of the cases needs a study result or its /summary, not /ensemble")
+        summary = source if isinstance(source, pd.DataFrame) else source.summary
+        table, ens = seed_means(summary, quantity(summary)), True
+        quantity, units = "value", {}
+    keys = by if by is not None else list(PARAMETERS[:3]) + ([] if ens else ["seed"])
+    scale = _SCALE[unit] if unit else 1.0
+    kw = {"marker": "o", "ms": 4, "capsize": 3, **kw}
+    for lab, part in _groups(table, keys, formats):
         part = part.sort_values("speed_m_s")
+        x = part["speed_m_s"].to_numpy() * speed_scale
         y, e = _column(part, ens, quantity)
-        ax.errorbar(part["speed_m_s"].to_numpy(), y, yerr=e if errorbars else None, marker="o", ms=4, capsize=3,
-                    label=lab or None)
+        bars = ax.errorbar(x, y * scale, yerr=e * scale if (errorbars and e is not None) else None, label=lab or None,
+                           **kw)
+        if theory is not None:
+            t, _ = _column(part, ens, theory)
+            ax.plot(x, t * scale, ls="--", color=bars.lines[0].get_color())
+    if theory is not None:
+        ax.plot([], [], ls="--", color="0.3", label=theory_label or "dashed: " + label(theory))
     ax.set_xscale("log")
-    ax.set_xlabel(label("speed_m_s", "m/s"))
-    ax.set_ylabel(label(quantity, units.get(("mean_" if ens else "") + quantity, units.get(quantity))))
-    if ens:
+    ax.set_xlabel(speed_label or (label("speed_m_s", "m/s") if speed_scale == 1.0 else "scaled speed"))
+    u = unit or units.get(("mean_" if ens else "") + quantity, units.get(quantity))
+    ax.set_ylabel(ylabel or label(quantity, u))
+    if ens and table["n_seeds"].max() > 1:
         n = table["n_seeds"]
         ax.set_title("mean over %s seeds, error bars: standard error" % (n.iloc[0] if n.nunique() == 1 else "the"))
     if len(ax.get_legend_handles_labels()[0]) > 1:
@@ -333,27 +504,72 @@ def _direction_table(source):
         table = table.copy()
         table.attrs["units"] = units
     vdir = table["mean_velocity_direction_deg" if ens else "velocity_direction_deg"]
-    table["direction_deg"] = 180.0 - (180.0 - (vdir - table["alpha_deg"])) % 360.0   # (-180, 180]
+    table["direction_deg"] = _wrap(vdir - table["alpha_deg"])
     return table, ens
 
 
-def friction_polar(source, ax=None, *, quantity="friction_coefficient", speeds=None, errorbars=True):
+def _wrap(deg):
+    """Angles in degrees into (-180, 180]."""
+    return 180.0 - (180.0 - np.asarray(deg, dtype=float)) % 360.0
+
+
+# quantities odd under a mirror image of the surface about its PSD's axes (they change sign)
+_ODD = ("lateral_force_ratio", "lateral_force_pa", "persson_lateral_force_ratio")
+
+
+def _mirrored(direction_deg, values, errors, odd):
+    """The images of measured directions under the symmetries of an elliptic spectrum: q -> -q
+    (theta + 180, quantity unchanged) and the mirror about its axes (-theta, 180 - theta; a
+    quantity that is odd under reflection changes sign). Returns the directions not measured
+    already, with their values and errors."""
+    seen = set(np.round(direction_deg, 6))
+    out = []
+    for th, v, e in zip(direction_deg, values, errors):
+        for image, sign in ((th + 180.0, 1.0), (-th, -1.0 if odd else 1.0), (180.0 - th, -1.0 if odd else 1.0)):
+            key = round(float(_wrap(image)), 6)
+            if key not in seen:
+                seen.add(key)
+                out.append((float(_wrap(image)), sign * v, e))
+    out.sort()
+    return [np.array(c) for c in zip(*out)] if out else [np.array([])] * 3
+
+
+def friction_polar(source, ax=None, *, quantity="friction_coefficient", speeds=None, errorbars=True, mirror=False,
+                   formats=None, legend=True, **kw):
     """`quantity` (friction coefficient by default) against the direction of sliding measured from
     the major axis of the surface's PSD (velocity direction - alpha), on a polar axes: one curve
     per speed (and eccentricity, pressure). source: a study over alphas_deg (rigid surface turned
-    under v along x), or a list of single-case Results (different &motion direction_deg)."""
+    under v along x), or a list of single-case Results (different &motion direction_deg).
+    mirror: also draw (open markers, joined by the curve) the directions that follow from the
+    measured ones by the symmetries of an elliptic spectrum, C(q) = C(-q) and its mirror images
+    about its axes (ensemble statements: exact for the mean over many surfaces); e.g. alpha
+    0..90 deg gives the full circle. formats: legend labels as in `force_vs_speed`. Other
+    keywords (ms, capsize, ...) go to `errorbar`."""
     ax = _new_axes(ax, polar=True)
     table, ens = _direction_table(source)
     if speeds is not None:
         table = table[np.isin(table["speed_m_s"], np.atleast_1d(speeds))]
-    for lab, part in _groups(table, ["speed_m_s", "eccentricity", "pressure_pa"]):
+    kw = {"marker": "o", "ms": 4, "capsize": 2, **kw}
+    for lab, part in _groups(table, ["speed_m_s", "eccentricity", "pressure_pa"], formats):
         part = part.sort_values("direction_deg")
+        th = part["direction_deg"].to_numpy()
         y, e = _column(part, ens, quantity)
-        ax.errorbar(np.radians(part["direction_deg"].to_numpy()), y, yerr=e if errorbars else None, marker="o", ms=4,
-                    capsize=2, label=lab or None)
-    units = table.attrs.get("units", {})
+        bars = ax.errorbar(np.radians(th), y, yerr=e if errorbars else None, label=lab or None,
+                           **{"ls": "none" if mirror else "-", **kw})
+        if mirror:
+            color = bars.lines[0].get_color()
+            mth, my, me = _mirrored(th, y, e if e is not None else np.zeros_like(y), quantity in _ODD)
+            if len(mth):
+                ax.errorbar(np.radians(mth), my, yerr=me if (errorbars and e is not None) else None,
+                            **{**kw, "ls": "none", "mfc": "white", "color": color})
+            at = np.concatenate([th, mth])
+            ay = np.concatenate([y, my])
+            order = np.argsort(at)
+            at, ay = at[order], ay[order]
+            ax.plot(np.radians(np.append(at, at[0] + 360.0)), np.append(ay, ay[0]), color=color,
+                    lw=kw.get("lw", mpl.rcParams["lines.linewidth"]))
     ax.set_title(SHORT.get(quantity, label(quantity)) + " against the direction of sliding\n"
                  r"from the surface's major axis ($\theta_v - \alpha$)", fontsize="medium")
-    if len(ax.get_legend_handles_labels()[0]) > 1:
+    if legend and len(ax.get_legend_handles_labels()[0]) > 1:
         ax.legend(loc="lower left", bbox_to_anchor=(0.8, -0.1), fontsize="small")
     return ax
