@@ -39,6 +39,9 @@ def main(src="results/bench-accuracy.csv", out="docs/figures/accuracy.png"):
         n = [int(r["n"]) for r in rs]
         ax2.loglog(n, [float(r["d_area"]) for r in rs], marker + "-", label=kernel + ": area")
         ax2.loglog(n, [float(r["d_friction"]) for r in rs], marker + ":", label=kernel + ": friction")
+    sizes = sorted({int(r["n"]) for r in grid if float(r["d_area"]) > 0})
+    ax2.set_xticks(sizes, [str(k) for k in sizes])
+    ax2.minorticks_off()
     ax2.set_xlabel("grid n (n x n)")
     ax2.set_ylabel("relative change from n/2")
     ax2.set_title("grid refinement, tolerance 1e-10")
