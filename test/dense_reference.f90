@@ -13,9 +13,15 @@ module dense_reference
     use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: kernel_t
     use veslide_lapack, only: dgesv
+    use veslide_material, only: material_t
+    use veslide_contact, only: contact_state_t
+    use veslide_analysis, only: contact_area_fraction
+    use testsuite, only: check, report
+    use test_support, only: solve_case
+    use reference_oracles, only: lcell
     implicit none
     private
-    public :: influence_matrix, solve_dense
+    public :: influence_matrix, solve_dense, dense_compare
 
 contains
 
@@ -95,5 +101,37 @@ contains
         end if
         kkt = max(maxval(max(-g, 0.0_dp))/hs, abs(sum(p*g))/(sum(p)*hs), maxval(max(-p, 0.0_dp))/p_mean)
     end subroutine solve_dense
+
+    !> The FFT solver (`method`, default 'auto') on heights h (cell lcell) against the dense
+    !> solution of the same discrete problem: the dense solution must be certified (KKT <= 1e-11)
+    !> and the pressures agree to 1e-9 of max p; `area` returns the solver's contact fraction
+    subroutine dense_compare(h, mat, v, p_mean, error, method, area)
+        real(dp), intent(in) :: h(:, :), v(2), p_mean
+        type(material_t), intent(in) :: mat
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), intent(in), optional :: method
+        real(dp), intent(out), optional :: area
+        type(contact_state_t) :: s
+        type(kernel_t) :: k
+        real(dp), allocatable :: a(:, :), p(:)
+        real(dp) :: d, kkt, diff
+        integer :: n
+        n = size(h)
+        call solve_case(h, lcell, lcell, p_mean, s, error, mat=mat, velocity=v, tol=1.0e-13_dp, kernel=k, &
+                        method=method)
+        if (allocated(error)) return
+        if (present(method)) then
+            call check(error, s%method == method, "method used: "//s%method); if (allocated(error)) return
+        end if
+        call influence_matrix(k, a, error); if (allocated(error)) return
+        allocate (p(n))
+        call solve_dense(a, reshape(h - sum(h)/n, [n]), p_mean, p, d, kkt, error); if (allocated(error)) return
+        diff = maxval(abs(reshape(s%p, [n]) - p))/maxval(p)
+        call report("dense KKT", kkt); call report("max |dp|/max p", diff)
+        call report("area", contact_area_fraction(s%p)); call report("iterations", real(s%iterations, dp))
+        if (present(area)) area = contact_area_fraction(s%p)
+        call check(error, kkt <= 1.0e-11_dp, "dense solution not certified"); if (allocated(error)) return
+        call check(error, diff <= 1.0e-9_dp, "the FFT solver ("//trim(s%method)//") differs from the dense solution")
+    end subroutine dense_compare
 
 end module dense_reference

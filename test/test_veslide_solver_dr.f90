@@ -13,7 +13,7 @@ module test_veslide_solver_dr
     use veslide_analysis, only: contact_area_fraction
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: solve_case, square_grid
-    use dense_reference, only: influence_matrix, solve_dense
+    use dense_reference, only: influence_matrix, solve_dense, dense_compare
     use reference_oracles, only: paper_rough, paper_solid, peak_speed, full_contact_force, einf, lcell
     implicit none
     private
@@ -39,30 +39,6 @@ contains
             ]
     end subroutine collect_solver_dr
 
-    !> FFT solver against the dense exact solution; max |dp|/max p <= 1e-9
-    subroutine dense_compare(h, mat, v, p_mean, error, area)
-        real(dp), intent(in) :: h(:, :), v(2), p_mean
-        type(material_t), intent(in) :: mat
-        type(error_t), allocatable, intent(out) :: error
-        real(dp), intent(out), optional :: area
-        type(contact_state_t) :: s
-        type(kernel_t) :: k
-        real(dp), allocatable :: a(:, :), p(:)
-        real(dp) :: d, kkt, diff
-        integer :: n
-        n = size(h)
-        call solve_case(h, lcell, lcell, p_mean, s, error, mat=mat, velocity=v, tol=1.0e-13_dp, kernel=k)
-        if (allocated(error)) return
-        call influence_matrix(k, a, error); if (allocated(error)) return
-        allocate (p(n))
-        call solve_dense(a, reshape(h - sum(h)/n, [n]), p_mean, p, d, kkt, error); if (allocated(error)) return
-        diff = maxval(abs(reshape(s%p, [n]) - p))/maxval(p)
-        call report("dense KKT", kkt); call report("max |dp|/max p", diff)
-        call report("area", contact_area_fraction(s%p)); call report("iterations", real(s%iterations, dp))
-        if (present(area)) area = contact_area_fraction(s%p)
-        call check(error, kkt <= 1.0e-11_dp, "dense solution not certified"); if (allocated(error)) return
-        call check(error, diff <= 1.0e-9_dp, "FFT solver differs from the dense solution")
-    end subroutine dense_compare
 
     subroutine test_dense_16_elastic(error)
         type(error_t), allocatable, intent(out) :: error

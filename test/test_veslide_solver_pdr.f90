@@ -14,7 +14,7 @@ module test_veslide_solver_pdr
     use veslide_analysis, only: contact_area_fraction
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: solve_case
-    use dense_reference, only: influence_matrix, solve_dense
+    use dense_reference, only: influence_matrix, solve_dense, dense_compare
     use reference_oracles, only: paper_rough, paper_solid, peak_speed, full_contact_force, lcell
     use test_veslide_solver_bccg, only: fixed_spectrum_surface
     implicit none
@@ -38,29 +38,6 @@ contains
             ]
     end subroutine collect_solver_pdr
 
-    !> pdr against the dense exact solution; max |dp|/max p <= 1e-9 (as the splitting's tests)
-    subroutine dense_compare(h, mat, v, p_mean, error)
-        real(dp), intent(in) :: h(:, :), v(2), p_mean
-        type(material_t), intent(in) :: mat
-        type(error_t), allocatable, intent(out) :: error
-        type(contact_state_t) :: s
-        type(kernel_t) :: k
-        real(dp), allocatable :: a(:, :), p(:)
-        real(dp) :: d, kkt, diff
-        integer :: n
-        n = size(h)
-        call solve_case(h, lcell, lcell, p_mean, s, error, mat=mat, velocity=v, tol=1.0e-13_dp, kernel=k, method='pdr')
-        if (allocated(error)) return
-        call check(error, s%method == 'pdr', "method used: "//s%method); if (allocated(error)) return
-        call influence_matrix(k, a, error); if (allocated(error)) return
-        allocate (p(n))
-        call solve_dense(a, reshape(h - sum(h)/n, [n]), p_mean, p, d, kkt, error); if (allocated(error)) return
-        diff = maxval(abs(reshape(s%p, [n]) - p))/maxval(p)
-        call report("dense KKT", kkt); call report("max |dp|/max p", diff)
-        call report("area", contact_area_fraction(s%p)); call report("iterations", real(s%iterations, dp))
-        call check(error, kkt <= 1.0e-11_dp, "dense solution not certified"); if (allocated(error)) return
-        call check(error, diff <= 1.0e-9_dp, "pdr differs from the dense solution")
-    end subroutine dense_compare
 
     subroutine test_dense_16_elastic(error)
         type(error_t), allocatable, intent(out) :: error
@@ -68,7 +45,7 @@ contains
         real(dp) :: h(16, 16)
         call paper_rough(16, h, error); if (allocated(error)) return
         call new_elastic(m, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
-        call dense_compare(h, m, [0.0_dp, 0.0_dp], 5.0e4_dp, error)
+        call dense_compare(h, m, [0.0_dp, 0.0_dp], 5.0e4_dp, error, method='pdr')
     end subroutine test_dense_16_elastic
 
     subroutine test_dense_32_visco(error)
@@ -77,7 +54,7 @@ contains
         real(dp) :: h(32, 32)
         call paper_rough(32, h, error); if (allocated(error)) return
         call paper_solid(100.0_dp, m, error); if (allocated(error)) return
-        call dense_compare(h, m, [peak_speed(100.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
+        call dense_compare(h, m, [peak_speed(100.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
     end subroutine test_dense_32_visco
 
     subroutine test_dense_32_aniso(error)
@@ -86,7 +63,7 @@ contains
         real(dp) :: h(32, 32)
         call paper_rough(32, h, error, eps=0.3_dp, alpha=pi/4); if (allocated(error)) return
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
+        call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
     end subroutine test_dense_32_aniso
 
     !> In full contact P(q) = H(q)/K(q): the forces in closed form

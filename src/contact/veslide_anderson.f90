@@ -31,6 +31,7 @@ module veslide_anderson
         !> residual f itself stays double)
         real(real32), allocatable :: df(:, :), gm(:, :)
         real(dp), allocatable :: gram(:, :), zprev(:), fprev(:)
+        real(dp), allocatable :: rows(:, :)  !! per-row partial dot products (2 m, rows)
         type(grid_t) :: grid             !! the grid whose rows the unknowns are (serial: one row)
         integer :: row = 1               !! unknowns per row
     contains
@@ -54,9 +55,10 @@ contains
         else
             self%grid = grid_t(); self%grid%nx = max(1, n); self%grid%ny = 1; self%row = max(1, n)
         end if
-        if (allocated(self%df)) deallocate (self%df, self%gm, self%gram, self%zprev, self%fprev)
+        if (allocated(self%df)) deallocate (self%df, self%gm, self%gram, self%zprev, self%fprev, self%rows)
         allocate (self%df(n, max(self%memory, 1)), self%gm(n, max(self%memory, 1)))
         allocate (self%gram(max(self%memory, 1), max(self%memory, 1)), self%zprev(n), self%fprev(n))
+        allocate (self%rows(2*max(self%memory, 1), n/self%row))
         call self%reset()
     end subroutine anderson_init
 
@@ -75,7 +77,6 @@ contains
         logical :: accelerated
         real(dp) :: coef(max(self%memory, 1))
         real(dp) :: dots(max(self%memory, 1), 2), dfv, zn, part(2*max(self%memory, 1))
-        real(dp), allocatable :: rows(:, :)
         integer :: i, k, n, mk, slot, info, j, nrow, rl
         n = size(z)
         accelerated = .false.
@@ -84,7 +85,6 @@ contains
             self%stored = min(self%stored + 1, self%memory)
             slot = self%slot; mk = self%stored
             rl = self%row; nrow = n/rl
-            allocate (rows(2*mk, nrow))
             ! new columns with the Gram row and the right-hand side, in one pass, row by row
             !$omp parallel do private(i, dfv, k, part)
             do j = 1, nrow
@@ -99,10 +99,10 @@ contains
                         part(mk + k) = part(mk + k) + real(self%df(i, k), dp)*f(i)
                     end do
                 end do
-                rows(:, j) = part(1:2*mk)
+                self%rows(1:2*mk, j) = part(1:2*mk)
             end do
             !$omp end parallel do
-            call ordered_sum(self%grid, rows, part(1:2*mk))
+            call ordered_sum(self%grid, self%rows(1:2*mk, :), part(1:2*mk))
             dots(1:mk, 1) = part(1:mk); dots(1:mk, 2) = part(mk + 1:2*mk)
             self%gram(1:mk, slot) = dots(1:mk, 1); self%gram(slot, 1:mk) = dots(1:mk, 1)
             call anderson_coefficients(self%gram, mk, dots(1:mk, 2), coef, info)
