@@ -6,6 +6,7 @@ module test_veslide_grid
     use veslide_spectrum, only: slope_tensor
     use veslide_surface, only: psd_t, random_surface, cosine_surface
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
+    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
     implicit none
     private
     public :: collect_grid, collect_fftw
@@ -27,6 +28,8 @@ contains
         type(unittest_t), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest("round-trip", test_round_trip), &
+            new_unittest("blocks-equal-the-dft", test_against_dft), &
+            new_unittest("same-bits-on-any-number-of-threads", test_thread_bits), &
             new_unittest("isolated-plan-ignores-wisdom", test_isolated) &
             ]
     end subroutine collect_fftw
@@ -99,6 +102,69 @@ contains
         call report("max |x - IFFT FFT x|", maxval(abs(fft%x - x)))
         call check(error, maxval(abs(fft%x - x)) <= 1.0e-15_dp, "backward(forward(x)) /= x")
     end subroutine test_round_trip
+
+    !> The transform done in blocks of rows and spectral columns (full and shorter last blocks
+    !> in both directions, and a single row) equals the DFT sum_x f(x) exp(-i q.x) evaluated directly
+    subroutine test_against_dft(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: shapes(2, 3) = reshape([40, 37, 7, 18, 64, 1], [2, 3])
+        type(fft2d_t) :: fft
+        real(dp), allocatable :: x(:, :)
+        complex(dp) :: s
+        real(dp) :: worst, e
+        integer :: m, nx, ny, a, b, i, j
+        worst = 0.0_dp
+        do m = 1, size(shapes, 2)
+            nx = shapes(1, m); ny = shapes(2, m)
+            call fft%init(nx, ny, error, planner='estimate'); if (allocated(error)) return
+            allocate (x(nx, ny)); call random_number(x)
+            fft%x = x; call fft%forward()
+            e = 0.0_dp
+            do b = 1, ny
+                do a = 1, nx/2 + 1
+                    s = (0.0_dp, 0.0_dp)
+                    do j = 1, ny
+                        do i = 1, nx
+                            s = s + x(i, j)*exp(cmplx(0.0_dp, -two_pi*(real((a - 1)*(i - 1), dp)/nx + &
+                                                                       real((b - 1)*(j - 1), dp)/ny), dp))
+                        end do
+                    end do
+                    e = max(e, abs(fft%k(a, b) - s))
+                end do
+            end do
+            worst = max(worst, e/sum(abs(x)))
+            call fft%backward()
+            worst = max(worst, maxval(abs(fft%x - x)))
+            deallocate (x)
+        end do
+        call report("max |FFT - DFT|/sum|x|, |x - IFFT FFT x|", worst)
+        call check(error, worst <= 1.0e-14_dp, "the blocked transform differs from the DFT")
+    end subroutine test_against_dft
+
+    !> The blocks are fixed by the grid: forward and backward give bitwise the same on 1, 2 and 3
+    !> threads (a grid of several blocks each way, the last ones shorter)
+    subroutine test_thread_bits(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: nx = 250, ny = 70
+        type(fft2d_t) :: fft
+        real(dp) :: x(nx, ny), y(nx, ny, 3)
+        complex(dp) :: k(nx/2 + 1, ny, 3)
+        integer :: t, t0
+        call fft%init(nx, ny, error, planner='estimate'); if (allocated(error)) return
+        call random_number(x)
+        t0 = 1
+        !$ t0 = omp_get_max_threads()
+        do t = 1, 3
+            !$ call omp_set_num_threads(t)
+            fft%x = x; call fft%forward(); k(:, :, t) = fft%k
+            fft%k = cmplx(real(k(:, :, t))**2, aimag(k(:, :, t)), dp)
+            call fft%backward(); y(:, :, t) = fft%x
+        end do
+        !$ call omp_set_num_threads(t0)
+        call check(error, all(k(:, :, 2) == k(:, :, 1)) .and. all(k(:, :, 3) == k(:, :, 1)) .and. &
+                   all(y(:, :, 2) == y(:, :, 1)) .and. all(y(:, :, 3) == y(:, :, 1)), &
+                   "the transforms differ between 1, 2 and 3 threads")
+    end subroutine test_thread_bits
 
     !> The surface generator's isolated plan gives bitwise the same heights whether or not the
     !> process planned a transform of the same size with FFTW_MEASURE before (whose wisdom an

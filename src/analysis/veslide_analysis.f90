@@ -52,7 +52,7 @@ contains
             serial%nx = nx; serial%ny = size(p, 2)       ! one process: periodic rows
             call halo_rows(serial, p, depth, pe); call halo_rows(serial, g, depth, ge)
         end if
-        !$omp parallel do
+        !$omp parallel do schedule(guided)
         do j = 1, size(p, 2)
             rows(1, j) = subcell_row(pe, ge, j, depth)
         end do

@@ -86,7 +86,7 @@ contains
             slot = self%slot; mk = self%stored
             rl = self%row; nrow = n/rl
             ! new columns with the Gram row and the right-hand side, in one pass, row by row
-            !$omp parallel do private(i, dfv, k, part)
+            !$omp parallel do schedule(guided) private(i, dfv, k, part)
             do j = 1, nrow
                 part(1:2*mk) = 0.0_dp
                 do i = (j - 1)*rl + 1, j*rl
@@ -111,7 +111,7 @@ contains
             end if
             accelerated = info == 0
             ! the update of z, keeping (z, f) for the next step
-            !$omp parallel do private(zn, k)
+            !$omp parallel do schedule(guided) private(zn, k)
             do i = 1, n
                 zn = z(i) + f(i)
                 do k = 1, mk

@@ -159,7 +159,7 @@ contains
                 state%approach_m = -t(1)
             end if
             state%g = state%g + state%approach_m
-            !$omp parallel do
+            !$omp parallel do schedule(guided)
             do j = 1, size(state%p, 2)
                 rows(:, j) = [sum(state%p(:, j)*state%g(:, j)), sum(abs(state%p(:, j))), sum(state%p(:, j))]
             end do

@@ -166,7 +166,7 @@ contains
         do
             ! pass 1: statistics of g = fft%x - gprev: contact-set mean, residual measures
             nact = 0; gmin = huge(1.0_dp)
-            !$omp parallel do private(i, g, r3) reduction(+:nact) reduction(min:gmin)
+            !$omp parallel do schedule(guided) private(i, g, r3) reduction(+:nact) reduction(min:gmin)
             do j = 1, ny
                 r3 = 0.0_dp
                 do i = 1, nx
@@ -199,7 +199,7 @@ contains
 
             ! pass 2: residual r on the contact set, with the points outside it that penetrate
             ! (into the FFT buffer; r is not kept: r.v needs only r.z, by Parseval, and r.v_old)
-            !$omp parallel do private(i, g, w)
+            !$omp parallel do schedule(guided) private(i, g, w)
             do j = 1, ny
                 w = 0.0_dp
                 do i = 1, nx
@@ -219,7 +219,7 @@ contains
 
             ! preconditioned residual z = M^-1 r (one FFT pair), and r.z by Parseval
             call fft%forward()
-            !$omp parallel do private(i, w, z)
+            !$omp parallel do schedule(guided) private(i, w, z)
             do j = 1, nb
                 z = 0.0_dp
                 do i = 1, na
@@ -239,7 +239,7 @@ contains
 
             ! pass 3: direction v = z + beta v on the contact set, zero outside
             rv = rz + beta*rvo
-            !$omp parallel do private(i, z)
+            !$omp parallel do schedule(guided) private(i, z)
             do j = 1, ny
                 do i = 1, nx
                     if (self%act(i, j) /= 0) then
@@ -255,7 +255,7 @@ contains
 
             ! v.Mv by Parseval (one forward transform; fft%k keeps v^)
             call fft%forward()
-            !$omp parallel do private(i, z)
+            !$omp parallel do schedule(guided) private(i, z)
             do j = 1, nb
                 z = 0.0_dp
                 do i = 1, na
@@ -279,7 +279,7 @@ contains
             ! pass 4: step and clipping (points leave the set; the clipped amounts c go to the
             ! FFT buffer), the load kept by the pending factor
             nclip = 0
-            !$omp parallel do private(i, pt, w) reduction(+:nclip)
+            !$omp parallel do schedule(guided) private(i, pt, w) reduction(+:nclip)
             do j = 1, ny
                 w = 0.0_dp
                 do i = 1, nx
@@ -310,7 +310,7 @@ contains
             ! the transform of the new pressure a p + alpha v + c: the step's part from v^, the
             ! clipped part c from its own transform (or directly, for a few points); then the gap
             if (nclip == 0) then
-                !$omp parallel do private(i)
+                !$omp parallel do schedule(guided) private(i)
                 do j = 1, nb
                     do i = 1, na
                         self%pk(i, j) = a*self%pk(i, j) + alpha*fft%k(i, j)
@@ -347,7 +347,7 @@ contains
         subroutine gap_multiply(a)
             real(dp), intent(in) :: a
             integer :: i, j
-            !$omp parallel do private(i)
+            !$omp parallel do schedule(guided) private(i)
             do j = 1, nb
                 do i = 1, na
                     fft%k(i, j) = self%pk(i, j)*(a*self%ks(i, j)) - self%hk(i, j)
@@ -392,7 +392,7 @@ contains
                     ey(j, k) = exp(cmplx(0.0_dp, -two_pi*real(modulo((j - 1)*(jc - 1), nyg), dp)/nyg, dp))
                 end do
             end do
-            !$omp parallel do private(a, k, s, ij)
+            !$omp parallel do schedule(guided) private(a, k, s, ij)
             do b = 1, nb
                 do a = 1, na
                     ij = self%grid%spectral_index(a, b)

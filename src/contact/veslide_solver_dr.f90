@@ -104,7 +104,7 @@ contains
                 slot = modulo(slot, m) + 1; mk = min(stored + 1, m)
             end if
             rp = 0.0_dp; rg = 0.0_dp
-            !$omp parallel do private(i, xv, zv, yv, fv, dfv, k, part) reduction(max:rp, rg)
+            !$omp parallel do schedule(guided) private(i, xv, zv, yv, fv, dfv, k, part) reduction(max:rp, rg)
             do j = 1, ny
                 part(1:1 + 2*mk) = 0.0_dp
                 do i = (j - 1)*nx + 1, j*nx
@@ -180,7 +180,7 @@ contains
                 if (rp > opts%balance_ratio*rg) s = 1.0_dp/opts%balance_factor
                 if (s /= 1.0_dp) then
                     ! z = y + s (z - y): z = p + gamma g remapped to the new gamma
-                    !$omp parallel do private(yv)
+                    !$omp parallel do schedule(guided) private(yv)
                     do i = 1, n
                         yv = max(2.0_dp*xb(i) - z(i), 0.0_dp)
                         z(i) = yv + s*(z(i) - yv)
@@ -209,7 +209,7 @@ contains
             accelerated = mk > 0
 
             ! pass B: z <- z + f - G c, keeping (z, f); the next map's input into the buffer
-            !$omp parallel do private(xv, zv, fv, zn, k)
+            !$omp parallel do schedule(guided) private(xv, zv, fv, zn, k)
             do i = 1, n
                 xv = xb(i); zv = z(i)
                 fv = max(2.0_dp*xv - zv, 0.0_dp) - xv

@@ -102,7 +102,7 @@ contains
             ! x = resolvent of z; the inner heights M (2x - z)
             fft%x = zz
             call fft%forward()
-            !$omp parallel do private(i)
+            !$omp parallel do schedule(guided) private(i)
             do j = 1, nb
                 do i = 1, na
                     b%hk(i, j) = fft%k(i, j)
@@ -129,7 +129,7 @@ contains
             call fft%backward_unscaled()
             b%pairs = b%pairs + 0.5_dp
             nc = 0
-            !$omp parallel do private(i, g) reduction(+:nc)
+            !$omp parallel do schedule(guided) private(i, g) reduction(+:nc)
             do j = 1, ny
                 g = 0.0_dp
                 do i = 1, nx
@@ -145,7 +145,7 @@ contains
             s1 = t2(1)
             d = -s1/real(max(nc, 1_i8), dp)
             gmin = huge(1.0_dp)
-            !$omp parallel do private(i, g, t2) reduction(min:gmin)
+            !$omp parallel do schedule(guided) private(i, g, t2) reduction(min:gmin)
             do j = 1, ny
                 t2 = 0.0_dp
                 do i = 1, nx

@@ -1,14 +1,17 @@
 !> The operating system, through a small C file (veslide_posix.c): the kind of a path, an
 !> advisory lock, SIGXFSZ made an ordinary write error, the memory a process may use, and
-!> OpenMP's passive wait chosen for a program whose user did not choose (prefer_passive_wait)
+!> OpenMP's passive wait chosen for a program whose user did not choose (prefer_passive_wait),
+!> and the number of OpenMP threads a run asks for (use_threads)
 module veslide_system
     use, intrinsic :: iso_c_binding, only: c_int, c_long_long, c_char, c_null_char
+    !$ use omp_lib, only: omp_set_num_threads
     use veslide_kinds, only: i8
     implicit none
     private
     public :: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, PATH_OTHER
     public :: lock_file, unlock_file, LOCK_BUSY, ignore_file_size_signal
     public :: available_memory_bytes, peak_memory_bytes, resident_memory_bytes, exit_now, prefer_passive_wait
+    public :: use_threads
 
     integer, parameter :: PATH_MISSING = -1, PATH_REGULAR = 0, PATH_DIRECTORY = 1, PATH_OTHER = 2
     !> lock_file's result when another process holds the lock
@@ -58,6 +61,13 @@ contains
         flush (output_unit); flush (error_unit)
         call c_exit(int(status, c_int))
     end subroutine exit_now
+
+    !> Run the OpenMP regions that follow on `n` threads; n <= 0 leaves the number as it is
+    !> (OMP_NUM_THREADS, else one per core). Results do not depend on it (README: Reproducible).
+    subroutine use_threads(n)
+        integer, intent(in) :: n
+        !$ if (n > 0) call omp_set_num_threads(n)
+    end subroutine use_threads
 
     !> PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY or PATH_OTHER (FIFO, device, socket)
     integer function path_kind(path) result(kind)

@@ -26,7 +26,7 @@ module veslide_case
     use veslide_quantities, only: results_t, add_force_quantities, add_solver_quantities
     use veslide_topography, only: read_topography, topography_shape
     use veslide_memory, only: memory_estimate_bytes, format_gib
-    use veslide_system, only: available_memory_bytes, peak_memory_bytes
+    use veslide_system, only: available_memory_bytes, peak_memory_bytes, use_threads
     use veslide_hdf5, only: h5file_t
     use veslide_hdf5_parallel, only: create_collective, write_rows
     use veslide_output, only: write_provenance, write_results, write_field, field_layout
@@ -250,8 +250,8 @@ contains
         call build_surface(cfg, c%h, error, on=c%grid)
         call share_error(c%grid, error); if (allocated(error)) return
         c%surface_seconds = wall_seconds() - t0
-        call fft%init(c%grid%nx, c%grid%ny, error, planner=cfg%solver%fft_planner, nthreads=cfg%solver%threads, &
-                      grid=c%grid)
+        call use_threads(cfg%solver%threads)
+        call fft%init(c%grid%nx, c%grid%ny, error, planner=cfg%solver%fft_planner, grid=c%grid)
         if (allocated(error)) return
         call build_material(cfg, c%mat, error); if (allocated(error)) return
         call build_kernel(cfg, c%grid, c%mat, c%kernel, c%kernel_seconds, error); if (allocated(error)) return

@@ -21,7 +21,7 @@ module veslide_study
     use veslide_material, only: material_t
     use veslide_hdf5, only: h5file_t
     use veslide_output, only: write_provenance, discard_output
-    use veslide_system, only: path_kind, PATH_REGULAR
+    use veslide_system, only: path_kind, PATH_REGULAR, use_threads
     use veslide_version, only: version_string
     use veslide_quantities, only: results_t, axial_of, AXIAL_NONE, AXIAL_HALF_TURN
     use veslide_case, only: case_t, build_surface, build_material, build_kernel, case_grid, solve_prepared, &
@@ -176,7 +176,8 @@ contains
             call f%open(path, 'w', error); if (allocated(error)) return
             call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true.); if (allocated(error)) return
         end if
-        call fft%init(grid%nx, grid%ny, error, planner=cfg%solver%fft_planner, nthreads=cfg%solver%threads)
+        call use_threads(cfg%solver%threads)
+        call fft%init(grid%nx, grid%ny, error, planner=cfg%solver%fft_planner)
         if (allocated(error)) return
 
         t_start = wall_seconds()

@@ -1,8 +1,16 @@
 !> Two-dimensional real FFTs through FFTW 3's Fortran 2003 interface, serial or distributed.
 !>
-!> One `fft2d_t` owns FFTW-aligned buffers `x` (nx, ny) and `k` (nx/2+1, ny) and the two plans
+!> One `fft2d_t` owns FFTW-aligned buffers `x` (nx, ny) and `k` (nx/2+1, ny) and the plans
 !> between them, made once and reused. `forward` is x -> k, `backward` is k -> x divided by nx*ny,
 !> so backward(forward(x)) = x. Never assign an `fft2d_t`: the copy would share, then free, C memory.
+!>
+!> On one process a 2-D transform is done as FFTW's 1-D transforms of blocks of `block` rows
+!> (r2c / c2r along x) and of `block` spectral columns (c2c along y, in place), the blocks handed
+!> to the OpenMP threads one at a time as they become free (schedule dynamic). The blocks are fixed
+!> by the grid, not by the threads, so the arithmetic, and every bit of the result, is the same
+!> for any number of threads; and a thread slowed by another process on its core holds up one
+!> block, not half of the transform. (Measured on one thread: as fast as FFTW's 2-D plan, 0.86-1.01
+!> of its time from 512^2 to 2048^2; docs/solver-scaling.md.)
 !>
 !> On a distributed grid (`distribute_grid`, the MPI build) the transforms are FFTW's MPI ones:
 !> `x` holds the process's rows (nx, ny_local) and `k` its half-spectrum rows in FFTW's transposed
@@ -30,6 +38,10 @@ module veslide_fftw
 #endif
     public :: fft2d_t, fft_planner_flag, fft_planner_names, distribute_grid
 
+    !> rows (spectral columns) per FFTW call on one process: fixed, so the results do not depend on
+    !> the threads (16: the fastest of 8, 16, 32 at 512^2-2048^2 on one thread)
+    integer, parameter :: block = 16
+
     !> FFTW planner rigour by name (the namelist's `&solver fft_planner`)
     character(len=*), parameter :: fft_planner_names(3) = [character(len=8) :: 'estimate', 'measure', 'patient']
 
@@ -38,12 +50,15 @@ module veslide_fftw
         logical :: distributed = .false.       !! FFTW's MPI transforms on a distributed grid
         real(c_double) :: seconds = 0.0_c_double  !! wall time spent in the transforms so far [s]
         integer :: transforms = 0              !! transforms executed so far
-        type(c_ptr), private :: plan_r2c = c_null_ptr, plan_c2r = c_null_ptr
+        type(c_ptr), private :: plan_r2c = c_null_ptr, plan_c2r = c_null_ptr  !! distributed: FFTW-MPI's
+        !> one process: 1-D plans for a full block (1) and for the last, shorter one (2)
+        type(c_ptr), private :: rows_r2c(2) = c_null_ptr, rows_c2r(2) = c_null_ptr
+        type(c_ptr), private :: cols_fwd(2) = c_null_ptr, cols_bwd(2) = c_null_ptr
         type(c_ptr), private :: p_x = c_null_ptr, p_k = c_null_ptr
         !> real-space buffer, (nx, ny) (distributed: (nx, ny_local)), FFTW-aligned
-        real(c_double), pointer :: x(:, :) => null()
+        real(c_double), pointer, contiguous :: x(:, :) => null()
         !> half-spectrum buffer, (nx/2+1, ny) (distributed: (ny, nq_local)), FFTW-aligned
-        complex(c_double_complex), pointer :: k(:, :) => null()
+        complex(c_double_complex), pointer, contiguous :: k(:, :) => null()
         !> distributed: the padded real view (2 (nx/2+1), ny_local) of the in-place buffer
         real(c_double), pointer, private :: xr(:, :) => null()
     contains
@@ -55,7 +70,7 @@ module veslide_fftw
         final :: fft_finalize
     end type fft2d_t
 
-    logical, save :: threads_ready = .false., mpi_ready = .false., wisdom_loaded = .false.
+    logical, save :: mpi_ready = .false., wisdom_loaded = .false.
 
     interface
         subroutine c_free(p) bind(c, name='free')
@@ -83,13 +98,12 @@ contains
         end select
     end function fft_planner_flag
 
-    !> Allocate buffers and plan both transforms (buffers are overwritten by planning).
+    !> Allocate buffers and plan the transforms (buffers are overwritten by planning); with a
+    !> distributed `grid`, FFTW's MPI transforms over its processes (collective).
     !> `isolated` plans FFTW_ESTIMATE without the process's accumulated wisdom (and leaves that
     !> wisdom as it was): a one-off transform whose rounding is the same in every run, whatever
     !> other plans the process made before (used by the surface generator).
-    !> Allocate buffers and plan both transforms (buffers are overwritten by planning); with a
-    !> distributed `grid`, FFTW's MPI transforms over its processes (collective)
-    subroutine fft_init(self, nx, ny, error, planner, nthreads, isolated, grid)
+    subroutine fft_init(self, nx, ny, error, planner, isolated, grid)
         class(fft2d_t), intent(inout) :: self
         !> grid size
         integer, intent(in) :: nx, ny
@@ -97,14 +111,12 @@ contains
         type(error_t), allocatable, intent(out) :: error
         !> FFTW planner flag name (default 'measure')
         character(len=*), intent(in), optional :: planner
-        !> threads used by each transform (default 1)
-        integer, intent(in), optional :: nthreads
-        !> plan FFTW_ESTIMATE on one thread, ignoring wisdom (default .false.)
+        !> plan FFTW_ESTIMATE, ignoring wisdom (default .false.)
         logical, intent(in), optional :: isolated
         !> the grid, when it may be distributed
         type(grid_t), intent(in), optional :: grid
-        integer :: flag, nthreads_
-        logical :: isolated_
+        integer :: flag, count_
+        logical :: isolated_, planned
         type(c_ptr) :: saved
         integer(c_int) :: stat
 
@@ -119,19 +131,8 @@ contains
         end if
         flag = FFTW_MEASURE
         if (present(planner)) flag = fft_planner_flag(planner)
-        nthreads_ = 1
-        if (present(nthreads)) nthreads_ = max(1, nthreads)
-        if (nthreads_ > 1 .and. .not. threads_ready) then
-            if (fftw_init_threads() == 0) then
-                call fatal_error(error, "veslide:fftw:init: fftw_init_threads failed"); return
-            end if
-            threads_ready = .true.
-        end if
         isolated_ = .false.; if (present(isolated)) isolated_ = isolated
-        if (isolated_) then
-            flag = FFTW_ESTIMATE; nthreads_ = 1
-        end if
-        if (threads_ready) call fftw_plan_with_nthreads(int(nthreads_, c_int))
+        if (isolated_) flag = FFTW_ESTIMATE
 
         self%nx = nx; self%ny = ny
         self%p_x = fftw_alloc_real(int(nx, c_size_t)*int(ny, c_size_t))
@@ -141,26 +142,71 @@ contains
         end if
         call c_f_pointer(self%p_x, self%x, [nx, ny])
         call c_f_pointer(self%p_k, self%k, [nx/2 + 1, ny])
-        ! FFTW is row-major: dimensions are passed reversed
         if (isolated_) then
             call set_wisdom_aside(saved)
         else if (flag /= FFTW_ESTIMATE .and. .not. wisdom_loaded) then
             stat = wisdom_load(); wisdom_loaded = .true.
         end if
-        self%plan_r2c = fftw_plan_dft_r2c_2d(int(ny, c_int), int(nx, c_int), self%x, self%k, flag)
-        self%plan_c2r = fftw_plan_dft_c2r_2d(int(ny, c_int), int(nx, c_int), self%k, self%x, flag)
+        call plan_blocks(planned)
         if (isolated_) then
             call restore_wisdom(saved)
         else if (flag /= FFTW_ESTIMATE) then
             stat = wisdom_save()
         end if
-        if (.not. (c_associated(self%plan_r2c) .and. c_associated(self%plan_c2r))) then
+        if (.not. planned) then
             call fatal_error(error, "veslide:fftw:init: FFTW returned a null plan"); return
         end if
         self%x = 0.0_c_double
         self%k = (0.0_c_double, 0.0_c_double)
 
     contains
+
+        !> The 1-D plans of one process: r2c / c2r of `block` rows (x), c2c in place of `block`
+        !> spectral columns (y; none when ny = 1), and the same for the last, shorter block. Each
+        !> is planned on the buffer position of the block it runs on (FFTW requires the same
+        !> alignment; every block starts a multiple of 16 rows or columns in, so all align alike).
+        subroutine plan_blocks(ok)
+            logical, intent(out) :: ok   !! no plan came back null
+            integer :: nq, m, j0
+            ok = .true.
+            nq = nx/2 + 1
+            do m = 1, 2
+                if (m == 1) then
+                    j0 = 1; if (ny < block) cycle
+                    count_ = block
+                else
+                    count_ = mod(ny, block); j0 = ny - count_ + 1
+                    if (count_ == 0) cycle
+                end if
+                self%rows_r2c(m) = fftw_plan_many_dft_r2c(1, [nx], count_, self%x(:, j0:), [nx], 1, nx, &
+                                                          self%k(:, j0:), [nq], 1, nq, flag)
+                self%rows_c2r(m) = fftw_plan_many_dft_c2r(1, [nx], count_, self%k(:, j0:), [nq], 1, nq, &
+                                                          self%x(:, j0:), [nx], 1, nx, flag)
+                ok = ok .and. c_associated(self%rows_r2c(m)) .and. c_associated(self%rows_c2r(m))
+            end do
+            if (ny == 1) return
+            do m = 1, 2
+                if (m == 1) then
+                    j0 = 1; if (nq < block) cycle
+                    count_ = block
+                else
+                    count_ = mod(nq, block); j0 = nq - count_ + 1
+                    if (count_ == 0) cycle
+                end if
+                self%cols_fwd(m) = fftw_plan_many_dft(1, [ny], count_, column(j0), [ny], nq, 1, &
+                                                      column(j0), [ny], nq, 1, FFTW_FORWARD, flag)
+                self%cols_bwd(m) = fftw_plan_many_dft(1, [ny], count_, column(j0), [ny], nq, 1, &
+                                                      column(j0), [ny], nq, 1, FFTW_BACKWARD, flag)
+                ok = ok .and. c_associated(self%cols_fwd(m)) .and. c_associated(self%cols_bwd(m))
+            end do
+        end subroutine plan_blocks
+
+        !> The half spectrum from spectral column i0 on, as one array (for FFTW's strided plans)
+        function column(i0) result(kc)
+            integer, intent(in) :: i0
+            complex(c_double_complex), pointer, contiguous :: kc(:)
+            call c_f_pointer(c_loc(self%k(i0, 1)), kc, [size(self%k) - (i0 - 1)])
+        end function column
 
         subroutine init_distributed()
 #ifdef VESLIDE_MPI
@@ -283,7 +329,8 @@ contains
             call fftw_mpi_execute_dft_r2c(self%plan_r2c, self%xr, self%k)
 #endif
         else
-            call fftw_execute_dft_r2c(self%plan_r2c, self%x, self%k)
+            call rows_forward(self)
+            call columns(self, self%cols_fwd)
         end if
         self%seconds = self%seconds + (wall_seconds() - t0); self%transforms = self%transforms + 1
     end subroutine fft_forward
@@ -306,16 +353,70 @@ contains
             self%x = self%xr(1:self%nx, :)
 #endif
         else
-            call fftw_execute_dft_c2r(self%plan_c2r, self%k, self%x)
+            call columns(self, self%cols_bwd)
+            call rows_backward(self)
         end if
         self%seconds = self%seconds + (wall_seconds() - t0); self%transforms = self%transforms + 1
     end subroutine fft_backward_unscaled
 
+    !> The rows' r2c transforms, block by block (x -> k)
+    subroutine rows_forward(self)
+        class(fft2d_t), intent(inout) :: self
+        integer :: b, j0
+        !$omp parallel do schedule(dynamic) private(j0)
+        do b = 1, (self%ny + block - 1)/block
+            j0 = (b - 1)*block + 1
+            call fftw_execute_dft_r2c(self%rows_r2c(merge(1, 2, j0 + block - 1 <= self%ny)), &
+                                      self%x(:, j0:), self%k(:, j0:))
+        end do
+        !$omp end parallel do
+    end subroutine rows_forward
+
+    !> The rows' c2r transforms, block by block (k -> x, k destroyed)
+    subroutine rows_backward(self)
+        class(fft2d_t), intent(inout) :: self
+        integer :: b, j0
+        !$omp parallel do schedule(dynamic) private(j0)
+        do b = 1, (self%ny + block - 1)/block
+            j0 = (b - 1)*block + 1
+            call fftw_execute_dft_c2r(self%rows_c2r(merge(1, 2, j0 + block - 1 <= self%ny)), &
+                                      self%k(:, j0:), self%x(:, j0:))
+        end do
+        !$omp end parallel do
+    end subroutine rows_backward
+
+    !> The spectral columns' c2c transforms in place, block by block, with `plans` (forward or
+    !> backward; nothing to do when ny = 1)
+    subroutine columns(self, plans)
+        class(fft2d_t), intent(inout) :: self
+        type(c_ptr), intent(in) :: plans(2)
+        complex(c_double_complex), pointer, contiguous :: kc(:)
+        integer :: b, i0, nq
+        if (self%ny == 1) return
+        nq = self%nx/2 + 1
+        !$omp parallel do schedule(dynamic) private(i0, kc)
+        do b = 1, (nq + block - 1)/block
+            i0 = (b - 1)*block + 1
+            call c_f_pointer(c_loc(self%k(i0, 1)), kc, [size(self%k) - (i0 - 1)])
+            call fftw_execute_dft(plans(merge(1, 2, i0 + block - 1 <= nq)), kc, kc)
+        end do
+        !$omp end parallel do
+    end subroutine columns
+
     !> Free plans and buffers
     subroutine fft_destroy(self)
         class(fft2d_t), intent(inout) :: self
+        integer :: m
         if (c_associated(self%plan_r2c)) call fftw_destroy_plan(self%plan_r2c)
         if (c_associated(self%plan_c2r)) call fftw_destroy_plan(self%plan_c2r)
+        do m = 1, 2
+            if (c_associated(self%rows_r2c(m))) call fftw_destroy_plan(self%rows_r2c(m))
+            if (c_associated(self%rows_c2r(m))) call fftw_destroy_plan(self%rows_c2r(m))
+            if (c_associated(self%cols_fwd(m))) call fftw_destroy_plan(self%cols_fwd(m))
+            if (c_associated(self%cols_bwd(m))) call fftw_destroy_plan(self%cols_bwd(m))
+        end do
+        self%rows_r2c = c_null_ptr; self%rows_c2r = c_null_ptr
+        self%cols_fwd = c_null_ptr; self%cols_bwd = c_null_ptr
         if (c_associated(self%p_x)) call fftw_free(self%p_x)
         if (c_associated(self%p_k)) call fftw_free(self%p_k)
         self%plan_r2c = c_null_ptr; self%plan_c2r = c_null_ptr

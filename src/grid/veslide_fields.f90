@@ -20,7 +20,7 @@ contains
         real(dp), intent(in) :: f(:, :)
         real(dp) :: rows(1, size(f, 2)), t(1)
         integer :: j
-        !$omp parallel do
+        !$omp parallel do schedule(guided)
         do j = 1, size(f, 2)
             rows(1, j) = sum(f(:, j))
         end do
@@ -36,7 +36,7 @@ contains
         real(dp), intent(out) :: totals(:)
         real(dp) :: rows(size(f, 3), size(f, 2))
         integer :: j, k
-        !$omp parallel do private(k)
+        !$omp parallel do schedule(guided) private(k)
         do j = 1, size(f, 2)
             do k = 1, size(f, 3)
                 rows(k, j) = sum(f(:, j, k))
@@ -60,7 +60,7 @@ contains
         real(dp) :: rows(1, size(f, 2)), t(1), m
         integer :: j
         m = field_mean(grid, f)
-        !$omp parallel do
+        !$omp parallel do schedule(guided)
         do j = 1, size(f, 2)
             rows(1, j) = sum((f(:, j) - m)**2)
         end do
@@ -75,7 +75,7 @@ contains
         real(dp), intent(in) :: f(:, :), g(:, :)
         real(dp) :: rows(1, size(f, 2)), t(1)
         integer :: j
-        !$omp parallel do
+        !$omp parallel do schedule(guided)
         do j = 1, size(f, 2)
             rows(1, j) = sum(f(:, j)*g(:, j))
         end do

@@ -22,7 +22,7 @@ contains
         real(dp), intent(in), optional :: band(2), scale
         integer :: a, b, i, j, ij(2)
         real(dp) :: q(2), p2, qn, cols(3, size(ak, 2)), t(3)
-        !$omp parallel do private(a, i, j, ij, q, p2, qn)
+        !$omp parallel do schedule(guided) private(a, i, j, ij, q, p2, qn)
         do b = 1, size(ak, 2)
             cols(:, b) = 0.0_dp
             do a = 1, size(ak, 1)

@@ -20,7 +20,7 @@ module veslide_config_solver
         real(dp) :: alias_tol = 1.0e-6_dp                !! alias sums: relative tolerance
         integer :: alias_max = 64                        !! alias sums: largest zone index
         character(len=:), allocatable :: fft_planner     !! one of fft_planner_names
-        integer :: threads = 1                           !! threads per FFT
+        integer :: threads = 0                           !! OpenMP threads of the run (0: OMP_NUM_THREADS)
         integer :: anderson_memory = 5, balance_every = 50    ! docs/solver-scaling.md: why not 100
         real(dp) :: balance_ratio = 10.0_dp, balance_factor = 3.0_dp
     end type solver_config_t
@@ -88,7 +88,8 @@ contains
                      'balance_ratio', str(balance_ratio), "1 to 1e6")
         call require(error, finite_in(balance_factor, 1.0_dp, 100.0_dp, open_low=.true.), path, 'solver', &
                      'balance_factor', str(balance_factor), "> 1 and <= 100")
-        call require(error, threads >= 1 .and. threads <= 1024, path, 'solver', 'threads', str(threads), "1 to 1024")
+        call require(error, threads >= 0 .and. threads <= 1024, path, 'solver', 'threads', str(threads), &
+                     "0 (as OMP_NUM_THREADS) to 1024")
     contains
         subroutine try(lines, stat, msg)
             character(len=*), intent(in) :: lines(:)

@@ -373,7 +373,7 @@ contains
         fft%x = p
         call fft%forward()
         allocate (cols(2, size(fft%k, 2)))
-        !$omp parallel do private(a, ij)
+        !$omp parallel do schedule(guided) private(a, ij)
         do b = 1, size(fft%k, 2)
             cols(:, b) = 0.0_dp
             do a = 1, size(fft%k, 1)
