@@ -44,8 +44,9 @@ module veslide_solver_bccg
         type(grid_t) :: grid                   !! the grid (distributed or not)
         integer :: nx = 0, ny = 0, nq = 0      !! ny: this process's rows
         real(dp) :: cells = 0.0_dp             !! N = nx ny, the whole grid's cells
-        real(dp), allocatable :: ks(:, :)      !! M/N on the spectral storage (grid%spectral_shape)
-        real(dp), allocatable :: minv(:, :)    !! 1/(M N) (0 on the mean mode): the preconditioner
+        real(dp), allocatable :: ks(:, :)      !! M/N on the spectral storage (grid%spectral_shape);
+                                               !! the preconditioner 1/(M N) = 1/(ks N^2) is taken
+                                               !! from it where used (4 bytes per cell fewer)
         !> Hermitian weights as a product wa(a) wb(b) over the storage positions (a, b)
         real(dp), allocatable :: wa(:), wb(:)
         complex(dp), allocatable :: hk(:, :)   !! transform of the heights / N
@@ -82,13 +83,6 @@ contains
         n = self%cells
         sh = grid%spectral_shape()
         self%ks = ks
-        if (allocated(self%minv)) deallocate (self%minv)
-        allocate (self%minv(sh(1), sh(2)))
-        where (ks > 0.0_dp)
-            self%minv = 1.0_dp/(ks*n*n)
-        elsewhere
-            self%minv = 0.0_dp
-        end where
         if (grid%transposed) then
             self%wa = [(1.0_dp, i=1, sh(1))]
             self%wb = [(grid%hermitian_weight(grid%i0 + i), i=1, sh(2))]
@@ -105,12 +99,13 @@ contains
         self%pairs = 0.0_dp
     end subroutine bccg_init
 
-    !> Heights H (dimensionless, any mean): their transform / N (one forward transform)
-    subroutine bccg_set_heights(self, fft, h)
+    !> Heights H = scale h (dimensionless, any mean): their transform / N (one forward transform)
+    subroutine bccg_set_heights(self, fft, h, scale)
         class(bccg_t), intent(inout) :: self
         type(fft2d_t), intent(inout) :: fft
         real(dp), intent(in) :: h(:, :)
-        fft%x = h
+        real(dp), intent(in) :: scale
+        fft%x = h*scale
         call fft%forward()
         self%hk = fft%k/self%cells
         if (self%grid%owns_mean_mode()) self%hk(1, 1) = (0.0_dp, 0.0_dp)
@@ -132,7 +127,7 @@ contains
         !> told each iteration (a solve of its own; an outer iteration reports for itself)
         type(progress_ticker_t), intent(inout), optional :: ticker
         integer, parameter :: max_direct = 8     ! clipped points transformed directly, not by FFT
-        real(dp) :: n, a, a_new, gprev, s1, gmin, spg, sp, c1, gbar, g, rz, rz_old, beta, rv, rvo, vkv, alpha, pt, z, w
+        real(dp) :: n, n2, a, a_new, gprev, s1, gmin, spg, sp, c1, gbar, g, rz, rz_old, beta, rv, rvo, vkv, alpha, pt, z, w
         real(dp) :: r3(3), t3(3)
         real(dp), allocatable :: rows(:, :), cols(:), pts(:, :)
         integer :: i, j, na, nb, nx, ny, nq, nclip
@@ -141,7 +136,7 @@ contains
 
         nx = self%nx; ny = self%ny; nq = self%nq
         na = size(self%ks, 1); nb = size(self%ks, 2)
-        n = self%cells
+        n = self%cells; n2 = n*n
         allocate (rows(3, ny), cols(nb))
         reuse = .false.
         if (present(same_start)) reuse = same_start .and. self%pk_valid
@@ -223,7 +218,8 @@ contains
             do j = 1, nb
                 z = 0.0_dp
                 do i = 1, na
-                    w = self%minv(i, j)
+                    w = 0.0_dp
+                    if (self%ks(i, j) > 0.0_dp) w = 1.0_dp/(self%ks(i, j)*n2)
                     z = z + self%wa(i)*w*(real(fft%k(i, j))**2 + aimag(fft%k(i, j))**2)
                     fft%k(i, j) = fft%k(i, j)*w
                 end do
@@ -418,7 +414,6 @@ contains
         !> on entry the starting pressure (problem%start); on exit the solution
         type(contact_state_t), intent(inout) :: state
         type(bccg_t) :: b
-        real(dp), allocatable :: p(:, :)
         real(dp) :: hs, p_mean, tol
         integer :: its
         type(progress_ticker_t) :: ticker
@@ -428,13 +423,14 @@ contains
         state%method = 'bccg'
         call ticker%start(opts, 'bccg')
         call b%init(fft, real(problem%kernel%multiplier(p_mean/hs)), problem%kernel%grid)
-        call b%set_heights(fft, problem%hc/hs)
-        p = state%p/p_mean
+        call b%set_heights(fft, problem%hc, 1.0_dp/hs)
         tol = opts%tolerance
         its = 0
+        ! solved in place in units of p_mean (no copy of the pressure)
+        state%p = state%p/p_mean
         do
-            call b%solve(fft, p, tol, opts%max_iterations, its, ticker=ticker)
-            state%p = p_mean*p
+            call b%solve(fft, state%p, tol, opts%max_iterations, its, ticker=ticker)
+            state%p = p_mean*state%p
             call problem%kernel%apply(fft, state%p, state%u)
             b%pairs = b%pairs + 1.0_dp
             call problem%residuals(state)
@@ -443,6 +439,7 @@ contains
             end if
             if (its >= opts%max_iterations .or. tol < 1.0e-15_dp) exit
             tol = tol/10.0_dp
+            state%p = state%p/p_mean
         end do
         state%iterations = its
         state%operator_applications = ceiling(b%pairs)

@@ -17,7 +17,7 @@ module veslide_case
                                paraboloid_surface, cylinder_surface, rms_height
     use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id, KERNEL_SPECTRAL
     use veslide_persson, only: persson_t, persson_estimate
-    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
+    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem_moving
     use veslide_solver_options, only: solver_options_t, solver_method_id, solver_progress_callback
     use veslide_solver, only: solve_contact
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation, slope_force
@@ -288,15 +288,17 @@ contains
         real(dp) :: t0
         c%grid = c%kernel%grid
         c%velocity_m_s = c%kernel%velocity_m_s
-        call new_contact_problem(problem, c%kernel, c%h, cfg%load%mean_pressure_pa, error)
+        ! the problem holds the case's kernel while it lives (no copy of the multiplier)
+        call new_contact_problem_moving(problem, c%kernel, c%h, cfg%load%mean_pressure_pa, error)
         call add_context(error, "veslide: "//cfg%path//": ")
         if (allocated(error)) return
         t0 = wall_seconds()
         opts = solver_options(cfg)
         if (present(progress)) opts%progress => progress
         call solve_contact(problem, fft, opts, c%state, error, p_init=p_init, g_init=g_init)
+        if (.not. allocated(error)) call problem%confirm(fft, c%state, cfg%solver%tolerance)  ! the reported residual decides
+        call problem%release(c%kernel)
         if (allocated(error)) return
-        call problem%confirm(fft, c%state, cfg%solver%tolerance)     ! the reported residual decides
         c%solve_seconds = wall_seconds() - t0
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)
         call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)

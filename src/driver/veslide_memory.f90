@@ -4,12 +4,12 @@
 !>
 !> The estimate is the largest of the phases of a run, in bytes per grid cell (N = nx ny), plus a
 !> fixed allowance for the libraries, the FFTW plans and the output. Resident during a solve: the
-!> heights (8), the FFT buffers (16), the case's kernel (8), the contact problem's copy of the
-!> kernel and its heights (16), the solution p, u, g (24); then per solver (measured peaks at
-!> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 48 (the pressure, direction, preconditioner,
-!> operator, the transforms of heights and pressure, the contact set); the splitting dr 40 + 8 m
+!> heights (8), the FFT buffers (16), the kernel (8; the contact problem holds the case's, not a
+!> copy), the problem's heights (8), the solution p, u, g (24); then per solver (measured peaks at
+!> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 36 (direction, operator, the transforms of
+!> heights and pressure, the contact set; the pressure is solved in place); the splitting dr 40 + 8 m
 !> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
-!> history of memory m); pdr 104 + 8 m (bccg's fields, K, the resolvent's constant part, z, f, x,
+!> history of memory m); pdr 100 + 8 m (bccg's fields, K, the resolvent's constant part, z, f, x,
 !> y, Anderson); Polonsky-Keer 16 (t and one influence column). `auto` is taken as bccg for a
 !> symmetric kernel and as pdr from 512^2 cells up (dr below). Surface generation is transient (16 for its
 !> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
@@ -37,7 +37,7 @@ contains
         real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell, m
         logical :: symmetric
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
-        solve = 8 + 16 + 8 + 16 + 24
+        solve = 8 + 16 + 8 + 8 + 24
         m = cfg%solver%anderson_memory
         symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
                                                           size(cfg%sweep%speeds) == 0)
@@ -45,16 +45,16 @@ contains
         case ('pk')
             solver = 16
         case ('bccg')
-            solver = 48
+            solver = 36
         case ('dr')
             solver = 40 + 8*m
         case ('pdr')
-            solver = 104 + 8*m
+            solver = 100 + 8*m
         case default                              ! auto (veslide_solver's rule)
             if (symmetric) then
-                solver = 48
+                solver = 36
             else if (n >= 512.0_dp**2) then
-                solver = 104 + 8*m
+                solver = 100 + 8*m
             else
                 solver = 40 + 8*m
             end if

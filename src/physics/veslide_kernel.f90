@@ -65,6 +65,7 @@ module veslide_kernel
         procedure :: modulus_spread => kernel_modulus_spread
         procedure :: max_abs => kernel_max_abs
         procedure :: typical_abs => kernel_typical_abs
+        procedure :: move_to => kernel_move_to
     end type kernel_t
 
     !> The multiplier of (I + gamma s K)^-1 / (nx ny) (FFTW's normalisation folded in)
@@ -243,6 +244,19 @@ contains
         end subroutine add_shells
 
     end subroutine new_kernel
+
+    !> Hand the operator to `dest` without copying its multiplier; `self` is left without one
+    subroutine kernel_move_to(self, dest)
+        class(kernel_t), intent(inout) :: self
+        type(kernel_t), intent(out) :: dest
+        complex(dp), allocatable :: kd(:, :)
+        call move_alloc(self%kd, kd)
+        select type (self)
+        type is (kernel_t)
+            dest = self
+        end select
+        call move_alloc(kd, dest%kd)
+    end subroutine kernel_move_to
 
     !> A kernel from a given multiplier K_d on the half-spectrum of `grid`, in the grid's spectral
     !> storage (a material law or a geometry that new_kernel does not build: layered solids,
