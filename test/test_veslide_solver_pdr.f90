@@ -185,7 +185,9 @@ contains
         if (allocated(error)) return
         call expect(512, 11.0_dp, peak_speed(11.0_dp, 8.0_dp), KERNEL_COLLOCATION, SOLVER_PDR, error)
         if (allocated(error)) return
-        call expect(256, 11.0_dp, peak_speed(11.0_dp, 8.0_dp), KERNEL_SPECTRAL, SOLVER_DR, error)
+        call expect(256, 11.0_dp, peak_speed(11.0_dp, 8.0_dp), KERNEL_SPECTRAL, SOLVER_PDR, error)
+        if (allocated(error)) return
+        call expect(128, 11.0_dp, peak_speed(11.0_dp, 8.0_dp), KERNEL_SPECTRAL, SOLVER_DR, error)
         if (allocated(error)) return
         call expect(512, 1000.0_dp, peak_speed(1000.0_dp, 8.0_dp), KERNEL_SPECTRAL, SOLVER_DR, error)
         if (allocated(error)) return

@@ -23,11 +23,12 @@ module veslide_solver
     use veslide_solver_pdr, only: preconditioned_douglas_rachford
     implicit none
     private
-    public :: solve_contact, auto_method
+    public :: solve_contact, auto_method, pdr_min_cells
 
-    !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (512^2: below it the
-    !> splitting dr is as cheap, and cheaper on contacts near full)...
-    integer, parameter :: pdr_min_cells = 512*512
+    !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (256^2: there pdr took
+    !> 0.56 of dr's time over the 16 hard cases it is chosen for, though more on contacts near
+    !> full; docs/solver-scaling.md)...
+    integer, parameter :: pdr_min_cells = 256*256
     !> ...when the operator's anisotropy is at most this (pdr's inner problems slow down for
     !> strongly anisotropic operators: Einf/E0 of 100 and more in motion)
     real(dp), parameter :: pdr_max_spread = 20.0_dp

@@ -11,7 +11,7 @@
 !> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
 !> history of memory m); pdr 100 + 8 m (bccg's fields, K, the resolvent's constant part, z, f, x,
 !> y, Anderson); Polonsky-Keer 16 (t and one influence column). `auto` is taken as bccg for a
-!> symmetric kernel and as pdr from 512^2 cells up (dr below). Surface generation is transient (16 for its
+!> symmetric kernel and as pdr from 256^2 cells up (dr below). Surface generation is transient (16 for its
 !> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
 !> kernels hold 32 while they are summed. Analyses after the solve:
 !> slope force 8, patches 32, Persson 24. A study adds one kernel per speed (8 each), the previous
@@ -19,6 +19,7 @@
 module veslide_memory
     use veslide_kinds, only: dp, i8
     use veslide_config, only: config_t
+    use veslide_solver, only: pdr_min_cells
     implicit none
     private
     public :: memory_estimate_bytes, format_gib
@@ -53,7 +54,7 @@ contains
         case default                              ! auto (veslide_solver's rule)
             if (symmetric) then
                 solver = 36
-            else if (n >= 512.0_dp**2) then
+            else if (n >= real(pdr_min_cells, dp)) then
                 solver = 100 + 8*m
             else
                 solver = 40 + 8*m
