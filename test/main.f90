@@ -6,6 +6,7 @@ program veslide_tests
     use testsuite, only: testsuite_t, new_testsuite, run_testsuite
     use test_veslide_rng, only: collect_rng
     use test_veslide_grid, only: collect_grid, collect_fftw
+    use test_veslide_threads, only: collect_threads
     use test_veslide_material, only: collect_material
     use test_veslide_kernel, only: collect_kernel
     use test_veslide_surface, only: collect_surface
@@ -37,6 +38,7 @@ program veslide_tests
         new_testsuite("rng", collect_rng), &
         new_testsuite("grid", collect_grid), &
         new_testsuite("fftw", collect_fftw), &
+        new_testsuite("threads", collect_threads), &
         new_testsuite("material", collect_material), &
         new_testsuite("kernel", collect_kernel), &
         new_testsuite("surface", collect_surface), &

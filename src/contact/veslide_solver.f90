@@ -21,6 +21,7 @@ module veslide_solver
     use veslide_solver_dr, only: douglas_rachford
     use veslide_solver_bccg, only: bccg_solve
     use veslide_solver_pdr, only: preconditioned_douglas_rachford
+    use veslide_threads, only: restore_threads
     implicit none
     private
     public :: solve_contact, auto_method, pdr_min_cells
@@ -81,6 +82,7 @@ contains
         case default
             call fatal_error(error, "veslide:solver:solve_contact: unknown method"); return
         end select
+        call restore_threads()     ! the thread governor may have lowered them (veslide_threads)
     end subroutine solve_contact
 
     !> The method 'auto' takes for a problem (see the module's header)

@@ -3,10 +3,12 @@
 !> iteration, its own residual measure and the FFT pairs spent. On a distributed grid those
 !> numbers are the whole grid's (each process calls its own callback; the program gives one to
 !> the first process only). The callback must not print from a library: the app supplies it.
+!> The same tick lets the thread governor (veslide_threads) choose the threads of the next iteration.
 module veslide_solver_options
     use veslide_kinds, only: dp
     use veslide_strings, only: name_index
     use veslide_clock, only: wall_seconds
+    use veslide_threads, only: thread_governor_t
     implicit none
     private
     public :: solver_options_t, solver_method_id, solver_method_names
@@ -51,12 +53,13 @@ module veslide_solver_options
     end interface
 
     !> A solver's clock for its progress reports: `tick` each iteration, it calls the options'
-    !> callback when `progress_every_s` seconds have passed since the last report (reads the
-    !> clock only when a callback is set)
+    !> callback when `progress_every_s` seconds have passed since the last report, and lets the
+    !> governor set the threads of the next iteration
     type :: progress_ticker_t
         procedure(solver_progress_callback), pointer, nopass :: callback => null()
         character(len=4) :: method = ''
         real(dp) :: every = 5.0_dp, tolerance = 0.0_dp, t0 = 0.0_dp, last = 0.0_dp
+        type(thread_governor_t) :: governor
     contains
         procedure :: start => ticker_start
         procedure :: tick => ticker_tick
@@ -88,17 +91,19 @@ contains
         character(len=*), intent(in) :: method
         self%callback => opts%progress
         self%method = method; self%every = opts%progress_every_s; self%tolerance = opts%tolerance
+        call self%governor%start()
         if (associated(self%callback)) then
             self%t0 = wall_seconds(); self%last = self%t0
         end if
     end subroutine ticker_start
 
-    !> One iteration done: report it if the interval has passed
+    !> One iteration done: the threads of the next, and a report if the interval has passed
     subroutine ticker_tick(self, iterations, residual, operator_applications)
         class(progress_ticker_t), intent(inout) :: self
         integer, intent(in) :: iterations, operator_applications
         real(dp), intent(in) :: residual
         real(dp) :: t
+        call self%governor%tick()
         if (.not. associated(self%callback)) return
         t = wall_seconds()
         if (t - self%last < self%every) return

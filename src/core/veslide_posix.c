@@ -177,3 +177,12 @@ void veslide_prefer_passive_wait(void)
     execv("/proc/self/exe", argv);
     unsetenv("OMP_WAIT_POLICY");     /* exec failed: go on with the library's default */
 }
+
+/* Involuntary context switches of the process so far (all its threads): how often the kernel
+ * took a core from it for another runnable task; -1 when unknown */
+long long veslide_involuntary_switches(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0) return -1;
+    return (long long)ru.ru_nivcsw;
+}
