@@ -329,7 +329,7 @@ contains
             call fftw_mpi_execute_dft_r2c(self%plan_r2c, self%xr, self%k)
 #endif
         else
-            call rows_forward(self)
+            call rows(self, forward=.true.)
             call columns(self, self%cols_fwd)
         end if
         self%seconds = self%seconds + (wall_seconds() - t0); self%transforms = self%transforms + 1
@@ -354,36 +354,29 @@ contains
 #endif
         else
             call columns(self, self%cols_bwd)
-            call rows_backward(self)
+            call rows(self, forward=.false.)
         end if
         self%seconds = self%seconds + (wall_seconds() - t0); self%transforms = self%transforms + 1
     end subroutine fft_backward_unscaled
 
-    !> The rows' r2c transforms, block by block (x -> k)
-    subroutine rows_forward(self)
+    !> The rows' transforms, block by block: r2c (x -> k) when `forward`, else c2r (k -> x, k
+    !> destroyed)
+    subroutine rows(self, forward)
         class(fft2d_t), intent(inout) :: self
-        integer :: b, j0
-        !$omp parallel do schedule(dynamic) private(j0)
+        logical, intent(in) :: forward
+        integer :: b, j0, m
+        !$omp parallel do schedule(dynamic) private(j0, m)
         do b = 1, (self%ny + block - 1)/block
             j0 = (b - 1)*block + 1
-            call fftw_execute_dft_r2c(self%rows_r2c(merge(1, 2, j0 + block - 1 <= self%ny)), &
-                                      self%x(:, j0:), self%k(:, j0:))
+            m = merge(1, 2, j0 + block - 1 <= self%ny)
+            if (forward) then
+                call fftw_execute_dft_r2c(self%rows_r2c(m), self%x(:, j0:), self%k(:, j0:))
+            else
+                call fftw_execute_dft_c2r(self%rows_c2r(m), self%k(:, j0:), self%x(:, j0:))
+            end if
         end do
         !$omp end parallel do
-    end subroutine rows_forward
-
-    !> The rows' c2r transforms, block by block (k -> x, k destroyed)
-    subroutine rows_backward(self)
-        class(fft2d_t), intent(inout) :: self
-        integer :: b, j0
-        !$omp parallel do schedule(dynamic) private(j0)
-        do b = 1, (self%ny + block - 1)/block
-            j0 = (b - 1)*block + 1
-            call fftw_execute_dft_c2r(self%rows_c2r(merge(1, 2, j0 + block - 1 <= self%ny)), &
-                                      self%k(:, j0:), self%x(:, j0:))
-        end do
-        !$omp end parallel do
-    end subroutine rows_backward
+    end subroutine rows
 
     !> The spectral columns' c2c transforms in place, block by block, with `plans` (forward or
     !> backward; nothing to do when ny = 1)
