@@ -93,7 +93,11 @@ def read_result(filename):
             "length_y": read_scalar(f, "/scalars/length_y_m"),
             "mean_pressure": read_scalar(f, "/scalars/mean_pressure_pa"),
             "contact_modulus": read_scalar(f, "/scalars/contact_modulus_pa"),
-            "area_fraction": read_scalar(f, "/scalars/contact_area_fraction"),
+            # Tamaas counts the points in contact: compare with veslide's count, not with its
+            # sub-cell estimate (contact_area_fraction; older files have only that one)
+            "area_fraction": read_scalar(f, "/scalars/contact_area_fraction_cells")
+            if "/scalars/contact_area_fraction_cells" in f
+            else read_scalar(f, "/scalars/contact_area_fraction"),
             "mean_separation": read_scalar(f, "/scalars/mean_separation_m"),
             "solve_seconds": read_scalar(f, "/scalars/solve_seconds"),
             "iterations": read_scalar(f, "/scalars/iterations"),
