@@ -76,11 +76,9 @@ contains
         real(dp), intent(in) :: ks(:, :)
         type(grid_t), intent(in) :: grid
         integer :: i, sh(2)
-        real(dp) :: n
         self%grid = grid
         self%nx = fft%nx; self%ny = size(fft%x, 2); self%nq = fft%nx/2 + 1
         self%cells = grid%cells()
-        n = self%cells
         sh = grid%spectral_shape()
         self%ks = ks
         if (grid%transposed) then

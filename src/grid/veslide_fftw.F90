@@ -115,7 +115,7 @@ contains
         logical, intent(in), optional :: isolated
         !> the grid, when it may be distributed
         type(grid_t), intent(in), optional :: grid
-        integer :: flag, count_
+        integer :: flag
         logical :: isolated_, planned
         type(c_ptr) :: saved
         integer(c_int) :: stat
@@ -167,46 +167,27 @@ contains
         !> alignment; every block starts a multiple of 16 rows or columns in, so all align alike).
         subroutine plan_blocks(ok)
             logical, intent(out) :: ok   !! no plan came back null
-            integer :: nq, m, j0
+            integer :: nq, m, j0, count
             ok = .true.
             nq = nx/2 + 1
             do m = 1, 2
-                if (m == 1) then
-                    j0 = 1; if (ny < block) cycle
-                    count_ = block
-                else
-                    count_ = mod(ny, block); j0 = ny - count_ + 1
-                    if (count_ == 0) cycle
-                end if
-                self%rows_r2c(m) = fftw_plan_many_dft_r2c(1, [nx], count_, self%x(:, j0:), [nx], 1, nx, &
+                call block_of_kind(m, ny, j0, count); if (count == 0) cycle
+                self%rows_r2c(m) = fftw_plan_many_dft_r2c(1, [nx], count, self%x(:, j0:), [nx], 1, nx, &
                                                           self%k(:, j0:), [nq], 1, nq, flag)
-                self%rows_c2r(m) = fftw_plan_many_dft_c2r(1, [nx], count_, self%k(:, j0:), [nq], 1, nq, &
+                self%rows_c2r(m) = fftw_plan_many_dft_c2r(1, [nx], count, self%k(:, j0:), [nq], 1, nq, &
                                                           self%x(:, j0:), [nx], 1, nx, flag)
                 ok = ok .and. c_associated(self%rows_r2c(m)) .and. c_associated(self%rows_c2r(m))
             end do
             if (ny == 1) return
             do m = 1, 2
-                if (m == 1) then
-                    j0 = 1; if (nq < block) cycle
-                    count_ = block
-                else
-                    count_ = mod(nq, block); j0 = nq - count_ + 1
-                    if (count_ == 0) cycle
-                end if
-                self%cols_fwd(m) = fftw_plan_many_dft(1, [ny], count_, column(j0), [ny], nq, 1, &
-                                                      column(j0), [ny], nq, 1, FFTW_FORWARD, flag)
-                self%cols_bwd(m) = fftw_plan_many_dft(1, [ny], count_, column(j0), [ny], nq, 1, &
-                                                      column(j0), [ny], nq, 1, FFTW_BACKWARD, flag)
+                call block_of_kind(m, nq, j0, count); if (count == 0) cycle
+                self%cols_fwd(m) = fftw_plan_many_dft(1, [ny], count, spectrum_from(self, j0), [ny], nq, 1, &
+                                                      spectrum_from(self, j0), [ny], nq, 1, FFTW_FORWARD, flag)
+                self%cols_bwd(m) = fftw_plan_many_dft(1, [ny], count, spectrum_from(self, j0), [ny], nq, 1, &
+                                                      spectrum_from(self, j0), [ny], nq, 1, FFTW_BACKWARD, flag)
                 ok = ok .and. c_associated(self%cols_fwd(m)) .and. c_associated(self%cols_bwd(m))
             end do
         end subroutine plan_blocks
-
-        !> The half spectrum from spectral column i0 on, as one array (for FFTW's strided plans)
-        function column(i0) result(kc)
-            integer, intent(in) :: i0
-            complex(c_double_complex), pointer, contiguous :: kc(:)
-            call c_f_pointer(c_loc(self%k(i0, 1)), kc, [size(self%k) - (i0 - 1)])
-        end function column
 
         subroutine init_distributed()
 #ifdef VESLIDE_MPI
@@ -359,6 +340,32 @@ contains
         self%seconds = self%seconds + (wall_seconds() - t0); self%transforms = self%transforms + 1
     end subroutine fft_backward_unscaled
 
+    !> Where the block of `kind` (1: a full block, 2: the last, shorter one) of `total` rows or
+    !> spectral columns starts, and its length (0: there is none)
+    pure subroutine block_of_kind(kind, total, first, count)
+        integer, intent(in) :: kind, total
+        integer, intent(out) :: first, count
+        if (kind == 1) then
+            first = 1; count = merge(block, 0, total >= block)
+        else
+            count = mod(total, block); first = total - count + 1
+        end if
+    end subroutine block_of_kind
+
+    !> The kind of the block that starts at `first` of `total` (1 full, 2 the last, shorter)
+    pure integer function plan_kind(first, total) result(kind)
+        integer, intent(in) :: first, total
+        kind = merge(1, 2, first + block - 1 <= total)
+    end function plan_kind
+
+    !> The half spectrum from spectral column i0 on, as one array (for FFTW's strided plans)
+    function spectrum_from(self, i0) result(kc)
+        class(fft2d_t), intent(in) :: self
+        integer, intent(in) :: i0
+        complex(c_double_complex), pointer, contiguous :: kc(:)
+        call c_f_pointer(c_loc(self%k(i0, 1)), kc, [size(self%k) - (i0 - 1)])
+    end function spectrum_from
+
     !> The rows' transforms, block by block: r2c (x -> k) when `forward`, else c2r (k -> x, k
     !> destroyed)
     subroutine rows(self, forward)
@@ -368,7 +375,7 @@ contains
         !$omp parallel do schedule(dynamic) private(j0, m)
         do b = 1, (self%ny + block - 1)/block
             j0 = (b - 1)*block + 1
-            m = merge(1, 2, j0 + block - 1 <= self%ny)
+            m = plan_kind(j0, self%ny)
             if (forward) then
                 call fftw_execute_dft_r2c(self%rows_r2c(m), self%x(:, j0:), self%k(:, j0:))
             else
@@ -390,8 +397,8 @@ contains
         !$omp parallel do schedule(dynamic) private(i0, kc)
         do b = 1, (nq + block - 1)/block
             i0 = (b - 1)*block + 1
-            call c_f_pointer(c_loc(self%k(i0, 1)), kc, [size(self%k) - (i0 - 1)])
-            call fftw_execute_dft(plans(merge(1, 2, i0 + block - 1 <= nq)), kc, kc)
+            kc => spectrum_from(self, i0)
+            call fftw_execute_dft(plans(plan_kind(i0, nq)), kc, kc)
         end do
         !$omp end parallel do
     end subroutine columns
