@@ -5,7 +5,9 @@
 !>   z <- z + f - G c,   c = argmin |f - dF c|,
 !> solving the m x m least-squares problem from its Gram matrix dF^T dF (LAPACK dposv, with a
 !> relative diagonal shift of 1e-10). A step costs one pass over the 2m columns and the grid;
-!> the Gram matrix is updated by one new row per step. Memory: 2 (m + 1) doubles per unknown.
+!> the Gram matrix is updated by one new row per step. The previous point is kept as the step
+!> that left it (z_k - z_{k-1}, single precision like the history) and its residual (double):
+!> memory 2 m + 1 singles and one double per unknown.
 !> The unknowns are the rows of a grid's field (nx, ny_local), flattened: dot products are summed
 !> row by row and then over the rows in order (veslide_collective), so the step is the same for
 !> any number of threads or processes; every process solves the same small system.
@@ -25,12 +27,15 @@ module veslide_anderson
         integer :: memory = 0            !! m; 0 gives the plain step
         integer :: stored = 0            !! columns held (<= memory)
         integer :: slot = 0              !! column written last
-        logical :: have_prev = .false.   !! a previous (z, f) is held
+        logical :: have_prev = .false.   !! a previous step and f are held
         !> the history's columns in single precision (half the memory and traffic; the mixing is
         !> then exact to about 1e-7 of the step, which the fixed-point iteration absorbs: the
         !> residual f itself stays double)
         real(real32), allocatable :: df(:, :), gm(:, :)
-        real(dp), allocatable :: gram(:, :), zprev(:), fprev(:)
+        !> the last step z - z_prev, in single precision as the history it feeds (z_prev itself is
+        !> z minus the step: no copy of the iterate is kept), and the residual f_prev at z_prev
+        real(real32), allocatable :: sprev(:)
+        real(dp), allocatable :: gram(:, :), fprev(:)
         real(dp), allocatable :: rows(:, :)  !! per-row partial dot products (2 m, rows)
         type(grid_t) :: grid             !! the grid whose rows the unknowns are (serial: one row)
         integer :: row = 1               !! unknowns per row
@@ -55,9 +60,9 @@ contains
         else
             self%grid = grid_t(); self%grid%nx = max(1, n); self%grid%ny = 1; self%row = max(1, n)
         end if
-        if (allocated(self%df)) deallocate (self%df, self%gm, self%gram, self%zprev, self%fprev, self%rows)
+        if (allocated(self%df)) deallocate (self%df, self%gm, self%gram, self%sprev, self%fprev, self%rows)
         allocate (self%df(n, max(self%memory, 1)), self%gm(n, max(self%memory, 1)))
-        allocate (self%gram(max(self%memory, 1), max(self%memory, 1)), self%zprev(n), self%fprev(n))
+        allocate (self%gram(max(self%memory, 1), max(self%memory, 1)), self%sprev(n), self%fprev(n))
         allocate (self%rows(2*max(self%memory, 1), n/self%row))
         call self%reset()
     end subroutine anderson_init
@@ -92,7 +97,7 @@ contains
                 do i = (j - 1)*rl + 1, j*rl
                     dfv = f(i) - self%fprev(i)
                     self%df(i, slot) = real(dfv, real32)
-                    self%gm(i, slot) = real((z(i) - self%zprev(i)) + dfv, real32)
+                    self%gm(i, slot) = real(real(self%sprev(i), dp) + dfv, real32)
                     dfv = real(self%df(i, slot), dp)
                     do k = 1, mk
                         part(k) = part(k) + real(self%df(i, k), dp)*dfv
@@ -110,19 +115,19 @@ contains
                 self%stored = 0; mk = 0; coef = 0.0_dp
             end if
             accelerated = info == 0
-            ! the update of z, keeping (z, f) for the next step
+            ! the update of z, keeping the step and f for the next
             !$omp parallel do schedule(guided) private(zn, k)
             do i = 1, n
                 zn = z(i) + f(i)
                 do k = 1, mk
                     zn = zn - real(self%gm(i, k), dp)*coef(k)
                 end do
-                self%zprev(i) = z(i); self%fprev(i) = f(i)
+                self%sprev(i) = real(zn - z(i), real32); self%fprev(i) = f(i)
                 z(i) = zn
             end do
             !$omp end parallel do
         else
-            self%zprev = z; self%fprev = f
+            self%sprev = real(f, real32); self%fprev = f
             z = z + f
         end if
         self%have_prev = .true.
@@ -147,11 +152,13 @@ contains
     end subroutine anderson_coefficients
 
     !> z <- z_prev + f_prev (the plain step from the previous point, replacing a rejected
-    !> accelerated step), and the history cleared
+    !> accelerated step; z_prev = z - the stored step, exact to single precision of the step),
+    !> and the history cleared
     subroutine anderson_plain_previous(self, z)
         class(anderson_t), intent(inout) :: self
-        real(dp), intent(out) :: z(:)
-        z = self%zprev + self%fprev
+        !> on entry the point the rejected step reached
+        real(dp), intent(inout) :: z(:)
+        z = (z - real(self%sprev, dp)) + self%fprev
         call self%reset()
     end subroutine anderson_plain_previous
 

@@ -47,7 +47,8 @@ contains
         type(bccg_t) :: b
         type(anderson_t) :: aa
         complex(dp), allocatable :: kn(:, :), cm(:, :)
-        real(dp), allocatable :: y(:, :), x(:, :)
+        !> z and f (which holds x until y is known) live in the memory of the state's g and u,
+        !> which the solve needs only to confirm a result; y is the state's p in units of p_mean
         real(dp), allocatable, target :: zz(:, :), ff(:, :)
         real(dp), pointer :: z(:), f(:)
         real(dp) :: hs, p_mean, gamma, n, itol, res_prev, d, s1, gmin, spg, sp, g, t2(2)
@@ -78,23 +79,14 @@ contains
         call set_step()
 
         ! start: y = p, z = p + gamma M^-1 g (g the gap of the start, when given)
-        allocate (zz(nx, ny), ff(nx, ny), x(nx, ny))
-        y = state%p/p_mean
-        zz = y
+        state%p = state%p/p_mean
+        call take_work_arrays()
         if (present(gap0)) then
             fft%x = gap0/hs
-            call fft%forward()
-            where (b%ks > 0.0_dp)
-                fft%k = fft%k*(gamma/(b%ks*n*n))
-            elsewhere
-                fft%k = (0.0_dp, 0.0_dp)
-            end where
-            call fft%backward_unscaled()
-            zz = zz + fft%x
-            b%pairs = b%pairs + 1.0_dp
+            call z_from_gap()
+        else
+            zz = state%p
         end if
-        z(1:nx*ny) => zz
-        f(1:nx*ny) => ff
         call aa%init(nx*ny, opts%anderson_memory, problem%kernel%grid)
         its = 0
         res_prev = 1.0_dp
@@ -117,11 +109,11 @@ contains
             !$omp end parallel do
             call fft%backward_unscaled()
             b%pairs = b%pairs + 1.0_dp
-            x = fft%x
+            ff = fft%x                                    ! x
 
             ! y = the metric projection of 2x - z onto C
             itol = max(opts%tolerance/3.0_dp, inner_fraction*res_prev)
-            call b%solve(fft, y, itol, opts%max_iterations, its, same_start=.true.)
+            call b%solve(fft, state%p, itol, opts%max_iterations, its, same_start=.true.)
 
             ! the residual of y on a fresh K y (from the transform of y the inner solve kept), in
             ! two fused passes with veslide_contact's measures; confirmed by problem%residuals
@@ -133,7 +125,7 @@ contains
             do j = 1, ny
                 g = 0.0_dp
                 do i = 1, nx
-                    if (y(i, j) > 0.0_dp) then
+                    if (state%p(i, j) > 0.0_dp) then
                         nc = nc + 1; g = g + (fft%x(i, j) - problem%hc(i, j)/hs)
                     end if
                 end do
@@ -151,8 +143,8 @@ contains
                 do i = 1, nx
                     g = fft%x(i, j) - problem%hc(i, j)/hs + d
                     gmin = min(gmin, g)
-                    t2(1) = t2(1) + y(i, j)*g
-                    t2(2) = t2(2) + y(i, j)
+                    t2(1) = t2(1) + state%p(i, j)*g
+                    t2(2) = t2(2) + state%p(i, j)
                 end do
                 rows(:, j) = t2
             end do
@@ -163,18 +155,28 @@ contains
             ! (y >= 0 by construction: the negative-pressure measure is 0)
             call residual_measures(state, hs*gmin, p_mean*hs*spg, p_mean*sp, 0.0_dp, p_mean*sp, n, p_mean, hs)
             if (state%residual <= opts%tolerance .or. its >= opts%max_iterations) then
-                state%p = p_mean*y
+                call give_back_work_arrays()
+                state%p = p_mean*state%p
                 state%u = hs*fft%x
                 call problem%residuals(state)
                 if (state%residual <= opts%tolerance) then
                     state%converged = .true.; exit
                 end if
                 if (its >= opts%max_iterations) exit
+                ! not confirmed on the fresh residual (a result at the edge of the tolerance; z
+                ! and x were given up to it): on from y and its gap, z = y + gamma M^-1 g
+                state%p = state%p/p_mean
+                fft%x = state%g/hs
+                call take_work_arrays()
+                call z_from_gap()
+                call aa%reset()
+                res_prev = state%residual
+                cycle
             end if
             res_prev = state%residual
             call ticker%tick(its, state%residual, ceiling(b%pairs))
 
-            ff = y - x
+            ff = state%p - ff                             ! f = y - x
 
             accelerated = aa%step(z, f)
         end do
@@ -182,6 +184,31 @@ contains
         state%operator_applications = ceiling(b%pairs)
 
     contains
+
+        !> z and f take the memory of the state's g and u (their values are not needed)
+        subroutine take_work_arrays()
+            call move_alloc(state%g, zz); call move_alloc(state%u, ff)
+            z(1:nx*ny) => zz
+            f(1:nx*ny) => ff
+        end subroutine take_work_arrays
+
+        subroutine give_back_work_arrays()
+            nullify (z, f)
+            call move_alloc(zz, state%g); call move_alloc(ff, state%u)
+        end subroutine give_back_work_arrays
+
+        !> z = y + gamma M^-1 g from the gap g/h_s in fft%x (one FFT pair)
+        subroutine z_from_gap()
+            call fft%forward()
+            where (b%ks > 0.0_dp)
+                fft%k = fft%k*(gamma/(b%ks*n*n))
+            elsewhere
+                fft%k = (0.0_dp, 0.0_dp)
+            end where
+            call fft%backward_unscaled()
+            zz = state%p + fft%x
+            b%pairs = b%pairs + 1.0_dp
+        end subroutine z_from_gap
 
         !> The resolvent for the step gamma: x^/N = M z^/((M + gamma K) N) + cm, with the constant
         !> part cm = gamma h^/(M + gamma K)/N^2 from h^ in fft%k (x^/N = z^/N on the mean mode)
