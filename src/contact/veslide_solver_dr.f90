@@ -38,9 +38,8 @@ contains
     !> (type II, as `anderson_t`, memory m) are fused into two passes over the grid:
     !>   A  the map (y = max(2x - z, 0), f = y - x, the residuals) with the new history columns
     !>      dF = f - f_prev, G = (z - z_prev) + dF and their inner products with the history;
-    !>   B  z <- z + f - G c (f recomputed from x and z), keeping the step z - z_prev (single
-    !>      precision, as the history) and f, and the next map's input written straight into the
-    !>      FFT buffer.
+    !>   B  z <- z + f - G c (f recomputed from x and z), keeping (z, f), and the next map's input
+    !>      written straight into the FFT buffer.
     !> y and f are never stored. A path that skips pass B (the safeguard, balancing) clears the
     !> history, whose newest column pass A has already written. Pass A sums row by row and then
     !> over the rows in order (veslide_collective), so the path is the same for any number of
@@ -56,11 +55,8 @@ contains
         real(dp), parameter :: aa_growth = 2.0_dp
         real(dp), allocatable, target :: zz(:, :)
         real(dp), pointer :: z(:), xb(:)
-        real(dp), allocatable :: gram(:, :)
-        !> the history, and the last step z - z_prev (single precision, as the history it feeds:
-        !> no copy of the iterate is kept) with the residual f_prev at z_prev
-        real(hk), allocatable :: df(:, :), gm(:, :), sprev(:)
-        real(dp), allocatable :: fprev(:)
+        real(dp), allocatable :: zprev(:), fprev(:), gram(:, :)
+        real(hk), allocatable :: df(:, :), gm(:, :)
         complex(dp), allocatable :: hkern(:, :)
         type(resolvent_t) :: res
         real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, xv, zv, yv, fv, dfv, zn, scale, p_mean
@@ -85,7 +81,7 @@ contains
         call problem%kernel%resolvent(gamma, scale, res)
 
         m = max(0, opts%anderson_memory)
-        allocate (zz(nx, ny), sprev(n), fprev(n), df(n, max(m, 1)), gm(n, max(m, 1)), gram(max(m, 1), max(m, 1)))
+        allocate (zz(nx, ny), zprev(n), fprev(n), df(n, max(m, 1)), gm(n, max(m, 1)), gram(max(m, 1), max(m, 1)))
         allocate (rows(1 + 2*max(m, 1), ny))
         z(1:n) => zz
         call c_f_pointer(c_loc(fft%x), xb, [n])    ! a flat view of the FFT buffer
@@ -122,9 +118,8 @@ contains
                     end if
                     part(1) = part(1) + fv**2
                     if (mk > 0) then
-                        dfv = fv - fprev(i)
-                        df(i, slot) = real(dfv, hk)
-                        gm(i, slot) = real(real(sprev(i), dp) + dfv, hk)
+                        df(i, slot) = real(fv - fprev(i), hk)
+                        gm(i, slot) = real((zv - zprev(i)) + (fv - fprev(i)), hk)
                         dfv = real(df(i, slot), dp)
                         do k = 1, mk
                             part(1 + k) = part(1 + k) + real(df(i, k), dp)*dfv
@@ -145,7 +140,7 @@ contains
             ! safeguard: an accelerated step that made |f| grow is replaced by the plain step
             if (accelerated) then          ! (nested: fnorm_prev may still be huge() otherwise)
                 if (fnorm > aa_growth*fnorm_prev) then
-                    z = (z - real(sprev, dp)) + fprev
+                    z = zprev + fprev
                     call clear_history()
                     fft%x = zz
                     cycle
@@ -213,7 +208,7 @@ contains
             end if
             accelerated = mk > 0
 
-            ! pass B: z <- z + f - G c, keeping the step and f; the next map's input into the buffer
+            ! pass B: z <- z + f - G c, keeping (z, f); the next map's input into the buffer
             !$omp parallel do schedule(guided) private(xv, zv, fv, zn, k)
             do i = 1, n
                 xv = xb(i); zv = z(i)
@@ -222,7 +217,7 @@ contains
                 do k = 1, mk
                     zn = zn - real(gm(i, k), dp)*coef(k)
                 end do
-                sprev(i) = real(zn - zv, hk); fprev(i) = fv
+                zprev(i) = zv; fprev(i) = fv
                 z(i) = zn
                 xb(i) = zn
             end do

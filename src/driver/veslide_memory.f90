@@ -7,9 +7,9 @@
 !> heights (8), the FFT buffers (16), the kernel (8; the contact problem holds the case's, not a
 !> copy), the problem's heights (8), the solution p, u, g (24); then per solver (measured peaks at
 !> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 36 (direction, operator, the transforms of
-!> heights and pressure, the contact set; the pressure is solved in place); the splitting dr 36 + 8 m
-!> (z, the last step in single precision and f, the transform of h, the resolvent, and Anderson's
-!> single-precision history of memory m); pdr 60 + 8 m (bccg's fields, K, the resolvent's constant
+!> heights and pressure, the contact set; the pressure is solved in place); the splitting dr 40 + 8 m
+!> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
+!> history of memory m); pdr 60 + 8 m (bccg's fields, K, the resolvent's constant
 !> part, Anderson with its last step and f; y, z and f live in the state's p, g and u);
 !> Polonsky-Keer 16 (t and one influence column). `auto` is taken as bccg for a
 !> symmetric kernel and as pdr from 256^2 cells up (dr below). Surface generation is transient (16 for its
@@ -49,7 +49,7 @@ contains
         case ('bccg')
             solver = 36
         case ('dr')
-            solver = 36 + 8*m
+            solver = 40 + 8*m
         case ('pdr')
             solver = 60 + 8*m
         case default                              ! auto (veslide_solver's rule)
@@ -58,7 +58,7 @@ contains
             else if (n >= real(pdr_min_cells, dp)) then
                 solver = 60 + 8*m
             else
-                solver = 36 + 8*m
+                solver = 40 + 8*m
             end if
         end select
         analysis = 8
