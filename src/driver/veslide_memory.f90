@@ -9,10 +9,10 @@
 !> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 36 (direction, operator, the transforms of
 !> heights and pressure, the contact set; the pressure is solved in place); the splitting dr 40 + 8 m
 !> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
-!> history of memory m); pdr 60 + 8 m (bccg's fields, K, the resolvent's constant
-!> part, Anderson with its last step and f; y, z and f live in the state's p, g and u);
-!> Polonsky-Keer 16 (t and one influence column). `auto` is taken as bccg for a
-!> symmetric kernel and as pdr from 256^2 cells up (dr below). Surface generation is transient (16 for its
+!> history of memory m); pdr 60 + 8 m (bccg's fields, K, the resolvent's constant part,
+!> Anderson with its last step and f; y, z and f live in the state's p, g and u); Polonsky-Keer
+!> 16 (t and one influence column). `auto` is taken as bccg for a symmetric kernel and as pdr
+!> from 256^2 cells up (dr below). Surface generation is transient (16 for its
 !> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
 !> kernels hold 32 while they are summed. Analyses after the solve:
 !> slope force 8, patches 32, Persson 24. A study adds one kernel per speed (8 each), the previous
