@@ -3,7 +3,9 @@
 !>
 !> Find p >= 0 with mean(p) = p_mean, and an approach d, such that the gap
 !> g = K p - h + d >= 0 and p g = 0 everywhere. K is the kernel (zero on the mean mode), h the
-!> heights with their mean removed; d is then the mean gap (the mean separation).
+!> heights with their mean removed; d is then the mean gap (the mean separation). The problem
+!> keeps the heights as given with their mean beside them and centres them where they are used
+!> (h - h_mean, the same rounding as a centred copy), so that it can hold the case's own array.
 !>
 !> Residual (`residual_measures`): max(penetration, complementarity, negative pressure, load error),
 !>   penetration = max(-g)/h_s, complementarity = |sum p g|/(sum p * h_s),
@@ -28,7 +30,8 @@ module veslide_contact
     !> One contact problem: the operator, the heights and the load
     type :: contact_problem_t
         type(kernel_t) :: kernel                   !! the influence operator
-        real(dp), allocatable :: hc(:, :)          !! heights with their mean removed [m]
+        real(dp), allocatable :: h(:, :)           !! heights as given (any mean) [m]
+        real(dp) :: h_mean = 0.0_dp                !! their mean; the problem's heights are h - h_mean [m]
         real(dp) :: p_mean_pa = 0.0_dp             !! nominal pressure [Pa]
         real(dp) :: height_scale_m = 0.0_dp        !! h_s of the residual [m]
     contains
@@ -65,27 +68,33 @@ contains
         type(error_t), allocatable, intent(out) :: error
         call check_problem(kernel, h, p_mean, error); if (allocated(error)) return
         self%kernel = kernel
-        call set_heights_and_load(self, h, p_mean)
+        self%h = h
+        call set_mean_and_load(self, p_mean)
     end subroutine new_contact_problem
 
-    !> The same, the problem taking `kernel`'s multiplier instead of a copy of it (8 bytes per cell
-    !> fewer while it lives); `problem%release(kernel)` gives it back. On an error `kernel` is kept.
+    !> The same, the problem taking `kernel`'s multiplier and the array `h` instead of copies of
+    !> them (16 bytes per cell fewer while it lives); `problem%release(kernel, h)` gives them back
+    !> unchanged. On an error both are kept.
     subroutine new_contact_problem_moving(self, kernel, h, p_mean, error)
         type(contact_problem_t), intent(out) :: self
         type(kernel_t), intent(inout) :: kernel
-        real(dp), intent(in) :: h(:, :)
+        real(dp), allocatable, intent(inout) :: h(:, :)
         real(dp), intent(in) :: p_mean
         type(error_t), allocatable, intent(out) :: error
         call check_problem(kernel, h, p_mean, error); if (allocated(error)) return
         call kernel%move_to(self%kernel)
-        call set_heights_and_load(self, h, p_mean)
+        call move_alloc(h, self%h)
+        call set_mean_and_load(self, p_mean)
     end subroutine new_contact_problem_moving
 
-    !> The kernel back to where new_contact_problem_moving took it from (the problem is left without)
-    subroutine problem_release(self, kernel)
+    !> The kernel and the heights back to where new_contact_problem_moving took them from (the
+    !> problem is left without)
+    subroutine problem_release(self, kernel, h)
         class(contact_problem_t), intent(inout) :: self
         type(kernel_t), intent(out) :: kernel
+        real(dp), allocatable, intent(out) :: h(:, :)
         call self%kernel%move_to(kernel)
+        call move_alloc(self%h, h)
     end subroutine problem_release
 
     subroutine check_problem(kernel, h, p_mean, error)
@@ -107,19 +116,18 @@ contains
         end if
     end subroutine check_problem
 
-    !> Heights with their mean removed, the load and the height scale h_s of the residual
-    subroutine set_heights_and_load(self, h, p_mean)
+    !> The heights' mean, the load and the height scale h_s of the residual
+    subroutine set_mean_and_load(self, p_mean)
         type(contact_problem_t), intent(inout) :: self
-        real(dp), intent(in) :: h(:, :)
         real(dp), intent(in) :: p_mean
         associate (grid => self%kernel%grid)
             self%p_mean_pa = p_mean
-            self%hc = h - field_mean(grid, h)
-            self%height_scale_m = sqrt(field_dot(grid, self%hc, self%hc)/grid%cells())
+            self%h_mean = field_mean(grid, self%h)
+            self%height_scale_m = sqrt(field_dot(grid, self%h - self%h_mean, self%h - self%h_mean)/grid%cells())
         end associate
         if (self%height_scale_m <= 0.0_dp) self%height_scale_m = p_mean*self%kernel%max_abs()
         if (self%height_scale_m <= 0.0_dp) self%height_scale_m = 1.0_dp
-    end subroutine set_heights_and_load
+    end subroutine set_mean_and_load
 
     pure function problem_grid(self) result(grid)
         class(contact_problem_t), intent(in) :: self
@@ -135,7 +143,7 @@ contains
         real(dp), intent(in), optional :: p_init(:, :)
         integer :: nx, ny
         real(dp) :: total
-        nx = size(self%hc, 1); ny = size(self%hc, 2)
+        nx = size(self%h, 1); ny = size(self%h, 2)
         allocate (state%p(nx, ny), state%u(nx, ny), state%g(nx, ny))
         state%p = self%p_mean_pa
         if (present(p_init)) then
@@ -185,7 +193,7 @@ contains
         associate (grid => self%kernel%grid)
             nc(1) = count(state%p > 0.0_dp, kind=i8)
             call global_count(grid, nc)
-            state%g = state%u - self%hc
+            state%g = state%u - (self%h - self%h_mean)
             if (nc(1) > 0) then
                 do j = 1, size(state%p, 2)
                     rows(1, j) = sum(state%g(:, j), mask=state%p(:, j) > 0.0_dp)

@@ -97,13 +97,14 @@ contains
         self%pairs = 0.0_dp
     end subroutine bccg_init
 
-    !> Heights H = scale h (dimensionless, any mean): their transform / N (one forward transform)
-    subroutine bccg_set_heights(self, fft, h, scale)
+    !> Heights H = (h - offset) scale (dimensionless, any mean): their transform / N (one forward
+    !> transform)
+    subroutine bccg_set_heights(self, fft, h, offset, scale)
         class(bccg_t), intent(inout) :: self
         type(fft2d_t), intent(inout) :: fft
         real(dp), intent(in) :: h(:, :)
-        real(dp), intent(in) :: scale
-        fft%x = h*scale
+        real(dp), intent(in) :: offset, scale
+        fft%x = (h - offset)*scale
         call fft%forward()
         self%hk = fft%k/self%cells
         if (self%grid%owns_mean_mode()) self%hk(1, 1) = (0.0_dp, 0.0_dp)
@@ -421,7 +422,7 @@ contains
         state%method = 'bccg'
         call ticker%start(opts, 'bccg')
         call b%init(fft, real(problem%kernel%multiplier(p_mean/hs)), problem%kernel%grid)
-        call b%set_heights(fft, problem%hc, 1.0_dp/hs)
+        call b%set_heights(fft, problem%h, problem%h_mean, 1.0_dp/hs)
         tol = opts%tolerance
         its = 0
         ! solved in place in units of p_mean (no copy of the pressure)

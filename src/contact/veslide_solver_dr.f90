@@ -67,13 +67,13 @@ contains
         logical :: accelerated, have_prev
         type(progress_ticker_t) :: ticker
 
-        nx = size(problem%hc, 1); ny = size(problem%hc, 2); n = nx*ny
+        nx = size(problem%h, 1); ny = size(problem%h, 2); n = nx*ny
         hs = problem%height_scale_m
         p_mean = problem%p_mean_pa
         state%method = 'dr'
         call ticker%start(opts, 'dr')
         scale = p_mean/hs                       ! K in units of h_s per p_mean
-        fft%x = problem%hc/hs
+        fft%x = (problem%h - problem%h_mean)/hs
         call fft%forward()
         hkern = fft%k
         gamma = opts%step

@@ -58,7 +58,7 @@ contains
         logical :: accelerated
         type(progress_ticker_t) :: ticker
 
-        nx = size(problem%hc, 1); ny = size(problem%hc, 2)
+        nx = size(problem%h, 1); ny = size(problem%h, 2)
         sh = problem%kernel%grid%spectral_shape(); na = sh(1); nb = sh(2)
         n = problem%kernel%grid%cells()
         allocate (rows(2, ny))
@@ -73,7 +73,7 @@ contains
         ! resolvent's constant part cm
         kn = problem%kernel%multiplier(p_mean/hs)
         call b%init(fft, abs(kn), problem%kernel%grid)
-        fft%x = problem%hc/hs
+        fft%x = (problem%h - problem%h_mean)/hs
         call fft%forward()
         b%pairs = 0.5_dp
         call set_step()
@@ -126,7 +126,7 @@ contains
                 g = 0.0_dp
                 do i = 1, nx
                     if (state%p(i, j) > 0.0_dp) then
-                        nc = nc + 1; g = g + (fft%x(i, j) - problem%hc(i, j)/hs)
+                        nc = nc + 1; g = g + (fft%x(i, j) - (problem%h(i, j) - problem%h_mean)/hs)
                     end if
                 end do
                 rows(1, j) = g
@@ -141,7 +141,7 @@ contains
             do j = 1, ny
                 t2 = 0.0_dp
                 do i = 1, nx
-                    g = fft%x(i, j) - problem%hc(i, j)/hs + d
+                    g = fft%x(i, j) - (problem%h(i, j) - problem%h_mean)/hs + d
                     gmin = min(gmin, g)
                     t2(1) = t2(1) + state%p(i, j)*g
                     t2(2) = t2(2) + state%p(i, j)

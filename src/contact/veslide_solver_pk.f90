@@ -45,7 +45,7 @@ contains
         type(progress_ticker_t) :: ticker
 
         call ticker%start(opts, 'pk')
-        nx = size(problem%hc, 1); ny = size(problem%hc, 2)
+        nx = size(problem%h, 1); ny = size(problem%h, 2)
         hs = problem%height_scale_m
         p_mean = problem%p_mean_pa
         state%method = 'pk'
@@ -58,7 +58,7 @@ contains
         fresh = .true.; since_fresh = 0
         t = 0.0_dp; delta = 0.0_dp; gg_old = 1.0_dp; a = 1.0_dp
         do j = 1, ny
-            rows(1, j) = sum(state%u(:, j) - problem%hc(:, j), mask=state%p(:, j) > 0.0_dp)
+            rows(1, j) = sum(state%u(:, j) - (problem%h(:, j) - problem%h_mean), mask=state%p(:, j) > 0.0_dp)
             rows(2, j) = count(state%p(:, j) > 0.0_dp)
         end do
         call ordered_sum(grid, rows(1:2, :), tot(1:2))
@@ -72,7 +72,7 @@ contains
                 e1 = huge(1.0_dp); e2 = huge(1.0_dp)
                 do i = 1, nx
                     pv = a*state%p(i, j)
-                    g = a*state%u(i, j) - problem%hc(i, j) - gp
+                    g = a*state%u(i, j) - (problem%h(i, j) - problem%h_mean) - gp
                     if (pv > 0.0_dp) then
                         r1 = r1 + 1.0_dp; r2 = r2 + g; r3 = r3 + g*g
                     end if
@@ -112,7 +112,7 @@ contains
                 r1 = 0.0_dp; r2 = 0.0_dp
                 do i = 1, nx
                     if (state%p(i, j) > 0.0_dp) then
-                        g = a*state%u(i, j) - problem%hc(i, j) - gbar
+                        g = a*state%u(i, j) - (problem%h(i, j) - problem%h_mean) - gbar
                         t(i, j) = g + beta*t(i, j)
                         r1 = r1 + g*t(i, j)
                         r2 = r2 + t(i, j)
@@ -169,7 +169,7 @@ contains
                         pn = 0.0_dp
                     end if
                     if (pn == 0.0_dp) then
-                        g = uo - problem%hc(i, j) - gbar
+                        g = uo - (problem%h(i, j) - problem%h_mean) - gbar
                         if (g < 0.0_dp) then
                             r3 = r3 + 1.0_dp
                             c = c - tau*g
@@ -197,7 +197,7 @@ contains
         end do
         state%p = a*state%p
         state%u = a*state%u
-        state%g = state%u - problem%hc - gbar
+        state%g = state%u - (problem%h - problem%h_mean) - gbar
         end associate
 
     contains

@@ -288,7 +288,7 @@ contains
         real(dp) :: t0
         c%grid = c%kernel%grid
         c%velocity_m_s = c%kernel%velocity_m_s
-        ! the problem holds the case's kernel while it lives (no copy of the multiplier)
+        ! the problem holds the case's kernel and heights while it lives (no copies)
         call new_contact_problem_moving(problem, c%kernel, c%h, cfg%load%mean_pressure_pa, error)
         call add_context(error, "veslide: "//cfg%path//": ")
         if (allocated(error)) return
@@ -297,7 +297,7 @@ contains
         if (present(progress)) opts%progress => progress
         call solve_contact(problem, fft, opts, c%state, error, p_init=p_init, g_init=g_init)
         if (.not. allocated(error)) call problem%confirm(fft, c%state, cfg%solver%tolerance)  ! the reported residual decides
-        call problem%release(c%kernel)
+        call problem%release(c%kernel, c%h)
         if (allocated(error)) return
         c%solve_seconds = wall_seconds() - t0
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)

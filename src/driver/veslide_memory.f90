@@ -4,8 +4,8 @@
 !>
 !> The estimate is the largest of the phases of a run, in bytes per grid cell (N = nx ny), plus a
 !> fixed allowance for the libraries, the FFTW plans and the output. Resident during a solve: the
-!> heights (8), the FFT buffers (16), the kernel (8; the contact problem holds the case's, not a
-!> copy), the problem's heights (8), the solution p, u, g (24); then per solver (measured peaks at
+!> heights (8) and the kernel (8; the contact problem holds the case's, not copies), the FFT
+!> buffers (16), the solution p, u, g (24); then per solver (measured peaks at
 !> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 36 (direction, operator, the transforms of
 !> heights and pressure, the contact set; the pressure is solved in place); the splitting dr 40 + 8 m
 !> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
@@ -39,7 +39,7 @@ contains
         real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell, m
         logical :: symmetric
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
-        solve = 8 + 16 + 8 + 8 + 24
+        solve = 8 + 8 + 16 + 24
         m = cfg%solver%anderson_memory
         symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
                                                           size(cfg%sweep%speeds) == 0)
