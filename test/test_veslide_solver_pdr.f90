@@ -32,6 +32,7 @@ contains
             new_unittest("full-contact-forces-exact", test_full_contact_forces), &
             new_unittest("matches-dr", test_matches_dr), &
             new_unittest("warm-start-from-pressure-and-gap", test_warm_start), &
+            new_unittest("anderson-mixing-and-relaxed-step-agree", test_mixing_agrees), &
             new_unittest("iterations-flat-in-the-grid", test_flat_iterations), &
             new_unittest("modulus-spread", test_spread), &
             new_unittest("auto-choice", test_auto) &
@@ -136,6 +137,40 @@ contains
         call report("cold", real(s%iterations, dp)); call report("warm", real(sw%iterations, dp))
         call check(error, sw%converged .and. sw%iterations <= 2 .and. s%iterations > 10, "warm start did not help")
     end subroutine test_warm_start
+
+    !> The over-relaxed plain step (the default) and Anderson mixing (anderson_memory = 5) reach
+    !> the same pressure, and the kernel's multiplier the solve borrowed comes back unchanged
+    subroutine test_mixing_agrees(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 64
+        type(material_t) :: m
+        type(kernel_t) :: k
+        type(grid_t) :: grid
+        type(fft2d_t) :: fft
+        type(contact_problem_t) :: problem
+        type(solver_options_t) :: opts
+        type(contact_state_t) :: s, sa
+        real(dp) :: h(n, n)
+        call paper_rough(n, h, error); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
+        call new_kernel(k, grid, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], KERNEL_SPECTRAL, error)
+        if (allocated(error)) return
+        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
+        call new_contact_problem(problem, k, h, 3.2e4_dp, error); if (allocated(error)) return
+        opts%method = SOLVER_PDR
+        call solve_contact(problem, fft, opts, s, error); if (allocated(error)) return
+        opts%anderson_memory = 5
+        call solve_contact(problem, fft, opts, sa, error); if (allocated(error)) return
+        call report("relaxed FFT pairs", real(s%operator_applications, dp))
+        call report("Anderson FFT pairs", real(sa%operator_applications, dp))
+        call report("max |dp|/max p", maxval(abs(s%p - sa%p))/maxval(s%p))
+        call check(error, s%converged .and. sa%converged, "not converged"); if (allocated(error)) return
+        call check(error, maxval(abs(s%p - sa%p))/maxval(s%p) <= 1.0e-9_dp, "pressures differ")
+        if (allocated(error)) return
+        call check(error, all(problem%kernel%multiplier(1.0_dp) == k%multiplier(1.0_dp)), &
+                   "the kernel's multiplier changed")
+    end subroutine test_mixing_agrees
 
     !> The same surface on 64^2 .. 256^2 (q0 .. 16 q0), ratio 11 near the loss peak, tolerance
     !> 1e-8: pdr's FFT pairs grow by at most 1.5 from the coarsest grid to the finest

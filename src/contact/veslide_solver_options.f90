@@ -25,7 +25,9 @@ module veslide_solver_options
         real(dp) :: tolerance = 1.0e-10_dp      !! target of the residual [-]
         integer :: max_iterations = 20000       !! iteration cap
         integer :: refresh_every = 200          !! recompute K p exactly this often (pk)
-        integer :: anderson_memory = 5          !! Anderson mixing depth (dr); 0 switches it off
+        !> Anderson mixing depth (dr, pdr); 0 switches it off, negative: the method's default
+        !> (veslide_solver: dr 5, pdr 0)
+        integer :: anderson_memory = -1
         integer :: balance_every = 50           !! step-size balancing interval (dr; docs/solver-scaling.md)
         real(dp) :: step = 0.0_dp               !! initial dimensionless step (dr); 0: automatic
         real(dp) :: balance_ratio = 10.0_dp     !! imbalance of the residuals that changes the step (dr)

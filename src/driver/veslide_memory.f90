@@ -9,8 +9,9 @@
 !> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 36 (direction, operator, the transforms of
 !> heights and pressure, the contact set; the pressure is solved in place); the splitting dr 40 + 8 m
 !> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
-!> history of memory m); pdr 60 + 8 m (bccg's fields, K, the resolvent's constant part,
-!> Anderson with its last step and f; y, z and f live in the state's p, g and u); Polonsky-Keer
+!> history of memory m, 5 by default); pdr 41 (bccg's fields with M = |K|, the resolvent's
+!> constant part; y, z and f live in the state's p, g and u, K is the kernel's own, borrowed),
+!> and 12 + 8 m more when Anderson mixes its steps (m > 0; by default it does not); Polonsky-Keer
 !> 16 (t and one influence column). `auto` is taken as bccg for a symmetric kernel and as pdr
 !> from 256^2 cells up (dr below). Surface generation is transient (16 for its
 !> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
@@ -20,7 +21,8 @@
 module veslide_memory
     use veslide_kinds, only: dp, i8
     use veslide_config, only: config_t
-    use veslide_solver, only: pdr_min_cells
+    use veslide_solver, only: pdr_min_cells, default_anderson_memory
+    use veslide_solver_options, only: SOLVER_DR, SOLVER_PDR
     implicit none
     private
     public :: memory_estimate_bytes, format_gib
@@ -36,11 +38,10 @@ contains
     pure integer(i8) function memory_estimate_bytes(cfg, ranks) result(bytes)
         type(config_t), intent(in) :: cfg
         integer, intent(in), optional :: ranks
-        real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell, m
+        real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
         logical :: symmetric
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
         solve = 8 + 8 + 16 + 24
-        m = cfg%solver%anderson_memory
         symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
                                                           size(cfg%sweep%speeds) == 0)
         select case (cfg%solver%method)
@@ -49,16 +50,16 @@ contains
         case ('bccg')
             solver = 36
         case ('dr')
-            solver = 40 + 8*m
+            solver = dr_bytes()
         case ('pdr')
-            solver = 60 + 8*m
+            solver = pdr_bytes()
         case default                              ! auto (veslide_solver's rule)
             if (symmetric) then
                 solver = 36
             else if (n >= real(pdr_min_cells, dp)) then
-                solver = 60 + 8*m
+                solver = pdr_bytes()
             else
-                solver = 40 + 8*m
+                solver = dr_bytes()
             end if
         end select
         analysis = 8
@@ -76,6 +77,20 @@ contains
             end if
         end if
         bytes = fixed_bytes + int(per_cell*n, i8)
+
+    contains
+
+        pure real(dp) function dr_bytes()
+            dr_bytes = 40 + 8*default_anderson_memory(SOLVER_DR, cfg%solver%anderson_memory)
+        end function dr_bytes
+
+        pure real(dp) function pdr_bytes()
+            integer :: m
+            m = default_anderson_memory(SOLVER_PDR, cfg%solver%anderson_memory)
+            pdr_bytes = 41
+            if (m > 0) pdr_bytes = pdr_bytes + 12 + 8*m
+        end function pdr_bytes
+
     end function memory_estimate_bytes
 
     !> "12.34 GiB"

@@ -21,7 +21,9 @@ module veslide_config_solver
         integer :: alias_max = 64                        !! alias sums: largest zone index
         character(len=:), allocatable :: fft_planner     !! one of fft_planner_names
         integer :: threads = 0                           !! OpenMP threads of the run (0: OMP_NUM_THREADS)
-        integer :: anderson_memory = 5, balance_every = 50    ! docs/solver-scaling.md: why not 100
+        !> Anderson memory; -1: the method's own (dr 5, pdr 0: its over-relaxed plain step)
+        integer :: anderson_memory = -1
+        integer :: balance_every = 50                    ! docs/solver-scaling.md: why not 100
         real(dp) :: balance_ratio = 10.0_dp, balance_factor = 3.0_dp
     end type solver_config_t
 
@@ -80,8 +82,8 @@ contains
                      "2 to 1024")
         call require(error, is_one_of(self%fft_planner, fft_planner_names), path, 'solver', 'fft_planner', &
                      "'"//self%fft_planner//"'", choices_text(fft_planner_names))
-        call require(error, anderson_memory >= 0 .and. anderson_memory <= 50, path, 'solver', 'anderson_memory', &
-                     str(anderson_memory), "0 (off) to 50")
+        call require(error, anderson_memory >= -1 .and. anderson_memory <= 50, path, 'solver', 'anderson_memory', &
+                     str(anderson_memory), "-1 (the method's default), 0 (off) to 50")
         call require(error, balance_every >= 1 .and. balance_every <= 100000, path, 'solver', 'balance_every', &
                      str(balance_every), "1 to 100000")
         call require(error, finite_in(balance_ratio, 1.0_dp, 1.0e6_dp), path, 'solver', &
