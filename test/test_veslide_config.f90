@@ -79,6 +79,7 @@ contains
         tests = [ &
             new_unittest("bad-enumeration", test_bad_enum), &
             new_unittest("tolerance-in-range", test_solver_tolerance), &
+            new_unittest("anderson-memory-in-range", test_anderson_memory), &
             new_unittest("longest-kernel-name-survives", test_kernel_name) &
             ]
     end subroutine collect_config_solver
@@ -292,6 +293,16 @@ contains
         call expect_message('tol', "&solver tolerance = 1e-20 /", [character(len=24) :: "&solver tolerance", &
                             "1e-13 to 1e-2"], error)
     end subroutine test_solver_tolerance
+
+    !> -1 (each method's own) by default; below -1 refused with the allowed range
+    subroutine test_anderson_memory(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        call read_text('am', "&solver method = 'pdr' /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%solver%anderson_memory == -1, "the default is not -1"); if (allocated(error)) return
+        call expect_message('am2', "&solver anderson_memory = -2 /", [character(len=28) :: &
+                            "&solver anderson_memory", "-2", "-1 (the method's default)"], error)
+    end subroutine test_anderson_memory
 
     subroutine test_kernel_name(error)
         type(error_t), allocatable, intent(out) :: error

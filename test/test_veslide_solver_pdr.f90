@@ -115,22 +115,12 @@ contains
     !> Started from a converged pressure and its gap (a sweep's warm start), pdr stops at once
     subroutine test_warm_start(error)
         type(error_t), allocatable, intent(out) :: error
-        integer, parameter :: n = 64
-        type(material_t) :: m
         type(kernel_t) :: k
-        type(grid_t) :: grid
         type(fft2d_t) :: fft
         type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
         type(contact_state_t) :: s, sw
-        real(dp) :: h(n, n)
-        call paper_rough(n, h, error); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
-        call new_kernel(k, grid, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], KERNEL_SPECTRAL, error)
-        if (allocated(error)) return
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        call new_contact_problem(problem, k, h, 3.2e4_dp, error); if (allocated(error)) return
+        call rough_problem_64(problem, k, fft, error); if (allocated(error)) return
         opts%method = SOLVER_PDR
         call solve_contact(problem, fft, opts, s, error); if (allocated(error)) return
         call solve_contact(problem, fft, opts, sw, error, p_init=s%p, g_init=s%g); if (allocated(error)) return
@@ -142,22 +132,12 @@ contains
     !> the same pressure, and the kernel's multiplier the solve borrowed comes back unchanged
     subroutine test_mixing_agrees(error)
         type(error_t), allocatable, intent(out) :: error
-        integer, parameter :: n = 64
-        type(material_t) :: m
         type(kernel_t) :: k
-        type(grid_t) :: grid
         type(fft2d_t) :: fft
         type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
         type(contact_state_t) :: s, sa
-        real(dp) :: h(n, n)
-        call paper_rough(n, h, error); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
-        call new_kernel(k, grid, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], KERNEL_SPECTRAL, error)
-        if (allocated(error)) return
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        call new_contact_problem(problem, k, h, 3.2e4_dp, error); if (allocated(error)) return
+        call rough_problem_64(problem, k, fft, error); if (allocated(error)) return
         opts%method = SOLVER_PDR
         call solve_contact(problem, fft, opts, s, error); if (allocated(error)) return
         opts%anderson_memory = 5
@@ -171,6 +151,26 @@ contains
         call check(error, all(problem%kernel%multiplier(1.0_dp) == k%multiplier(1.0_dp)), &
                    "the kernel's multiplier changed")
     end subroutine test_mixing_agrees
+
+    !> The paper's rough surface on 64^2 cells, ratio 11 near the loss peak, 32 kPa: the problem,
+    !> its kernel `k` (a copy the problem's can be compared with) and the transforms
+    subroutine rough_problem_64(problem, k, fft, error)
+        type(contact_problem_t), intent(out) :: problem
+        type(kernel_t), intent(out) :: k
+        type(fft2d_t), intent(out) :: fft
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 64
+        type(material_t) :: m
+        type(grid_t) :: grid
+        real(dp) :: h(n, n)
+        call paper_rough(n, h, error); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
+        call new_kernel(k, grid, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], KERNEL_SPECTRAL, error)
+        if (allocated(error)) return
+        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
+        call new_contact_problem(problem, k, h, 3.2e4_dp, error)
+    end subroutine rough_problem_64
 
     !> The same surface on 64^2 .. 256^2 (q0 .. 16 q0), ratio 11 near the loss peak, tolerance
     !> 1e-8: pdr's FFT pairs grow by at most 1.5 from the coarsest grid to the finest
