@@ -34,8 +34,9 @@ module veslide_solver
     !> strongly anisotropic operators: Einf/E0 of 100 and more in motion)
     real(dp), parameter :: pdr_max_spread = 20.0_dp
     !> Anderson memory when the options leave it to the method (anderson_memory < 0): dr mixes 5
-    !> steps; pdr takes the over-relaxed plain step, which costs 1-3 % more FFT pairs than mixing
-    !> on the hard cases for 52 bytes per cell less (docs/solver-scaling.md)
+    !> steps; pdr takes the over-relaxed plain step, which spends as many FFT pairs as mixing on
+    !> the hard cases (within 1 %) and fewer on the paper scene, for 52 bytes per cell less
+    !> (docs/solver-scaling.md)
     integer, parameter :: dr_anderson_memory = 5, pdr_anderson_memory = 0
 
 contains
