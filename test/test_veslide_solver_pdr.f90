@@ -67,7 +67,8 @@ contains
         call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
     end subroutine test_dense_32_aniso
 
-    !> In full contact P(q) = H(q)/K(q): the forces in closed form
+    !> In full contact P(q) = H(q)/K(q): the forces in closed form, and pdr, which starts from that
+    !> solution when it is admissible, confirms it within a few FFT pairs
     subroutine test_full_contact_forces(error)
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 32
@@ -82,6 +83,9 @@ contains
                         kernel=k, method='pdr')
         if (allocated(error)) return
         call check(error, contact_area_fraction(s%p), 1.0_dp, "not in full contact", abs=0.0_dp)
+        if (allocated(error)) return
+        call report("FFT pairs", real(s%operator_applications, dp))
+        call check(error, s%operator_applications <= 5, "the full-contact start was not taken")
         if (allocated(error)) return
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         f = k%tangential_force(fft, s%p)

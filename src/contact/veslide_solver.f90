@@ -86,7 +86,7 @@ contains
             if (present(p_init) .and. present(g_init)) then
                 call preconditioned_douglas_rachford(problem, fft, o, state, gap0=g_init)
             else
-                call preconditioned_douglas_rachford(problem, fft, o, state)
+                call preconditioned_douglas_rachford(problem, fft, o, state, cold=.not. present(p_init))
             end if
         case default
             call fatal_error(error, "veslide:solver:solve_contact: unknown method"); return

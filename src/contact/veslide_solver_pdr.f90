@@ -38,7 +38,7 @@ module veslide_solver_pdr
 
 contains
 
-    subroutine preconditioned_douglas_rachford(problem, fft, opts, state, gap0)
+    subroutine preconditioned_douglas_rachford(problem, fft, opts, state, gap0, cold)
         !> its kernel's multiplier is lent to the solve and returned unchanged
         type(contact_problem_t), intent(inout) :: problem
         type(fft2d_t), intent(inout) :: fft
@@ -47,6 +47,9 @@ contains
         type(contact_state_t), intent(inout) :: state
         !> gap of the starting pressure [m] (default: zero gap)
         real(dp), intent(in), optional :: gap0(:, :)
+        !> the start is problem%start's uniform pressure (no warm start): begin from the solution
+        !> in full contact instead when that is admissible
+        logical, intent(in), optional :: cold
         real(dp), parameter :: inner_fraction = 0.3_dp    ! docs/solver-scaling.md (0.2 with Anderson)
         !> over-relaxation of the plain step (docs/solver-scaling.md: 1.5 against 1.7 and Anderson)
         real(dp), parameter :: relaxation = 1.5_dp
@@ -95,6 +98,9 @@ contains
             fft%x = gap0/hs
             call z_from_gap()
         else
+            if (present(cold)) then
+                if (cold) call start_from_full_contact()
+            end if
             zz = state%p
         end if
         if (mixing) call aa%init(nx*ny, opts%anderson_memory, problem%kernel%grid)
@@ -204,6 +210,25 @@ contains
         state%operator_applications = ceiling(b%pairs)
 
     contains
+
+        !> y = the solution in full contact, P = 1 + H/K (one inverse transform of h^, which fft%k
+        !> holds), when it is admissible (P >= 0 everywhere): then it is the solution, confirmed by
+        !> the first outer iteration. (Started from it clipped at zero when it is negative on up to
+        !> half the cells, the hard cases near full contact took as many FFT pairs as from the
+        !> uniform pressure: docs/solver-scaling.md.)
+        subroutine start_from_full_contact()
+            integer(i8) :: neg(1)
+            where (b%ks > 0.0_dp)
+                fft%k = fft%k/((n*n*s)*kd)
+            elsewhere
+                fft%k = (0.0_dp, 0.0_dp)
+            end where
+            call fft%backward_unscaled()
+            b%pairs = b%pairs + 0.5_dp
+            neg(1) = count(fft%x < -1.0_dp, kind=i8)
+            call global_count(problem%kernel%grid, neg)
+            if (neg(1) == 0) state%p = 1.0_dp + fft%x
+        end subroutine start_from_full_contact
 
         !> z and f take the memory of the state's g and u (their values are not needed)
         subroutine take_work_arrays()
