@@ -22,7 +22,7 @@ module veslide_contact
     use veslide_kernel, only: kernel_t
     use veslide_fftw, only: fft2d_t
     use veslide_collective, only: ordered_sum, global_min, global_max, global_count, global_any
-    use veslide_fields, only: field_mean, field_dot, field_sum
+    use veslide_fields, only: field_mean, field_rms, field_sum
     implicit none
     private
     public :: contact_problem_t, contact_state_t, new_contact_problem, new_contact_problem_moving, residual_measures
@@ -123,7 +123,7 @@ contains
         associate (grid => self%kernel%grid)
             self%p_mean_pa = p_mean
             self%h_mean = field_mean(grid, self%h)
-            self%height_scale_m = sqrt(field_dot(grid, self%h - self%h_mean, self%h - self%h_mean)/grid%cells())
+            self%height_scale_m = field_rms(grid, self%h)
         end associate
         if (self%height_scale_m <= 0.0_dp) self%height_scale_m = p_mean*self%kernel%max_abs()
         if (self%height_scale_m <= 0.0_dp) self%height_scale_m = 1.0_dp
