@@ -1,0 +1,141 @@
+"""veslide.refine / veslide.convergence: the error band of a scalar from several grids."""
+import math
+
+import numpy as np
+import pytest
+
+import veslide
+from veslide.refinement import richardson
+from conftest import params
+from test_run import fake_exe
+
+H = np.array([8.0, 4.0, 2.0, 1.0])          # cell sides, coarsest first
+
+
+def test_exact_power_law_gives_its_order_and_limit():
+    for p in (1.0, 1.5, 2.0):
+        r = richardson(H, 1.0 + 0.3 * H ** p)
+        assert r["observed_order"] == pytest.approx(p, abs=1e-6)
+        assert r["extrapolated"] == pytest.approx(1.0, abs=1e-9)
+        assert r["note"] == ""
+        # no scatter: the band is 1.25 times the distance to the limit
+        assert r["error"] == pytest.approx(1.25 * 0.3, rel=1e-6)
+    # unequal ratios (nx = 256, 384, 512, 1024)
+    h = 1.0 / np.array([256.0, 384.0, 512.0, 1024.0])
+    r = richardson(h, 2.0 - 5.0 * h ** 1.5)
+    assert r["observed_order"] == pytest.approx(1.5, abs=1e-6) and r["extrapolated"] == pytest.approx(2.0, abs=1e-9)
+
+
+def test_scattered_values_widen_the_band_to_cover_the_error():
+    rng = np.random.default_rng(5)
+    h = 1.0 / np.array([64.0, 96.0, 128.0, 192.0, 256.0, 384.0])
+    covered = 0
+    for _ in range(200):
+        # first order with a scatter of the size of the change over the grids (as the contact area)
+        phi = 0.19 + 0.02 * h + 2e-4 * rng.standard_normal(len(h))
+        r = richardson(h, phi)
+        covered += r["error"] >= abs(phi[-1] - 0.19)
+    assert covered >= 190           # a band, not a guarantee: 95 % of the draws at least
+
+
+def test_few_grids_and_no_change():
+    r = richardson(H[1:], 1.0 + H[1:] ** 2)
+    assert r["observed_order"] == pytest.approx(2.0, abs=1e-6) and "three grids" in r["note"]
+    assert r["error"] == pytest.approx(3.0, rel=1e-6)        # factor 3: no scatter can be measured
+    r = richardson(H[2:], 1.0 + H[2:] ** 2)
+    assert math.isnan(r["error"]) and "give assumed_order" in r["note"]
+    r = richardson(H[2:], 1.0 + H[2:] ** 2, assumed_order=2)
+    assert r["extrapolated"] == pytest.approx(1.0, abs=1e-12) and r["error"] == pytest.approx(3.0, rel=1e-12)
+    r = richardson(H, np.full(4, 0.25))
+    assert r["error"] == 0.0 and r["extrapolated"] == 0.25
+    with pytest.raises(ValueError, match="coarsest first"):
+        richardson(H[::-1], H)
+
+
+def _bisinusoid(p_ratio=0.1):
+    e_star = 1e7 / (1 - 0.5 ** 2)
+    d, l = 1e-5, 0.01
+    p_star = math.sqrt(2) * math.pi * e_star * d / l
+    return params(surface={"kind": "bisinusoid", "amplitude_m": d, "wavelength_m": l},
+                  load={"mean_pressure_pa": p_ratio * p_star}, solver={"tolerance": 1e-12},
+                  output={"fields": False})
+
+
+def test_refine_band_covers_a_finer_solve(tmp_path, exe):
+    sizes = [96, 128, 192, 256]
+    ref = veslide.refine(_bisinusoid(), sizes, tmp_path / "r", exe=exe, progress=None)
+    t = ref.table
+    assert list(t.index) == sizes and list(t["ny"]) == sizes
+    assert np.allclose(t["cell_m"], 0.01 / t.index.to_numpy()) and t["converged"].all()
+    assert sorted(p.name for p in (tmp_path / "r").iterdir()) == ["refine-128x128.h5", "refine-192x192.h5",
+                                                                   "refine-256x256.h5", "refine-96x96.h5"]
+    fine = veslide.run(dict(_bisinusoid(), grid={"nx": 1024, "ny": 1024}), output=tmp_path / "fine.h5", exe=exe,
+                       progress=None)
+    for name in ("contact_area_fraction", "contact_area_fraction_cells", "mean_separation_m"):
+        e = ref.estimate.loc[name]
+        assert e["finest"] == t[name].iloc[-1]
+        assert e["error"] >= abs(e["finest"] - fine.scalars[name]), name
+    # the cell count converges to the same area, more slowly: its band is the wider
+    e = ref.estimate
+    assert e.loc["contact_area_fraction", "error"] < e.loc["contact_area_fraction_cells", "error"]
+    assert e.loc["contact_area_fraction_cells", "error"] >= abs(t["contact_area_fraction_cells"].iloc[-1]
+                                                               - fine.scalars["contact_area_fraction"])
+    assert e.loc["contact_area_fraction", "units"] == "-" and e.loc["mean_separation_m", "units"] == "m"
+
+    # the same input again reads the files (the executable is not run)
+    fails = fake_exe(tmp_path / "fails", "exit 3")
+    again = veslide.refine(_bisinusoid(), sizes, tmp_path / "r", exe=fails, progress=None)
+    assert again.estimate.equals(ref.estimate)
+    # another input in the same directory is refused, nothing replaced
+    other = _bisinusoid(0.2)
+    with pytest.raises(FileExistsError, match="another input"):
+        veslide.refine(other, [96, 128], tmp_path / "r", exe=fails, progress=None)
+    with pytest.raises(FileExistsError, match="reuse=True"):
+        veslide.refine(_bisinusoid(), [96, 128], tmp_path / "r", exe=fails, reuse=False, progress=None)
+
+    # the same files through convergence(), in any order
+    files = sorted((tmp_path / "r").glob("*.h5"))
+    assert veslide.convergence(files).estimate.equals(ref.estimate)
+
+
+def test_refine_refuses_what_it_cannot_refine(tmp_path, exe):
+    with pytest.raises(ValueError, match="remove &sweep"):
+        veslide.refine(params(sweep={"speeds_m_s": [0.0, 0.1]}), [32, 64], tmp_path, exe=exe, progress=None)
+    with pytest.raises(ValueError, match="kind = 'file'"):
+        veslide.refine(params(surface={"kind": "file", "file": "x.h5"}), [32, 64], tmp_path, exe=exe, progress=None)
+    with pytest.raises(ValueError, match="aspect"):
+        veslide.refine(params(grid={"nx": 32, "ny": 16}), [32, 33], tmp_path, exe=exe, progress=None)
+    with pytest.raises(ValueError, match="at least two"):
+        veslide.refine(params(), [64], tmp_path, exe=exe, progress=None)
+
+
+def test_convergence_refuses_runs_of_different_cases(tmp_path, exe):
+    # a profile (ny = 1) keeps ny = 1; two seeds are two different cases
+    base = params(grid={"nx": 32, "ny": 1}, surface={"k_cut": 4}, output={"fields": False})
+    ref = veslide.refine(base, [32, 64], tmp_path / "a", exe=exe, progress=None)
+    assert list(ref.table["ny"]) == [1, 1]
+    other = veslide.refine(dict(base, surface={"k_cut": 4, "seed": 7}), [128, 256], tmp_path / "b", exe=exe,
+                           progress=None)
+    with pytest.raises(ValueError, match="&surface seed"):
+        veslide.convergence(ref.results + other.results)
+    with pytest.raises(ValueError, match="same grid"):
+        veslide.convergence([ref.results[0], ref.results[0]])
+
+
+def test_command_line(tmp_path, exe, monkeypatch):
+    import subprocess
+    import sys
+    nml = veslide.write_namelist(params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 4},
+                                        output={"fields": False}), tmp_path / "case.nml")
+    monkeypatch.setenv("VESLIDE_EXE", str(exe))
+    cmd = [sys.executable, "-m", "veslide", "refine", str(nml), "32", "48", "64", "--output-dir", str(tmp_path / "r")]
+    out = subprocess.run(cmd, capture_output=True, text=True, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert "contact_area_fraction" in out.stdout and "observed_order" in out.stdout
+    assert sorted(p.name for p in (tmp_path / "r").iterdir()) == ["refine-32x32.h5", "refine-48x48.h5",
+                                                                   "refine-64x64.h5"]
+    assert out.stderr == ""
+    # k_cut = 4 is not below the Nyquist wavenumber of 8 cells: the program's message, nothing left
+    bad = subprocess.run(cmd[:5] + ["8", "16", "--output-dir", str(tmp_path / "s")], capture_output=True,
+                         text=True, cwd=tmp_path)
+    assert bad.returncode == 1 and "&surface k_cut" in bad.stderr and not (tmp_path / "s").exists()
