@@ -24,17 +24,19 @@ contains
         end if
     end function contact_area_fraction
 
-    !> Contact area fraction to second order in the cell size. The contact boundary crosses every
+    !> Contact area fraction with the edge located within a cell. The contact boundary crosses every
     !> grid segment between a contact cell (p > 0) and a free one; the crossing is located from the
     !> local form of a smooth contact edge, p^2 ~ d (1 + c d) inside and g^(2/3) ~ s (1 + c s)
-    !> outside (elastic and, at the scale of a cell, viscoelastic edges alike): the zero of the
-    !> parabola through three values of g^(2/3) along the segment's line outside (the smooth side;
-    !> it may fall up to half a cell inside the last contact centre, whose small pressure carries
-    !> the grid's edge error), else of the one through p^2 inside, each falling back to the line
-    !> through two values, or to the segment's midpoint where neither side has two values. The area
+    !> outside (elastic and, at the scale of a cell, viscoelastic edges alike): the mean of the zero
+    !> of the parabola through three values of g^(2/3) along the segment's line outside and of the
+    !> one through p^2 inside, each falling back to the line through two values, or the segment's
+    !> midpoint where neither side has two values; kept between half a cell inside the last
+    !> contact centre (whose small pressure carries the grid's edge error) and the free one. The area
     !> is then the signed area of the polygons the crossings and the contact centres cut from
-    !> every square of four neighbouring centres (marching squares). Cell counting errs by O(h)
-    !> along the perimeter; this estimate by O(h^2) (docs/validation.md). With `grid`, over the
+    !> every square of four neighbouring centres (marching squares). Cell counting misplaces the
+    !> edge by 0.1-0.3 cell; this estimate by 0.004-0.05 cell on the solver's fields (first order
+    !> still, the error depending on where the edge falls in its cell) and to second order on fields
+    !> with the exact edge asymptotics (docs/validation.md). With `grid`, over the
     !> whole grid (a distributed grid's neighbouring rows come from the other processes).
     real(dp) function contact_area_subcell(p, g, grid) result(a)
         !> pressure and gap on the grid (p > 0 marks contact)
