@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from .results import Result, read
-from .runner import namelist, run
+from .runner import load_params, run
 
 #: The scalars analysed unless others are asked for (those a file lacks are skipped)
 DEFAULT_SCALARS = ("contact_area_fraction", "contact_area_fraction_cells", "mean_separation_m",
@@ -224,13 +224,7 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
     overwrite   run again and replace the files instead
     threads, exe, progress   as for `veslide.run`
     """
-    if isinstance(params, (str, Path)):
-        path = Path(params)
-        if not path.is_file():
-            raise FileNotFoundError("%s: no such namelist file" % path)
-        base = f90nml.read(str(path))
-    else:
-        base = params if isinstance(params, f90nml.Namelist) else namelist(params)
+    base, _ = load_params(params)
     _check_refinable(base)
     sizes = sorted(int(n) for n in sizes)
     if len(sizes) < 2 or len(set(sizes)) != len(sizes) or sizes[0] < 1:

@@ -67,6 +67,17 @@ def namelist(params):
     return f90nml.Namelist(groups)
 
 
+def load_params(params):
+    """(Namelist, path) of a namelist file's path, or (Namelist, None) of a dict of groups or a
+    Namelist."""
+    if isinstance(params, (str, os.PathLike)):
+        path = Path(params)
+        if not path.is_file():
+            raise FileNotFoundError("%s: no such namelist file" % path)
+        return f90nml.read(str(path)), path
+    return (params if isinstance(params, f90nml.Namelist) else namelist(params)), None
+
+
 def write_namelist(params, path):
     """Write a dict of namelist groups (or a Namelist) as a namelist file; returns the path."""
     nml = params if isinstance(params, f90nml.Namelist) else namelist(params)
@@ -137,14 +148,7 @@ def run(params, output=None, threads=None, exe=None, *, overwrite=False, quiet=F
     part file OUT.part with the finished cases (`veslide.read_running(OUT)`)."""
     program = find_executable(exe)
     scratch = None
-    if isinstance(params, (str, os.PathLike)):
-        nml_path = Path(params)
-        if not nml_path.is_file():
-            raise FileNotFoundError("%s: no such namelist file" % nml_path)
-        nml = f90nml.read(str(nml_path))
-    else:
-        nml = params if isinstance(params, f90nml.Namelist) else namelist(params)
-        nml_path = None
+    nml, nml_path = load_params(params)
     if output is None:
         output = _output_of(nml)
     if output is None:
