@@ -97,6 +97,17 @@ def test_refine_band_covers_a_finer_solve(tmp_path, exe):
     files = sorted((tmp_path / "r").glob("*.h5"))
     assert veslide.convergence(files).estimate.equals(ref.estimate)
 
+    # the plot: the values on each grid, the band on the finest, the limit dashed
+    import matplotlib.pyplot as plt
+    import veslide.plot as vp
+    ax = vp.refinement(ref, "contact_area_fraction")
+    np.testing.assert_array_equal(ax.lines[0].get_xdata(), sizes)
+    np.testing.assert_array_equal(ax.lines[0].get_ydata(), t["contact_area_fraction"])
+    bar = ax.collections[0].get_segments()[0]                 # the error bar at the finest grid
+    assert bar[0][0] == sizes[-1] and (bar[1][1] - bar[0][1]) / 2 == pytest.approx(e.loc["contact_area_fraction", "error"])
+    assert ax.get_xscale() == "log" and "A/A_0" in ax.get_ylabel()
+    plt.close("all")
+
 
 def test_refine_refuses_what_it_cannot_refine(tmp_path, exe):
     with pytest.raises(ValueError, match="remove &sweep"):

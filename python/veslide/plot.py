@@ -573,3 +573,27 @@ def friction_polar(source, ax=None, *, quantity="friction_coefficient", speeds=N
     if legend and len(ax.get_legend_handles_labels()[0]) > 1:
         ax.legend(loc="lower left", bbox_to_anchor=(0.8, -0.1), fontsize="small")
     return ax
+
+
+def refinement(ref, scalar="contact_area_fraction", ax=None, *, cells=True, **kw):
+    """A scalar of a `veslide.refine` / `veslide.convergence` result against the grid (log axis:
+    nx when `cells`, else the cell side in metres): the values on each grid, the extrapolated value
+    dashed and the error band of the finest grid as its error bar. Other keywords (marker, ms, ...)
+    go to the values' `plot`."""
+    ax = _new_axes(ax)
+    t, e = ref.table, ref.estimate.loc[scalar]
+    x = t.index.to_numpy() if cells else t["cell_m"].to_numpy()
+    ax.plot(x, t[scalar].to_numpy(), **{"marker": "o", "ms": 4, **kw})
+    if np.isfinite(e["error"]):
+        ax.errorbar([x[-1]], [e["finest"]], yerr=[e["error"]], capsize=4, color="k", lw=1)
+    if np.isfinite(e["extrapolated"]):
+        ax.axhline(e["extrapolated"], ls="--", color="0.4", lw=1)
+    ax.set_xscale("log")
+    if cells:                                   # every grid labelled by its nx
+        ax.set_xticks(x, [str(int(v)) for v in x], rotation=45 if len(x) > 5 else 0)
+        ax.minorticks_off()
+    ax.set_xlabel("$n_x$ (cells along $x$)" if cells else label("cell_m", "m"))
+    ax.set_ylabel(label(scalar, e["units"]))
+    order = "" if not np.isfinite(e["observed_order"]) else ", observed order %.2g" % e["observed_order"]
+    ax.set_title("error band of the finest grid %.2g%s" % (e["error"], order), fontsize="small")
+    return ax

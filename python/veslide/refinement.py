@@ -78,38 +78,52 @@ class Refinement:
         return "<veslide.Refinement %s>" % ", ".join("%dx%d" % (r.scalars["nx"], r.scalars["ny"]) for r in self.results)
 
 
-def _fit(x, phi, powers):
-    """Least-squares fit phi = phi0 + sum_k a_k x^powers[k]; returns (coefficients, fitted values,
-    standard deviation of the residuals, taken over n - (number of unknowns) when positive)."""
+def _fit(x, phi, powers, weighted=False):
+    """Least-squares fit phi = phi0 + sum_k a_k x^powers[k], unweighted or with weights 1/x (the
+    finer grids weigh more); returns (coefficients, fitted values, standard deviation of the
+    residuals over n - (number of unknowns) when positive, else 0)."""
     a = np.column_stack([np.ones_like(x)] + [x ** q for q in powers])
-    c, *_ = np.linalg.lstsq(a, phi, rcond=None)
+    w = (1.0 / x) / np.sum(1.0 / x) if weighted else np.full(len(x), 1.0 / len(x))
+    sw = np.sqrt(w)
+    c, *_ = np.linalg.lstsq(a * sw[:, None], phi * sw, rcond=None)
     fitted = a @ c
     dof = len(x) - a.shape[1]
-    sd = math.sqrt(float(np.sum((phi - fitted) ** 2)) / dof) if dof > 0 else 0.0
+    sd = math.sqrt(len(x) * float(np.sum(w * (phi - fitted) ** 2)) / dof) if dof > 0 else 0.0
     return c, fitted, sd
 
 
+def _best_fit(x, phi, powers):
+    """The weighted or the unweighted fit, whichever has the smaller standard deviation."""
+    fits = [_fit(x, phi, powers, weighted) for weighted in (False, True)]
+    return min(fits, key=lambda f: f[2])
+
+
 def _fit_order(x, phi):
-    """The fit phi = phi0 + a x^p with p free (0.05 <= p <= 8): a scan on a logarithmic grid, then
-    golden-section refinement of the best bracket. Returns (p, coefficients, fitted, sd)."""
-    def ssq(q):
-        _, f, _ = _fit(x, phi, [q])
-        return float(np.sum((phi - f) ** 2))
-    grid = np.exp(np.linspace(math.log(0.05), math.log(8.0), 400))
-    vals = [ssq(q) for q in grid]
-    k = int(np.argmin(vals))
-    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
-    g = (math.sqrt(5.0) - 1.0) / 2.0
-    c, d = hi - g * (hi - lo), lo + g * (hi - lo)
-    for _ in range(60):
-        if ssq(c) < ssq(d):
-            hi = d
-        else:
-            lo = c
+    """The fit phi = phi0 + a x^p with p free (0.05 <= p <= 8), weighted or not (the smaller
+    standard deviation): a scan on a logarithmic grid, then golden-section refinement of the best
+    bracket. Returns (p, coefficients, fitted, sd)."""
+    best = None
+    for weighted in (False, True):
+        def ssq(q):
+            _, f, sd = _fit(x, phi, [q], weighted)
+            return sd if len(x) > 3 else float(np.sum((phi - f) ** 2))
+        grid = np.exp(np.linspace(math.log(0.05), math.log(8.0), 400))
+        vals = [ssq(q) for q in grid]
+        k = int(np.argmin(vals))
+        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
+        g = (math.sqrt(5.0) - 1.0) / 2.0
         c, d = hi - g * (hi - lo), lo + g * (hi - lo)
-    p = 0.5 * (lo + hi)
-    coef, fitted, sd = _fit(x, phi, [p])
-    return p, coef, fitted, sd
+        for _ in range(60):
+            if ssq(c) < ssq(d):
+                hi = d
+            else:
+                lo = c
+            c, d = hi - g * (hi - lo), lo + g * (hi - lo)
+        p = 0.5 * (lo + hi)
+        coef, fitted, sd = _fit(x, phi, [p], weighted)
+        if best is None or sd < best[3]:
+            best = (p, coef, fitted, sd)
+    return best
 
 
 def richardson(h, phi, assumed_order=None):
@@ -118,7 +132,8 @@ def richardson(h, phi, assumed_order=None):
     uncertainty of CFD calculations based on grid refinement studies", J. Comput. Phys. 262 (2014)
     104-130:
 
-    - the values are fitted by least squares by phi0 + a h^p (p free); its p is the observed order;
+    - the values are fitted by least squares by phi0 + a h^p (p free), unweighted and with weights
+      1/h, and the fit with the smaller standard deviation is kept; its p is the observed order;
     - while that order is 2.1 or more and four grids or more remain, the coarsest grid is left out
       (outside the asymptotic range: the values converge faster than any order the method has);
     - when 0.5 <= p < 2.1 that fit is used with safety factor 1.25; otherwise the one of phi0 +
@@ -172,7 +187,7 @@ def richardson(h, phi, assumed_order=None):
             for powers in ([1.0], [2.0], [1.0, 2.0]):
                 if len(powers) + 1 >= n:
                     continue
-                c2, f2, s2 = _fit(x, phi, powers)
+                c2, f2, s2 = _best_fit(x, phi, powers)
                 if best is None or s2 < best[2]:
                     best = (c2, f2, s2, powers)
             if best is None:
