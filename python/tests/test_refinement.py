@@ -48,6 +48,9 @@ def test_few_grids_and_no_change():
     assert r["extrapolated"] == pytest.approx(1.0, abs=1e-12) and r["error"] == pytest.approx(3.0, rel=1e-12)
     r = richardson(H, np.full(4, 0.25))
     assert r["error"] == 0.0 and r["extrapolated"] == 0.25
+    # converged to the digits given on the finer grids (the coarsest left out)
+    r = richardson(np.array([16.0, 8.0, 4.0, 2.0, 1.0]), np.array([0.5, 0.2501, 0.25, 0.25, 0.25]))
+    assert r["error"] == 0.0 and r["extrapolated"] == 0.25 and "left out" in r["note"]
     with pytest.raises(ValueError, match="coarsest first"):
         richardson(H[::-1], H)
 

@@ -167,6 +167,10 @@ def richardson(h, phi, assumed_order=None):
         notes.append("coarsest %d grid%s left out (order above 2.1 with %s)"
                      % (dropped, "s" if dropped > 1 else "", "them" if dropped > 1 else "it"))
         x, phi, n = x[dropped:], phi[dropped:], n - dropped
+        if np.all(phi == phi[-1]):
+            out.update(extrapolated=phi[-1], error=0.0, relative_error=0.0,
+                       note="; ".join(notes + ["the same on the grids kept"]))
+            return out
     if n == 2:
         if assumed_order is None:
             out["note"] = "two grids: order not observed (give assumed_order)"
