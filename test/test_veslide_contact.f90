@@ -211,7 +211,7 @@ contains
     !> Bisinusoid at p/p* = 0.1 (two patches, curved edges), 128^2 .. 512^2 against a 1024^2
     !> solve: the sub-cell area is at least ten times closer to it than the cell count. Neither is
     !> second order on the solver's fields (their successive changes do not fall steadily): the
-    !> sub-cell estimate misplaces the edge by 0.001-0.05 cell, the count by 0.1-0.3
+    !> sub-cell estimate misplaces the edge by at most 0.03 cell, the count by 0.1-0.2 cell
     !> (docs/validation.md)
     subroutine test_area_bisinusoid(error)
         type(error_t), allocatable, intent(out) :: error

@@ -5,7 +5,7 @@
     r.scalars["friction_coefficient"], r.fields.pressure_pa.sel(x=0.005, y=0.002, method="nearest")
     s = veslide.read("study.h5"); s.summary, s.ensemble, s.cases[3].fields
     veslide.read_running("study.h5")          # a study still being written (its part file)
-    ref = veslide.refine(r_params, [256, 512, 1024, 2048]); ref.estimate   # error bands from refinement
+    ref = veslide.refine("case.nml", [256, 512, 1024, 2048]); ref.estimate   # error bands by refinement
 
 Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [iy, ix] in h5py).
 """
@@ -17,7 +17,8 @@ from .topography import major_axis_deg, psd_2d, psd_radial, read_topography, slo
 __version__ = "0.1.0"
 
 __all__ = ["read", "read_running", "run", "write_topography", "read_topography", "find_executable",
-           "namelist", "write_namelist", "refine", "convergence", "Refinement", "psd_2d", "psd_radial", "slope_tensor", "major_axis_deg",
+           "namelist", "write_namelist", "refine", "convergence", "Refinement", "psd_2d", "psd_radial",
+           "slope_tensor", "major_axis_deg",
            "Result", "Scalars", "Arrays", "Cases", "InputError", "VeslideError", "ConvergenceWarning"]
 
 

@@ -17,7 +17,9 @@ a cluster) are analysed by `convergence(results)`.
 """
 import copy
 import math
+import subprocess
 import tempfile
+import warnings
 from pathlib import Path
 
 import f90nml
@@ -25,7 +27,7 @@ import numpy as np
 import pandas as pd
 
 from .results import Result, read
-from .runner import load_params, run
+from .runner import ConvergenceWarning, find_executable, load_params, run
 
 #: The scalars analysed unless others are asked for (those a file lacks are skipped)
 DEFAULT_SCALARS = ("contact_area_fraction", "contact_area_fraction_cells", "mean_separation_m",
@@ -34,6 +36,9 @@ DEFAULT_SCALARS = ("contact_area_fraction", "contact_area_fraction_cells", "mean
 #: Safety factors: an order observed within 0.5..2.1 on four grids or more; any other case
 SAFETY_OBSERVED, SAFETY_ASSUMED = 1.25, 3.0
 
+#: The range of the free order: an observed order at either end means no power law fitted
+P_MIN, P_MAX = 0.05, 8.0
+
 # default grid of the program (README, &grid)
 _DEFAULT_N = 256
 
@@ -41,15 +46,16 @@ _DEFAULT_N = 256
 class Refinement:
     """The result of `refine` or `convergence`.
 
-    results   the runs, coarsest first (`veslide.Result`)
+    results   the runs, coarsest first (`veslide.Result`; empty for `Refinement.from_table`)
     table     pandas DataFrame, one row per grid (index `nx`): `ny`, `cell_m` (cell side along x),
               the scalars, `solve_seconds`, `operator_applications`, `converged`
     estimate  pandas DataFrame, one row per scalar (index `scalar`): `finest` (value on the finest
               grid), `change` (finest minus next coarser), `observed_order`, `extrapolated`,
               `error` (absolute error band of `finest`), `relative_error` (error / |finest|),
-              `units`, `note` ('' when the order was observed within 0.5..2.1 on four grids or
-              more and the values do not scatter; otherwise which rule made the band, or why
-              there is none)
+              `units`, `note` (which rules of `richardson` made the band, or why there is none;
+              '' when the free fit on every grid gave it with factor 1.25)
+    converged True when every grid's solve converged (otherwise each note says which did not,
+              and a `ConvergenceWarning` was issued)
     """
 
     def __init__(self, results, scalars, assumed_order):
@@ -66,30 +72,57 @@ class Refinement:
             row["converged"] = bool(s.get("converged", 0))
             rows.append(row)
         self.table = pd.DataFrame(rows).set_index("nx")
-        units = results[-1].scalars.units
-        names = [n for n in scalars if n in self.table.columns]
+        self._estimate([n for n in scalars if n in self.table.columns], results[-1].scalars.units, assumed_order)
+
+    @classmethod
+    def from_table(cls, table, scalars=DEFAULT_SCALARS, units=None, assumed_order=None):
+        """The estimate from a table of values (e.g. `Refinement.table` written to CSV and read
+        back): index `nx`, a column `cell_m`, the scalars' columns, optionally `converged`."""
+        self = cls.__new__(cls)
+        self.results = []
+        self.table = table.sort_values("cell_m", ascending=False).copy()
+        if "converged" not in self.table.columns:
+            self.table["converged"] = True
+        self.table["converged"] = self.table["converged"].astype(bool)
+        self._estimate([n for n in scalars if n in self.table.columns], units or {}, assumed_order)
+        return self
+
+    def _estimate(self, names, units, assumed_order):
         est = [dict(scalar=n, units=units.get(n, ""),
                     **richardson(self.table["cell_m"].to_numpy(), self.table[n].to_numpy(), assumed_order))
                for n in names]
         self.estimate = pd.DataFrame(est, columns=["scalar", "finest", "change", "observed_order", "extrapolated",
                                                    "error", "relative_error", "units", "note"]).set_index("scalar")
+        failed = [n for n, ok in zip(self.table.index, self.table["converged"]) if not ok]
+        if failed:
+            why = "not converged on nx = %s" % ", ".join(str(n) for n in failed)
+            self.estimate["note"] = [why + ("; " + v if v else "") for v in self.estimate["note"]]
+            warnings.warn("veslide.refine: %s: the band includes the solver's error" % why, ConvergenceWarning,
+                          stacklevel=4)
+
+    @property
+    def converged(self):
+        """Every grid's solve converged."""
+        return bool(self.table["converged"].all())
 
     def __repr__(self):
-        return "<veslide.Refinement %s>" % ", ".join("%dx%d" % (r.scalars["nx"], r.scalars["ny"]) for r in self.results)
+        return "<veslide.Refinement %s>" % ", ".join("%dx%d" % (nx, ny) for nx, ny in zip(self.table.index,
+                                                                                          self.table["ny"]))
 
 
-def _fit(x, phi, powers, weighted=False):
+def _fit(x, phi, powers, weighted=False, extra_unknowns=0):
     """Least-squares fit phi = phi0 + sum_k a_k x^powers[k], unweighted or with weights 1/x (the
-    finer grids weigh more); returns (coefficients, fitted values, standard deviation of the
-    residuals over n - (number of unknowns) when positive, else 0)."""
-    a = np.column_stack([np.ones_like(x)] + [x ** q for q in powers])
+    finer grids weigh more); returns (phi0, fitted values, standard deviation of the residuals over
+    n - (number of unknowns, `extra_unknowns` more than the coefficients) when positive, else 0).
+    The columns are scaled by their largest value, which keeps high powers of x well conditioned."""
+    a = np.column_stack([np.ones_like(x)] + [(x / x.max()) ** q for q in powers])
     w = (1.0 / x) / np.sum(1.0 / x) if weighted else np.full(len(x), 1.0 / len(x))
     sw = np.sqrt(w)
     c, *_ = np.linalg.lstsq(a * sw[:, None], phi * sw, rcond=None)
     fitted = a @ c
-    dof = len(x) - a.shape[1]
+    dof = len(x) - a.shape[1] - extra_unknowns
     sd = math.sqrt(len(x) * float(np.sum(w * (phi - fitted) ** 2)) / dof) if dof > 0 else 0.0
-    return c, fitted, sd
+    return float(c[0]), fitted, sd
 
 
 def _best_fit(x, phi, powers):
@@ -99,15 +132,15 @@ def _best_fit(x, phi, powers):
 
 
 def _fit_order(x, phi):
-    """The fit phi = phi0 + a x^p with p free (0.05 <= p <= 8), weighted or not (the smaller
-    standard deviation): a scan on a logarithmic grid, then golden-section refinement of the best
-    bracket. Returns (p, coefficients, fitted, sd)."""
+    """The fit phi = phi0 + a x^p with p free (P_MIN <= p <= P_MAX), weighted or not (the smaller
+    standard deviation; p counts as an unknown): a scan on a logarithmic grid, then golden-section
+    refinement of the best bracket. Returns (p, phi0, fitted, sd)."""
     best = None
     for weighted in (False, True):
         def ssq(q):
-            _, f, sd = _fit(x, phi, [q], weighted)
+            _, f, sd = _fit(x, phi, [q], weighted, extra_unknowns=1)
             return sd if len(x) > 3 else float(np.sum((phi - f) ** 2))
-        grid = np.exp(np.linspace(math.log(0.05), math.log(8.0), 400))
+        grid = np.exp(np.linspace(math.log(P_MIN), math.log(P_MAX), 400))
         vals = [ssq(q) for q in grid]
         k = int(np.argmin(vals))
         lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
@@ -120,9 +153,9 @@ def _fit_order(x, phi):
                 lo = c
             c, d = hi - g * (hi - lo), lo + g * (hi - lo)
         p = 0.5 * (lo + hi)
-        coef, fitted, sd = _fit(x, phi, [p], weighted)
+        phi0, fitted, sd = _fit(x, phi, [p], weighted, extra_unknowns=1)
         if best is None or sd < best[3]:
-            best = (p, coef, fitted, sd)
+            best = (p, phi0, fitted, sd)
     return best
 
 
@@ -132,36 +165,41 @@ def richardson(h, phi, assumed_order=None):
     uncertainty of CFD calculations based on grid refinement studies", J. Comput. Phys. 262 (2014)
     104-130:
 
-    - the values are fitted by least squares by phi0 + a h^p (p free), unweighted and with weights
-      1/h, and the fit with the smaller standard deviation is kept; its p is the observed order;
-    - while that order is 2.1 or more and four grids or more remain, the coarsest grid is left out
-      (outside the asymptotic range: the values converge faster than any order the method has);
-    - when 0.5 <= p < 2.1 that fit is used with safety factor 1.25; otherwise the one of phi0 +
-      a h, phi0 + a h^2 and phi0 + a h + b h^2 whose residuals are smallest, with factor 3;
+    - the values are fitted by least squares by phi0 + a h^p with p free in P_MIN..P_MAX (an order
+      at either end means that no power law fits), unweighted and with weights 1/h, and the fit
+      with the smaller standard deviation is kept; its p is the observed order;
+    - when 0.5 <= p < 2.1 that fit is used with safety factor Fs = 1.25; otherwise the one of
+      phi0 + a h, phi0 + a h^2 and phi0 + a h + b h^2 (each weighted or not) whose standard
+      deviation is smallest, with Fs = 3;
     - error = Fs |phi_1 - phi0| + s + |phi_1 - fit(h_1)|, with s the standard deviation of the
       fit's residuals; when s exceeds the data range (max - min)/(n - 1) the values scatter more
       than they converge, and the band becomes 3 s / range times (|phi_1 - phi0| + s +
       |phi_1 - fit(h_1)|).
 
-    Three grids determine the first fit exactly (no scatter measured: factor 3; four or more are
-    better); two grids use `assumed_order` with factor 3 (None: no band). Returns a dict (see
-    `Refinement.estimate`)."""
+    This project's addition: while five grids or more remain and the observed order is within
+    2.1..P_MAX (the values converge faster than the method's order: the coarsest grid is outside
+    the asymptotic range), the coarsest grid is left out. Three grids determine the free fit
+    exactly (no scatter can be measured: Fs = 3; four or more are better); two grids use
+    `assumed_order` with Fs = 3 (None: no band). Values that are not finite give no band. Returns
+    a dict (see `Refinement.estimate`)."""
     h = np.asarray(h, float)
     phi = np.asarray(phi, float)
     n = len(h)
-    if n < 2 or np.any(np.diff(h) >= 0):
+    if n < 2 or not np.all(np.isfinite(h)) or np.any(np.diff(h) >= 0):
         raise ValueError("richardson: need at least two grids, coarsest first (cell sides decreasing)")
     out = dict(finest=phi[-1], change=phi[-1] - phi[-2], observed_order=np.nan, extrapolated=np.nan,
                error=np.nan, relative_error=np.nan, note="")
+    if not np.all(np.isfinite(phi)):
+        out["note"] = "a value is not finite (grids %s): no band" % ", ".join(
+            str(k + 1) for k in np.flatnonzero(~np.isfinite(phi)))
+        return out
     if np.all(phi == phi[-1]):
         out.update(extrapolated=phi[-1], error=0.0, relative_error=0.0, note="the same on every grid")
         return out
     x = h / h[-1]                       # cell side in units of the finest: 1 on the finest grid
     notes = []
-    # coarse grids outside the asymptotic range (the values converge faster than h^2.1 with them)
-    # are left out, coarsest first, while four grids or more remain
     dropped = 0
-    while n - dropped >= 4 and _fit_order(x[dropped:], phi[dropped:])[0] >= 2.1:
+    while n - dropped >= 5 and 2.1 <= _fit_order(x[dropped:], phi[dropped:])[0] < P_MAX:
         dropped += 1
     if dropped:
         notes.append("coarsest %d grid%s left out (order above 2.1 with %s)"
@@ -176,11 +214,11 @@ def richardson(h, phi, assumed_order=None):
             out["note"] = "two grids: order not observed (give assumed_order)"
             return out
         p = float(assumed_order)
-        coef, fitted, sd = _fit(x, phi, [p])
+        phi0, fitted, sd = _fit(x, phi, [p])
         safety = SAFETY_ASSUMED
         notes.append("two grids: order %g assumed" % p)
     else:
-        p, coef, fitted, sd = _fit_order(x, phi)
+        p, phi0, fitted, sd = _fit_order(x, phi)
         out["observed_order"] = p
         safety = SAFETY_OBSERVED
         if n == 3:
@@ -191,18 +229,17 @@ def richardson(h, phi, assumed_order=None):
             for powers in ([1.0], [2.0], [1.0, 2.0]):
                 if len(powers) + 1 >= n:
                     continue
-                c2, f2, s2 = _best_fit(x, phi, powers)
-                if best is None or s2 < best[2]:
-                    best = (c2, f2, s2, powers)
+                f = _best_fit(x, phi, powers)
+                if best is None or f[2] < best[2]:
+                    best = f + (powers,)
             if best is None:
                 notes.append("observed order %.3g outside 0.5..2.1 and too few grids for other fits" % p)
                 out["note"] = "; ".join(notes)
                 return out
-            coef, fitted, sd, powers = best
+            phi0, fitted, sd, powers = best
             safety = SAFETY_ASSUMED
             notes.append("observed order %.3g outside 0.5..2.1: fit in h^%s used"
                          % (p, " + h^".join("%g" % q for q in powers)))
-    phi0 = float(coef[0])
     eps = abs(phi[-1] - phi0)
     off = abs(phi[-1] - fitted[-1])
     data_range = (phi.max() - phi.min()) / (n - 1)
@@ -232,14 +269,19 @@ def _check_refinable(nml):
 
 def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DEFAULT_SCALARS, assumed_order=None,
            reuse=True, overwrite=False, progress=print):
-    """Run one case on grids of `sizes` cells along x (the same physical cell; ny scaled with nx,
-    or kept at 1 for a profile) and return a `Refinement`.
+    """Run one case on grids of `sizes` cells along x (the same periodic domain, &grid lx_m and
+    ly_m, divided into finer cells; ny scaled with nx, or kept at 1 for a profile) and return a
+    `Refinement`.
 
     params      a dict of namelist groups or the path of a namelist file (one case: no &sweep)
-    sizes       nx of each grid, e.g. [256, 512, 1024] (three or more to observe the order)
-    output_dir  where the result files refine-NXxNY.h5 go (default: a new temporary directory)
-    reuse       a result file already there from the same input is read, not run again (a
-                refinement interrupted on a cluster continues); one from another input is an error
+    sizes       nx of each grid, e.g. [256, 512, 1024, 2048] (four or more: see `richardson`)
+    output_dir  where the result files refine-NXxNY.h5 go (default: a new temporary directory,
+                which is kept: its files are the refinement's)
+    reuse       a result file already there from the same input and the same program version
+                (`veslide --version` against the file's `veslide_version`) is read, not run again:
+                a refinement interrupted on a cluster continues. A file of another input or
+                version is an error. A program rebuilt without a new version is not detected:
+                pass overwrite=True after changing it.
     overwrite   run again and replace the files instead
     threads, exe, progress   as for `veslide.run`
     """
@@ -258,9 +300,12 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
         else:
             raise ValueError("refine: nx = %d does not keep the grid's aspect %d x %d (ny would not be whole)"
                              % (n, nx0, ny0))
-    out_dir = Path(output_dir) if output_dir is not None else Path(tempfile.mkdtemp(prefix="veslide-refine-"))
-    created = not out_dir.exists()
-    out_dir.mkdir(parents=True, exist_ok=True)
+    if output_dir is None:
+        out_dir, created = Path(tempfile.mkdtemp(prefix="veslide-refine-")), True
+    else:
+        out_dir = Path(output_dir)
+        created = not out_dir.exists()
+        out_dir.mkdir(parents=True, exist_ok=True)
     try:
         results = _run_grids(base, grids, out_dir, threads, exe, reuse, overwrite, progress)
     except BaseException:
@@ -270,8 +315,16 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
     return Refinement(results, scalars, assumed_order)
 
 
+def _program_version(exe):
+    """The version the executable reports (`veslide --version`: 'veslide X.Y.Z')."""
+    out = subprocess.run([str(find_executable(exe)), "--version"], capture_output=True, text=True, timeout=60)
+    words = out.stdout.split()
+    return words[1] if out.returncode == 0 and len(words) >= 2 else None
+
+
 def _run_grids(base, grids, out_dir, threads, exe, reuse, overwrite, progress):
     results = []
+    version = None
     for n, ny in grids:
         nml = copy.deepcopy(base)
         nml.setdefault("grid", f90nml.Namelist())
@@ -287,6 +340,10 @@ def _run_grids(base, grids, out_dir, threads, exe, reuse, overwrite, progress):
             if r.input is None or str(r.input) != str(nml):
                 raise FileExistsError("%s holds the result of another input: pass overwrite=True or another "
                                       "output_dir" % out)
+            version = version or _program_version(exe)
+            if r.provenance.get("veslide_version") != version:
+                raise FileExistsError("%s was written by veslide %s, the program is %s: pass overwrite=True"
+                                      % (out, r.provenance.get("veslide_version"), version))
             if progress is not None:
                 progress("refine: %s reused" % out.name)
         else:
@@ -308,7 +365,7 @@ def _comparable(nml):
 def convergence(results, scalars=DEFAULT_SCALARS, assumed_order=None):
     """A `Refinement` from runs of one case on different grids (Result objects or paths, any
     order): e.g. one cluster job per grid. Every run must have the same input apart from &grid nx,
-    ny and &output, and the same physical cell."""
+    ny and &output: the same periodic domain and the same aspect nx : ny."""
     rs = [r if isinstance(r, Result) else read(r) for r in results]
     if len(rs) < 2:
         raise ValueError("convergence: need at least two runs")
@@ -330,7 +387,12 @@ def convergence(results, scalars=DEFAULT_SCALARS, assumed_order=None):
                                      % (r.path, rs[-1].path, g, v, b.get(v), a.get(v)))
         for length in ("length_x_m",) + (("length_y_m",) if int(r.scalars["ny"]) > 1 else ()):
             if not math.isclose(r.scalars[length], rs[-1].scalars[length], rel_tol=1e-12):
-                raise ValueError("convergence: %s and %s have different cells (%s %g against %g)"
+                raise ValueError("convergence: %s and %s have different domains (%s %g against %g)"
                                  % (r.path, rs[-1].path, length, r.scalars[length], rs[-1].scalars[length]))
+        nx, ny = int(r.scalars["nx"]), int(r.scalars["ny"])
+        nx1, ny1 = int(rs[-1].scalars["nx"]), int(rs[-1].scalars["ny"])
+        if (ny1 == 1) != (ny == 1) or (ny1 > 1 and nx * ny1 != ny * nx1):
+            raise ValueError("convergence: %s (%d x %d) and %s (%d x %d) are not refined alike along x and y"
+                             % (r.path, nx, ny, rs[-1].path, nx1, ny1))
     return Refinement(rs, scalars, assumed_order)
 

@@ -34,7 +34,7 @@ contains
     !> contact centre (whose small pressure carries the grid's edge error) and the free one. The area
     !> is then the signed area of the polygons the crossings and the contact centres cut from
     !> every square of four neighbouring centres (marching squares). Cell counting misplaces the
-    !> edge by 0.1-0.3 cell; this estimate by 0.001-0.05 cell on the solver's fields (first order
+    !> edge by 0.1-0.2 cell; this estimate by at most 0.03 cell on the solver's fields (first order
     !> still, the error depending on where the edge falls in its cell) and to second order on fields
     !> with the exact edge asymptotics (docs/validation.md). With `grid`, over the
     !> whole grid (a distributed grid's neighbouring rows come from the other processes).
