@@ -109,6 +109,8 @@ def test_refine_band_covers_a_finer_solve(tmp_path, exe):
     newer = fake_exe(tmp_path / "newer", 'if [ "$1" = --version ]; then echo "veslide 99.0.0"; exit 0; fi; exit 3')
     with pytest.raises(FileExistsError, match="written by veslide .* the program is 99.0.0"):
         veslide.refine(_bisinusoid(), sizes, tmp_path / "r", exe=newer, progress=None)
+    with pytest.raises(veslide.VeslideError, match="exit status 3"):       # overwrite runs again
+        veslide.refine(_bisinusoid(), sizes, tmp_path / "r", exe=fails, overwrite=True, progress=None)
     with pytest.raises(FileExistsError, match="reuse=True"):
         veslide.refine(_bisinusoid(), [128, 192], tmp_path / "r", exe=fails, reuse=False, progress=None)
 
@@ -156,6 +158,10 @@ def test_convergence_refuses_runs_of_different_cases(tmp_path, exe):
         veslide.convergence(ref.results + other.results)
     with pytest.raises(ValueError, match="same grid"):
         veslide.convergence([ref.results[0], ref.results[0]])
+    wider = veslide.run(dict(base, grid={"nx": 128, "ny": 1, "lx_m": 0.02}), output=tmp_path / "w.h5", exe=exe,
+                        progress=None)
+    with pytest.raises(ValueError, match="&grid lx_m"):
+        veslide.convergence(ref.results + [wider])
     # a rectangle refined along x only is not a refinement
     rect = params(grid={"nx": 32, "ny": 16, "ly_m": 0.005}, surface={"k_cut": 4}, output={"fields": False})
     a = veslide.refine(rect, [32, 64], tmp_path / "c", exe=exe, progress=None)
