@@ -136,9 +136,32 @@ def test_refine_band_covers_a_finer_solve(tmp_path, exe):
     plt.close("all")
 
 
+def test_a_study_is_refined_case_by_case(tmp_path, exe):
+    base = _bisinusoid()
+    pressures = [0.5 * base["load"]["mean_pressure_pa"], base["load"]["mean_pressure_pa"]]
+    study = dict(base, sweep={"pressures_pa": pressures})
+    sizes = [64, 96, 128, 192]
+    ref = veslide.refine(study, sizes, tmp_path / "s", exe=exe, progress=None)
+    assert isinstance(ref, veslide.StudyRefinement) and ref.converged and sorted(ref.cases) == [1, 2]
+    assert len(ref.table) == 8 and sorted(set(ref.table.index.get_level_values("nx"))) == sizes
+    e = ref.estimate
+    assert list(e.loc[(2, "contact_area_fraction"), ["pressure_pa"]]) == [pressures[1]]
+    # each case is the single case at its pressure, refined alone
+    one = veslide.refine(dict(base, load={"mean_pressure_pa": pressures[0]}), sizes, tmp_path / "one", exe=exe,
+                         progress=None)
+    for name in ("contact_area_fraction", "mean_separation_m"):
+        a, b = e.loc[(1, name)], one.estimate.loc[name]
+        assert a["finest"] == pytest.approx(b["finest"], rel=1e-9)
+        assert a["error"] == pytest.approx(b["error"], rel=1e-3, abs=1e-12 * abs(b["finest"]))
+    assert ref.cases[1].estimate.loc["contact_area_fraction", "error"] == e.loc[(1, "contact_area_fraction"), "error"]
+    # the same study files through convergence()
+    again = veslide.convergence(sorted((tmp_path / "s").glob("*.h5")))
+    assert again.estimate.equals(ref.estimate)
+    with pytest.raises(ValueError, match="not both"):
+        veslide.convergence(ref.results[:2] + one.results[2:])
+
+
 def test_refine_refuses_what_it_cannot_refine(tmp_path, exe):
-    with pytest.raises(ValueError, match="remove &sweep"):
-        veslide.refine(params(sweep={"speeds_m_s": [0.0, 0.1]}), [32, 64], tmp_path, exe=exe, progress=None)
     with pytest.raises(ValueError, match="kind = 'file'"):
         veslide.refine(params(surface={"kind": "file", "file": "x.h5"}), [32, 64], tmp_path, exe=exe, progress=None)
     with pytest.raises(ValueError, match="aspect"):

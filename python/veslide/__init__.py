@@ -10,15 +10,15 @@
 Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [iy, ix] in h5py).
 """
 from .results import Arrays, Cases, Result, Scalars, read, read_running
-from .refinement import Refinement, convergence, refine
+from .refinement import Refinement, StudyRefinement, convergence, refine
 from .runner import ConvergenceWarning, InputError, VeslideError, find_executable, namelist, run, write_namelist
 from .topography import major_axis_deg, psd_2d, psd_radial, read_topography, slope_tensor, write_topography
 
 __version__ = "0.1.0"
 
 __all__ = ["read", "read_running", "run", "write_topography", "read_topography", "find_executable",
-           "namelist", "write_namelist", "refine", "convergence", "Refinement", "psd_2d", "psd_radial",
-           "slope_tensor", "major_axis_deg",
+           "namelist", "write_namelist", "refine", "convergence", "Refinement", "StudyRefinement",
+           "psd_2d", "psd_radial", "slope_tensor", "major_axis_deg",
            "Result", "Scalars", "Arrays", "Cases", "InputError", "VeslideError", "ConvergenceWarning"]
 
 

@@ -1,7 +1,7 @@
 """Grid refinement: one case on successively finer grids, and the discretisation error of its
 scalars from the observed order of convergence and Richardson extrapolation.
 
-    ref = veslide.refine("case.nml", sizes=[256, 512, 1024], output_dir="refine")
+    ref = veslide.refine("case.nml", sizes=[256, 512, 768, 1024, 2048], output_dir="refine")
     ref.table       # one row per grid: the scalars, solve time, FFT pairs
     ref.estimate    # one row per scalar: finest value, observed order, extrapolated value, error
 
@@ -13,7 +13,7 @@ not a clean power of the cell size (docs/validation.md), and three grids can sug
 The surface must be the same on every grid: the generator gives the same surface on any grid that
 resolves its spectrum (&surface k_cut below every grid's Nyquist), and the analytic surfaces are
 sampled exactly; a topography file is one grid only. Runs computed elsewhere (one job per grid on
-a cluster) are analysed by `convergence(results)`.
+a cluster) are analysed by `convergence(results)`. A study (&sweep) is refined case by case.
 """
 import copy
 import math
@@ -32,6 +32,9 @@ from .runner import ConvergenceWarning, find_executable, load_params, run
 #: The scalars analysed unless others are asked for (those a file lacks are skipped)
 DEFAULT_SCALARS = ("contact_area_fraction", "contact_area_fraction_cells", "mean_separation_m",
                    "friction_coefficient", "lateral_force_ratio")
+
+#: The parameters of a study's case (columns of /summary)
+PARAMETERS = ("seed", "eccentricity", "alpha_deg", "pressure_pa", "speed_m_s")
 
 #: Safety factors: an order observed within 0.5..2.1 on four grids or more; any other case
 SAFETY_OBSERVED, SAFETY_ASSUMED = 1.25, 3.0
@@ -108,6 +111,64 @@ class Refinement:
     def __repr__(self):
         return "<veslide.Refinement %s>" % ", ".join("%dx%d" % (nx, ny) for nx, ny in zip(self.table.index,
                                                                                           self.table["ny"]))
+
+
+class StudyRefinement:
+    """The result of `refine` or `convergence` for a study (&sweep): every case refined on its own
+    from its rows of the studies' /summary (the same plan, so the same case numbers, on every grid).
+
+    results   the study files, coarsest first
+    cases     case number -> `Refinement` (its `table` and `estimate`; `results` empty)
+    table     every case on every grid: index (case, nx), the parameters, `ny`, `cell_m`, the
+              scalars, `solve_seconds`, `operator_applications`, `converged`
+    estimate  index (case, scalar): the case's parameters, then the columns of
+              `Refinement.estimate`
+    converged True when every case converged on every grid
+    """
+
+    def __init__(self, results, scalars, assumed_order):
+        self.results = results
+        frames = []
+        for r in results:
+            f = r.summary.copy()
+            f["cell_m"] = f["length_x_m"] / f["nx"]
+            f["converged"] = f["converged"].astype(bool)
+            frames.append(f)
+        plan = frames[-1].set_index("case")[list(PARAMETERS)]
+        for r, f in zip(results, frames):
+            mine = f.set_index("case")[list(PARAMETERS)]
+            if not mine.index.equals(plan.index) or not np.allclose(mine.to_numpy(float), plan.to_numpy(float),
+                                                                     rtol=1e-12, atol=0.0):
+                raise ValueError("%s: its cases are not those of %s (an unfinished or another study)"
+                                 % (r.path, results[-1].path))
+        rows = pd.concat(frames)
+        names = [n for n in scalars if n in rows.columns]
+        columns = ["ny", "cell_m"] + names + ["solve_seconds", "operator_applications", "converged"]
+        units = frames[-1].attrs.get("units", {})
+        self.cases, estimates = {}, []
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", ConvergenceWarning)
+            for k in plan.index:
+                mine = rows[rows["case"] == k].set_index("nx")
+                ref = Refinement.from_table(mine[columns], names, units, assumed_order)
+                self.cases[int(k)] = ref
+                e = ref.estimate.reset_index()
+                for j, name in enumerate(("case",) + PARAMETERS):
+                    e.insert(j, name, int(k) if name == "case" else plan.loc[k, name])
+                estimates.append(e)
+        if caught:
+            warnings.warn("veslide.refine: %d case(s) did not converge on some grid: see the notes" % len(caught),
+                          ConvergenceWarning, stacklevel=3)
+        self.estimate = pd.concat(estimates, ignore_index=True).set_index(["case", "scalar"])
+        self.table = rows.set_index(["case", "nx"]).sort_index()[list(PARAMETERS) + columns]
+
+    @property
+    def converged(self):
+        """Every case converged on every grid."""
+        return bool(self.table["converged"].all())
+
+    def __repr__(self):
+        return "<veslide.StudyRefinement %d cases on %d grids>" % (len(self.cases), len(self.results))
 
 
 def _fit(x, phi, powers, weighted=False, extra_unknowns=0):
@@ -258,9 +319,11 @@ def _grid_of(nml):
     return int(g.get("nx", _DEFAULT_N)), int(g.get("ny", _DEFAULT_N))
 
 
+def _is_study(nml):
+    return "sweep" in nml and len(nml["sweep"]) > 0
+
+
 def _check_refinable(nml):
-    if "sweep" in nml and len(nml["sweep"]) > 0:
-        raise ValueError("refine runs one case: remove &sweep (refine each case of a study on its own)")
     kind = str(nml.get("surface", {}).get("kind", "self_affine")).lower()
     if kind == "file":
         raise ValueError("refine: &surface kind = 'file' is a topography on one grid; refinement needs a surface "
@@ -273,7 +336,8 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
     ly_m, divided into finer cells; ny scaled with nx, or kept at 1 for a profile) and return a
     `Refinement`.
 
-    params      a dict of namelist groups or the path of a namelist file (one case: no &sweep)
+    params      a dict of namelist groups or the path of a namelist file; with &sweep the study
+                is run on every grid and a `StudyRefinement` returned (each case refined alone)
     sizes       nx of each grid, e.g. [256, 512, 1024, 2048] (four or more: see `richardson`)
     output_dir  where the result files refine-NXxNY.h5 go (default: a new temporary directory,
                 which is kept: its files are the refinement's)
@@ -312,6 +376,8 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
         if created and not any(out_dir.iterdir()):
             out_dir.rmdir()             # nothing was written: leave no empty directory behind
         raise
+    if _is_study(base):
+        return StudyRefinement(results, scalars, assumed_order)
     return Refinement(results, scalars, assumed_order)
 
 
@@ -362,21 +428,32 @@ def _comparable(nml):
     return d
 
 
+def _grid_info(r):
+    """nx, ny, length_x_m, length_y_m of a case, or of a study (its first row)."""
+    src = r.scalars if r.scalars is not None else r.summary.iloc[0]
+    return int(src["nx"]), int(src["ny"]), float(src["length_x_m"]), float(src["length_y_m"])
+
+
 def convergence(results, scalars=DEFAULT_SCALARS, assumed_order=None):
     """A `Refinement` from runs of one case on different grids (Result objects or paths, any
-    order): e.g. one cluster job per grid. Every run must have the same input apart from &grid nx,
-    ny and &output: the same periodic domain and the same aspect nx : ny."""
+    order): e.g. one cluster job per grid; a `StudyRefinement` from runs of one study. Every run
+    must have the same input apart from &grid nx, ny and &output: the same periodic domain and the
+    same aspect nx : ny."""
     rs = [r if isinstance(r, Result) else read(r) for r in results]
     if len(rs) < 2:
         raise ValueError("convergence: need at least two runs")
+    studies = [r.is_study for r in rs]
+    if any(studies) and not all(studies):
+        raise ValueError("convergence: give single cases or studies, not both")
     for r in rs:
-        if r.is_study or r.scalars is None:
-            raise ValueError("convergence: %s is a study; give single cases" % r.path)
-    rs.sort(key=lambda r: int(r.scalars["nx"]))
-    nxs = [int(r.scalars["nx"]) for r in rs]
+        if (r.summary is None or len(r.summary) == 0) if r.is_study else r.scalars is None:
+            raise ValueError("convergence: %s holds no finished case" % r.path)
+    rs.sort(key=lambda r: _grid_info(r)[0])
+    nxs = [_grid_info(r)[0] for r in rs]
     if len(set(nxs)) != len(nxs):
         raise ValueError("convergence: two runs on the same grid (nx = %s)" % nxs)
     ref = _comparable(rs[-1].input)
+    nx1, ny1, lx1, ly1 = _grid_info(rs[-1])
     for r in rs[:-1]:
         other = _comparable(r.input)
         for g in sorted(set(ref) | set(other)):
@@ -385,14 +462,14 @@ def convergence(results, scalars=DEFAULT_SCALARS, assumed_order=None):
                 if a.get(v) != b.get(v):
                     raise ValueError("convergence: %s and %s differ in &%s %s (%r against %r)"
                                      % (r.path, rs[-1].path, g, v, b.get(v), a.get(v)))
-        for length in ("length_x_m",) + (("length_y_m",) if int(r.scalars["ny"]) > 1 else ()):
-            if not math.isclose(r.scalars[length], rs[-1].scalars[length], rel_tol=1e-12):
+        nx, ny, lx, ly = _grid_info(r)
+        for name, a, b in (("length_x_m", lx, lx1),) + ((("length_y_m", ly, ly1),) if ny > 1 else ()):
+            if not math.isclose(a, b, rel_tol=1e-12):
                 raise ValueError("convergence: %s and %s have different domains (%s %g against %g)"
-                                 % (r.path, rs[-1].path, length, r.scalars[length], rs[-1].scalars[length]))
-        nx, ny = int(r.scalars["nx"]), int(r.scalars["ny"])
-        nx1, ny1 = int(rs[-1].scalars["nx"]), int(rs[-1].scalars["ny"])
+                                 % (r.path, rs[-1].path, name, a, b))
         if (ny1 == 1) != (ny == 1) or (ny1 > 1 and nx * ny1 != ny * nx1):
             raise ValueError("convergence: %s (%d x %d) and %s (%d x %d) are not refined alike along x and y"
                              % (r.path, nx, ny, rs[-1].path, nx1, ny1))
+    if all(studies):
+        return StudyRefinement(rs, scalars, assumed_order)
     return Refinement(rs, scalars, assumed_order)
-
