@@ -109,8 +109,8 @@ class Refinement:
         return bool(self.table["converged"].all())
 
     def __repr__(self):
-        return "<veslide.Refinement %s>" % ", ".join("%dx%d" % (nx, ny) for nx, ny in zip(self.table.index,
-                                                                                          self.table["ny"]))
+        ny = self.table["ny"] if "ny" in self.table.columns else ["?"] * len(self.table)
+        return "<veslide.Refinement %s>" % ", ".join("%sx%s" % g for g in zip(self.table.index, ny))
 
 
 class StudyRefinement:
