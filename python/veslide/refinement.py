@@ -259,9 +259,11 @@ def richardson(h, phi, assumed_order=None):
         return out
     x = h / h[-1]                       # cell side in units of the finest: 1 on the finest grid
     notes = []
+    free = _fit_order(x, phi) if n >= 3 else None      # the free-order fit of the grids kept
     dropped = 0
-    while n - dropped >= 5 and 2.1 <= _fit_order(x[dropped:], phi[dropped:])[0] < P_MAX:
+    while n - dropped >= 5 and 2.1 <= free[0] < P_MAX:
         dropped += 1
+        free = _fit_order(x[dropped:], phi[dropped:])
     if dropped:
         notes.append("coarsest %d grid%s left out (order above 2.1 with %s)"
                      % (dropped, "s" if dropped > 1 else "", "them" if dropped > 1 else "it"))
@@ -279,7 +281,7 @@ def richardson(h, phi, assumed_order=None):
         safety = SAFETY_ASSUMED
         notes.append("two grids: order %g assumed" % p)
     else:
-        p, phi0, fitted, sd = _fit_order(x, phi)
+        p, phi0, fitted, sd = free
         out["observed_order"] = p
         safety = SAFETY_OBSERVED
         if n == 3:
