@@ -340,7 +340,7 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
 
     params      a dict of namelist groups or the path of a namelist file; with &sweep the study
                 is run on every grid and a `StudyRefinement` returned (each case refined alone)
-    sizes       nx of each grid, e.g. [256, 512, 1024, 2048] (four or more: see `richardson`)
+    sizes       nx of each grid, e.g. [256, 512, 768, 1024, 2048] (five or more: see `richardson`)
     output_dir  where the result files refine-NXxNY.h5 go (default: a new temporary directory,
                 which is kept: its files are the refinement's)
     reuse       a result file already there from the same input and the same program version
