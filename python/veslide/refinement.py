@@ -207,12 +207,16 @@ def _fit_order(x, phi):
         lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
         g = (math.sqrt(5.0) - 1.0) / 2.0
         c, d = hi - g * (hi - lo), lo + g * (hi - lo)
-        for _ in range(60):
-            if ssq(c) < ssq(d):
-                hi = d
+        fc, fd = ssq(c), ssq(d)
+        for _ in range(60):         # one new point a step: the kept interior point is reused
+            if fc < fd:
+                hi, d, fd = d, c, fc
+                c = hi - g * (hi - lo)
+                fc = ssq(c)
             else:
-                lo = c
-            c, d = hi - g * (hi - lo), lo + g * (hi - lo)
+                lo, c, fc = c, d, fd
+                d = lo + g * (hi - lo)
+                fd = ssq(d)
         p = 0.5 * (lo + hi)
         phi0, fitted, sd = _fit(x, phi, [p], weighted, extra_unknowns=1)
         if best is None or sd < best[3]:
