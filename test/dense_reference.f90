@@ -105,12 +105,14 @@ contains
     !> The FFT solver (`method`, default 'auto') on heights h (cell lcell) against the dense
     !> solution of the same discrete problem: the dense solution must be certified (KKT <= 1e-11)
     !> and the pressures agree to 1e-9 of max p; `area` returns the solver's contact fraction
-    subroutine dense_compare(h, mat, v, p_mean, error, method, area)
+    subroutine dense_compare(h, mat, v, p_mean, error, method, area, device)
         real(dp), intent(in) :: h(:, :), v(2), p_mean
         type(material_t), intent(in) :: mat
         type(error_t), allocatable, intent(out) :: error
         character(len=*), intent(in), optional :: method
         real(dp), intent(out), optional :: area
+        !> where to solve ('auto' when absent)
+        character(len=*), intent(in), optional :: device
         type(contact_state_t) :: s
         type(kernel_t) :: k
         real(dp), allocatable :: a(:, :), p(:)
@@ -118,7 +120,7 @@ contains
         integer :: n
         n = size(h)
         call solve_case(h, lcell, lcell, p_mean, s, error, mat=mat, velocity=v, tol=1.0e-13_dp, kernel=k, &
-                        method=method)
+                        method=method, device=device)
         if (allocated(error)) return
         if (present(method)) then
             call check(error, s%method == method, "method used: "//s%method); if (allocated(error)) return
@@ -131,7 +133,8 @@ contains
         call report("area", contact_area_fraction(s%p)); call report("iterations", real(s%iterations, dp))
         if (present(area)) area = contact_area_fraction(s%p)
         call check(error, kkt <= 1.0e-11_dp, "dense solution not certified"); if (allocated(error)) return
-        call check(error, diff <= 1.0e-9_dp, "the FFT solver ("//trim(s%method)//") differs from the dense solution")
+        call check(error, diff <= 1.0e-9_dp, "the FFT solver ("//trim(s%method)//" on "//s%device// &
+                   ") differs from the dense solution")
     end subroutine dense_compare
 
 end module dense_reference

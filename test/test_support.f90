@@ -7,7 +7,7 @@ module test_support
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
-    use veslide_solver_options, only: solver_options_t, solver_method_id
+    use veslide_solver_options, only: solver_options_t, solver_method_id, device_choice_id
     use veslide_solver, only: solve_contact
     use veslide_output, only: process_id
     implicit none
@@ -25,7 +25,8 @@ contains
     end function square_grid
 
     !> Solve h on an (lx, ly) cell against material `mat` (default: elastic with E* = estar, nu = 0)
-    subroutine solve_case(h, lx, ly, p_mean, state, error, estar, mat, velocity, variant, tol, method, p_init, kernel)
+    subroutine solve_case(h, lx, ly, p_mean, state, error, estar, mat, velocity, variant, tol, method, p_init, kernel, &
+                          device)
         real(dp), intent(in) :: h(:, :), lx, ly, p_mean
         type(contact_state_t), intent(out) :: state
         type(error_t), allocatable, intent(out) :: error
@@ -34,6 +35,8 @@ contains
         integer, intent(in), optional :: variant
         character(len=*), intent(in), optional :: method
         type(kernel_t), intent(out), optional :: kernel
+        !> where to solve: 'auto' (default), 'cpu' or 'gpu'
+        character(len=*), intent(in), optional :: device
         type(material_t) :: m
         type(kernel_t) :: k
         type(fft2d_t) :: fft
@@ -53,6 +56,7 @@ contains
         call new_kernel(k, square_grid(h, lx, ly), m, v, var, error); if (allocated(error)) return
         opts%tolerance = 1.0e-12_dp; if (present(tol)) opts%tolerance = tol
         if (present(method)) opts%method = solver_method_id(method)
+        if (present(device)) opts%device = device_choice_id(device)
         call new_contact_problem(problem, k, h, p_mean, error); if (allocated(error)) return
         call solve_contact(problem, fft, opts, state, error, p_init=p_init)
         if (allocated(error)) return

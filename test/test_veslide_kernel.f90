@@ -5,6 +5,8 @@ module test_veslide_kernel
     use veslide_error, only: error_t
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
+    use veslide_arrays, only: carray_t
+    use veslide_transform, only: transform_t
     use veslide_material, only: material_t
     use veslide_kernel, only: kernel_t, resolvent_t, new_kernel, new_kernel_from_multiplier, KERNEL_SPECTRAL, &
                               KERNEL_COLLOCATION_ALIAS, KERNEL_GALERKIN
@@ -122,11 +124,13 @@ contains
         integer, parameter :: n = 16
         real(dp), parameter :: gamma = 0.7_dp, s = 3.0e6_dp
         type(material_t) :: m
-        type(kernel_t) :: k
+        type(kernel_t), target :: k
         type(resolvent_t) :: res
-        type(fft2d_t) :: fft
+        type(fft2d_t), target :: fft
+        type(transform_t) :: t
+        type(carray_t) :: kd, rka
         real(dp) :: z(n, n), r(n, n), x(n, n), kx(n, n), lhs(n, n), rhs(n, n)
-        complex(dp), allocatable :: rk(:, :)
+        complex(dp), allocatable, target :: rk(:, :)
         call paper_solid(100.0_dp, m, error); if (allocated(error)) return
         call new_kernel(k, cell_grid(n, n), m, peak_speed(100.0_dp, 3.0_dp)*[cos(1.0_dp), sin(1.0_dp)], &
                         KERNEL_SPECTRAL, error)
@@ -134,9 +138,12 @@ contains
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         call random_number(z); call random_number(r)
         fft%x = r; call fft%forward(); rk = fft%k
-        call k%resolvent(gamma, s, res)
+        call k%multiplier_array(kd, .false.)
+        call res%set(kd, gamma, s, k%grid%cells(), owns_mean=.true.)
+        call t%on_host(fft)
+        call rka%view(rk)
         fft%x = z
-        call res%solve(fft, rk, gamma, 0.25_dp)
+        call res%solve(t, rka, gamma, 0.25_dp)
         x = fft%x
         call k%apply(fft, x, kx)
         lhs = x + gamma*s*kx; rhs = z + gamma*r

@@ -23,9 +23,15 @@ module veslide_contact
     use veslide_fftw, only: fft2d_t
     use veslide_collective, only: ordered_sum, global_min, global_max, global_count, global_any
     use veslide_fields, only: field_mean, field_rms, field_sum
+    use veslide_arrays, only: rarray_t, carray_t
+    use veslide_transform, only: transform_t
+    use veslide_passes, only: multiply_spectrum
+    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
+    use veslide_device, only: device_check
     implicit none
     private
-    public :: contact_problem_t, contact_state_t, new_contact_problem, new_contact_problem_moving, residual_measures
+    public :: contact_problem_t, contact_state_t, contact_fields_t, new_contact_problem, new_contact_problem_moving, &
+              residual_measures
 
     !> One contact problem: the operator, the heights and the load
     type :: contact_problem_t
@@ -37,7 +43,9 @@ module veslide_contact
     contains
         procedure :: grid => problem_grid
         procedure :: residuals => problem_residuals
+        procedure :: residuals_on => problem_residuals_on
         procedure :: start => problem_start
+        procedure :: fields => problem_fields
         procedure :: confirm => problem_confirm
         procedure :: release => problem_release
     end type contact_problem_t
@@ -55,7 +63,23 @@ module veslide_contact
         real(dp) :: negative_pressure = huge(1.0_dp), load_error = huge(1.0_dp)
         real(dp) :: residual = huge(1.0_dp)
         character(len=:), allocatable :: method  !! name of the method used
+        character(len=3) :: device = 'cpu'      !! where it was solved: 'cpu' or 'gpu'
     end type contact_state_t
+
+    !> The arrays of one solve, where it runs: on the host views of the problem's heights, the
+    !> kernel's multiplier, the state's fields and the caller's FFT buffers (nothing copied); on
+    !> the device their copies there, made once by `problem%fields` (heights, multiplier and
+    !> the starting pressure go in) and read back by `finish` (p, u and g come out)
+    type :: contact_fields_t
+        logical :: device = .false.
+        type(transform_t) :: t                    !! the FFT and its buffers t%x, t%k
+        type(rarray_t) :: h                       !! heights as given [m]
+        type(carray_t) :: kd                      !! the kernel's multiplier K_d [m/Pa]
+        type(rarray_t) :: p, u, g                 !! the state's pressure, displacement, gap
+    contains
+        procedure :: finish => fields_finish
+        procedure :: apply_kernel => fields_apply_kernel
+    end type contact_fields_t
 
 contains
 
@@ -169,55 +193,119 @@ contains
         state%residual = max(state%penetration, state%complementarity, state%negative_pressure, state%load_error)
     end subroutine residual_measures
 
+    !> The arrays of a solve of this problem from `state` (its start in state%p) with the FFT
+    !> `fft`: views of them (`device` false), or copies on the device with its own transforms
+    !> (collective on a distributed grid, which the device refuses). `self`, `state` and `fft`
+    !> must stay where they are while the fields live.
+    subroutine problem_fields(self, f, fft, state, device, error)
+        class(contact_problem_t), intent(in), target :: self
+        type(contact_fields_t), intent(out) :: f
+        type(fft2d_t), intent(inout), target :: fft
+        type(contact_state_t), intent(inout), target :: state
+        logical, intent(in) :: device
+        type(error_t), allocatable, intent(out) :: error
+        integer :: nx, ny
+        f%device = device
+        if (.not. device) then
+            call f%t%on_host(fft)
+            call f%h%view(self%h)
+            call self%kernel%multiplier_array(f%kd, .false.)
+            call f%p%view(state%p); call f%u%view(state%u); call f%g%view(state%g)
+            return
+        end if
+        if (self%kernel%grid%is_distributed()) then
+            call fatal_error(error, "veslide:contact:fields: a grid distributed over processes cannot be solved on"// &
+                             " a device (an MPI study gives each rank its own)"); return
+        end if
+        nx = size(self%h, 1); ny = size(self%h, 2)
+        call f%t%on_device(nx, ny, error); if (allocated(error)) return
+        call f%h%create(nx, ny, .true.); call f%h%upload(self%h)
+        call self%kernel%multiplier_array(f%kd, .true.)
+        call f%p%create(nx, ny, .true.); call f%p%upload(state%p)
+        call f%u%create(nx, ny, .true.); call f%g%create(nx, ny, .true.)
+        call device_check(error, "veslide:contact:fields")
+        if (allocated(error)) call f%finish()
+    end subroutine problem_fields
+
+    !> The fields done with: on the device p, u and g read back into `state` (when given) and
+    !> the device memory freed; on the host the views dropped
+    subroutine fields_finish(self, state)
+        class(contact_fields_t), intent(inout) :: self
+        type(contact_state_t), intent(inout), optional :: state
+        if (self%device .and. present(state)) then
+            call self%p%download(state%p); call self%u%download(state%u); call self%g%download(state%g)
+        end if
+        call self%t%destroy()
+        call self%h%destroy(); call self%kd%destroy()
+        call self%p%destroy(); call self%u%destroy(); call self%g%destroy()
+    end subroutine fields_finish
+
+    !> dst = K src (zero mean), through the FFT's buffers (one FFT pair; t%k overwritten)
+    subroutine fields_apply_kernel(self, src, dst, cells)
+        class(contact_fields_t), intent(inout) :: self
+        type(rarray_t), intent(in) :: src
+        type(rarray_t), intent(inout) :: dst
+        real(dp), intent(in) :: cells    !! the whole grid's cells (FFTW's normalisation)
+        call self%t%x%assign(src)
+        call self%t%forward()
+        ! one fused pass (an array expression here made a temporary of K_d/N on every call)
+        call multiply_spectrum(self%t%k, self%kd, 1.0_dp/cells)
+        call self%t%backward_unscaled()
+        call dst%assign(self%t%x)
+    end subroutine fields_apply_kernel
+
     !> The verdict on a solver's result, on the number reported: u = K p computed afresh, the
-    !> residual measured, and converged exactly when that residual is <= tolerance (one FFT pair)
-    subroutine problem_confirm(self, fft, state, tolerance)
+    !> residual measured, and converged exactly when that residual is <= tolerance (one FFT pair).
+    !> Every solver confirms through this before it reports convergence, and `solve_contact`
+    !> gives the final verdict with it.
+    subroutine problem_confirm(self, f, state, tolerance)
         class(contact_problem_t), intent(in) :: self
-        type(fft2d_t), intent(inout) :: fft
+        type(contact_fields_t), intent(inout) :: f
         type(contact_state_t), intent(inout) :: state
         real(dp), intent(in) :: tolerance
-        call self%kernel%apply(fft, state%p, state%u)
+        call f%apply_kernel(f%p, f%u, self%kernel%grid%cells())
         state%operator_applications = state%operator_applications + 1
-        call self%residuals(state)
+        call self%residuals_on(f, state)
         state%converged = state%residual <= tolerance
     end subroutine problem_confirm
 
-    !> Residuals of a candidate (p, u = K p): fills d (the contact-set mean of h - u), g and the
-    !> four measures of `state`
+    !> Residuals of a candidate (p, u = K p) held in `state` on the host: fills d (the
+    !> contact-set mean of h - u), g and the four measures of `state`
     subroutine problem_residuals(self, state)
+        class(contact_problem_t), intent(in), target :: self
+        type(contact_state_t), intent(inout), target :: state
+        type(contact_fields_t) :: f
+        call f%h%view(self%h)
+        call f%p%view(state%p); call f%u%view(state%u); call f%g%view(state%g)
+        call self%residuals_on(f, state)
+        call f%finish()
+    end subroutine problem_residuals
+
+    !> Residuals of a candidate (p, u = K p) held in the fields `f`: g there, d and the four
+    !> measures in `state` (two passes over the grid)
+    subroutine problem_residuals_on(self, f, state)
         class(contact_problem_t), intent(in) :: self
+        type(contact_fields_t), intent(inout) :: f
         type(contact_state_t), intent(inout) :: state
         integer(i8) :: nc(1)
-        integer :: j
-        real(dp) :: rows(3, size(state%p, 2)), t(3), ext(2)
+        real(dp) :: rows(3, f%g%n2), t(3), ext(2), gmax
         associate (grid => self%kernel%grid)
-            nc(1) = count(state%p > 0.0_dp, kind=i8)
+            call gap_and_contact_sums(f%u, f%h, self%h_mean, f%p, f%g, rows(1, :), nc(1), gmax)
             call global_count(grid, nc)
-            state%g = state%u - (self%h - self%h_mean)
             if (nc(1) > 0) then
-                do j = 1, size(state%p, 2)
-                    rows(1, j) = sum(state%g(:, j), mask=state%p(:, j) > 0.0_dp)
-                end do
                 call ordered_sum(grid, rows(1:1, :), t(1:1))
                 state%approach_m = -t(1)/real(nc(1), dp)
             else
-                t(1) = -huge(1.0_dp); if (size(state%g) > 0) t(1) = maxval(state%g)
+                t(1) = gmax
                 call global_max(grid, t(1))
                 state%approach_m = -t(1)
             end if
-            state%g = state%g + state%approach_m
-            !$omp parallel do schedule(guided)
-            do j = 1, size(state%p, 2)
-                rows(:, j) = [sum(state%p(:, j)*state%g(:, j)), sum(abs(state%p(:, j))), sum(state%p(:, j))]
-            end do
-            !$omp end parallel do
+            call gap_measures(f%p, f%g, state%approach_m, rows, ext(1), ext(2))
             call ordered_sum(grid, rows, t)
-            ext = huge(1.0_dp)
-            if (size(state%p) > 0) ext = [minval(state%g), minval(state%p)]
             call global_min(grid, ext)
             call residual_measures(state, ext(1), t(1), t(2), ext(2), t(3), grid%cells(), self%p_mean_pa, &
                                    self%height_scale_m)
         end associate
-    end subroutine problem_residuals
+    end subroutine problem_residuals_on
 
 end module veslide_contact

@@ -16,7 +16,12 @@ module veslide_solver
     use veslide_error, only: error_t, fatal_error
     use veslide_fftw, only: fft2d_t
     use veslide_contact, only: contact_problem_t, contact_state_t
-    use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR
+    use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, &
+                                      DEVICE_CPU, DEVICE_GPU
+    use veslide_contact, only: contact_fields_t
+    use veslide_dr_passes, only: device_max_memory
+    use veslide_device, only: device_enabled, device_count, device_emulated, device_check
+    use veslide_strings, only: str
     use veslide_solver_pk, only: polonsky_keer
     use veslide_solver_dr, only: douglas_rachford
     use veslide_solver_bccg, only: bccg_solve
@@ -24,7 +29,7 @@ module veslide_solver
     use veslide_threads, only: restore_threads
     implicit none
     private
-    public :: solve_contact, auto_method, pdr_min_cells, default_anderson_memory
+    public :: solve_contact, auto_method, pdr_min_cells, default_anderson_memory, solve_on_device, gpu_visible
 
     !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (256^2: there pdr took
     !> 0.56 of dr's time over the 16 hard cases it is chosen for, though more on contacts near
@@ -42,18 +47,23 @@ module veslide_solver
 contains
 
     !> Solve `problem`; `p_init` (with its gap `g_init` for dr) warm-starts from a previous solution.
-    !> `problem` is returned as it came (a solver may borrow its kernel's multiplier while it runs).
+    !> The solve runs where `opts%device` says (solve_on_device): on the device the heights, the
+    !> kernel's multiplier and the start go in, p, u and g come out, nothing else crosses. Every
+    !> method ends with the one verdict on its result: u = K p computed afresh and the residual
+    !> measured (`problem%confirm`), converged exactly when that residual is <= the tolerance.
     subroutine solve_contact(problem, fft, opts, state, error, p_init, g_init)
-        type(contact_problem_t), intent(inout) :: problem
-        type(fft2d_t), intent(inout) :: fft
+        type(contact_problem_t), intent(inout), target :: problem
+        type(fft2d_t), intent(inout), target :: fft
         type(solver_options_t), intent(in) :: opts
-        type(contact_state_t), intent(out) :: state
+        type(contact_state_t), intent(out), target :: state
         type(error_t), allocatable, intent(out) :: error
         real(dp), intent(in), optional :: p_init(:, :)
         !> gap that goes with p_init [m] (the splitting method starts from both)
         real(dp), intent(in), optional :: g_init(:, :)
         integer :: method
         type(solver_options_t) :: o
+        type(contact_fields_t) :: f
+        logical :: device
 
         if (problem%kernel%grid%nx /= fft%nx .or. problem%kernel%grid%ny /= fft%ny) then
             call fatal_error(error, "veslide:solver:solve_contact: problem and FFT grids differ"); return
@@ -62,37 +72,111 @@ contains
         if (method == SOLVER_AUTO) method = auto_method(problem)
         o = opts
         o%anderson_memory = default_anderson_memory(method, opts%anderson_memory)
+        call solve_on_device(opts%device, problem, device, error, method, o); if (allocated(error)) return
+        if (method == SOLVER_PK .and. .not. problem%kernel%symmetric) then
+            call fatal_error(error, "veslide:solver:solve_contact: method 'pk' needs a symmetric (elastic)"// &
+                " kernel; use 'dr' or 'auto'"); return
+        end if
+        if (method == SOLVER_BCCG .and. .not. problem%kernel%symmetric) then
+            call fatal_error(error, "veslide:solver:solve_contact: method 'bccg' needs a symmetric (elastic)"// &
+                " kernel; use 'pdr', 'dr' or 'auto'"); return
+        end if
         call problem%start(state, p_init)
+        if (method == SOLVER_PK) call polonsky_keer(problem, fft, o, state)
+        call problem%fields(f, fft, state, device, error); if (allocated(error)) return
         select case (method)
-        case (SOLVER_PK)
-            if (.not. problem%kernel%symmetric) then
-                call fatal_error(error, "veslide:solver:solve_contact: method 'pk' needs a symmetric (elastic)"// &
-                    " kernel; use 'dr' or 'auto'"); return
-            end if
-            call polonsky_keer(problem, fft, o, state)
         case (SOLVER_BCCG)
-            if (.not. problem%kernel%symmetric) then
-                call fatal_error(error, "veslide:solver:solve_contact: method 'bccg' needs a symmetric (elastic)"// &
-                    " kernel; use 'pdr', 'dr' or 'auto'"); return
-            end if
-            call bccg_solve(problem, fft, o, state)
+            call bccg_solve(problem, f, o, state)
         case (SOLVER_DR)
             if (present(p_init) .and. present(g_init)) then
-                call douglas_rachford(problem, fft, o, state, gap0=g_init)
+                call douglas_rachford(problem, f, o, state, gap0=g_init)
             else
-                call douglas_rachford(problem, fft, o, state)
+                call douglas_rachford(problem, f, o, state)
             end if
         case (SOLVER_PDR)
             if (present(p_init) .and. present(g_init)) then
-                call preconditioned_douglas_rachford(problem, fft, o, state, gap0=g_init)
+                call preconditioned_douglas_rachford(problem, f, o, state, gap0=g_init)
             else
-                call preconditioned_douglas_rachford(problem, fft, o, state, cold=.not. present(p_init))
+                call preconditioned_douglas_rachford(problem, f, o, state, cold=.not. present(p_init))
             end if
-        case default
-            call fatal_error(error, "veslide:solver:solve_contact: unknown method"); return
         end select
+        ! the verdict, on the number reported
+        call problem%confirm(f, state, opts%tolerance)
+        call device_check(error, "veslide:solver:solve_contact: "//state%method//" on the device")
+        call f%finish(state)
+        state%device = merge('gpu', 'cpu', device)
         call restore_threads()     ! the thread governor may have lowered them (veslide_threads)
     end subroutine solve_contact
+
+    !> Where a solve of `problem` runs for the choice `choice` (DEVICE_*): on the device
+    !> (`device` true) or the CPU. 'gpu' without a usable GPU, on a distributed grid, or for what
+    !> the device does not run (`method` with the options `o`, when given) is refused; 'auto'
+    !> takes the CPU in those cases.
+    subroutine solve_on_device(choice, problem, device, error, method, o)
+        integer, intent(in) :: choice
+        type(contact_problem_t), intent(in) :: problem
+        logical, intent(out) :: device
+        type(error_t), allocatable, intent(out) :: error
+        integer, intent(in), optional :: method
+        type(solver_options_t), intent(in), optional :: o
+        device = .false.
+        select case (choice)
+        case (DEVICE_CPU)
+            return
+        case (DEVICE_GPU)
+            if (.not. device_enabled) then
+                call fatal_error(error, "veslide:solver: &solver device = 'gpu', but this build of veslide has no GPU"// &
+                    " support (build it with gpu/build.sh); allowed here: 'auto', 'cpu'"); return
+            end if
+            if (device_count() == 0) then
+                call fatal_error(error, "veslide:solver: &solver device = 'gpu', but no GPU is visible to this process"// &
+                    " (CUDA_VISIBLE_DEVICES, the driver); use 'auto' or 'cpu'"); return
+            end if
+            if (problem%kernel%grid%is_distributed()) then
+                call fatal_error(error, "veslide:solver: &solver device = 'gpu' on a grid distributed over processes"// &
+                    " is not available (an MPI study gives each rank its own GPU); use 'cpu'"); return
+            end if
+            if (present(method) .and. present(o)) then
+                call device_limits(method, o, error); if (allocated(error)) return
+            end if
+            device = .true.
+        case default
+            device = gpu_visible() .and. .not. problem%kernel%grid%is_distributed()
+            if (device .and. present(method) .and. present(o)) then
+                call device_limits(method, o, error)
+                device = .not. allocated(error)
+                if (allocated(error)) deallocate (error)
+            end if
+        end select
+    end subroutine solve_on_device
+
+    !> Does 'auto' find a GPU: this build has one, and a device is visible (the emulated device
+    !> is taken only when asked for by name)?
+    logical function gpu_visible() result(yes)
+        yes = .false.
+        if (.not. device_enabled) return
+        if (device_emulated()) return
+        yes = device_count() > 0
+    end function gpu_visible
+
+    !> What the device does not run: pk, and Anderson mixing beyond the device passes' memory
+    subroutine device_limits(method, o, error)
+        integer, intent(in) :: method
+        type(solver_options_t), intent(in) :: o
+        type(error_t), allocatable, intent(out) :: error
+        if (method == SOLVER_PK) then
+            call fatal_error(error, "veslide:solver: &solver method = 'pk' does not run on the device; use 'bccg'"// &
+                " or 'auto' (the same problem, fewer FFT pairs), or &solver device = 'cpu'")
+        else if (method == SOLVER_PDR .and. o%anderson_memory > 0) then
+            call fatal_error(error, "veslide:solver: &solver anderson_memory = "//str(o%anderson_memory)// &
+                " with method 'pdr' does not run on the device (its over-relaxed step does: anderson_memory = -1"// &
+                " or 0), or set &solver device = 'cpu'")
+        else if (method == SOLVER_DR .and. o%anderson_memory > device_max_memory) then
+            call fatal_error(error, "veslide:solver: &solver anderson_memory = "//str(o%anderson_memory)// &
+                " with method 'dr' does not run on the device (0.."//str(device_max_memory)//" does),"// &
+                " or set &solver device = 'cpu'")
+        end if
+    end subroutine device_limits
 
     !> The Anderson memory `method` (SOLVER_*) runs with when the options ask for `memory`
     !> (negative: the method's default)

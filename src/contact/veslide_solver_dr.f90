@@ -14,28 +14,25 @@
 !> plain step and the memory cleared. Convergence is confirmed on y with a fresh K y.
 !> Lions & Mercier, SIAM J. Numer. Anal. 16 (1979) 964; docs/solvers.md for the measurements.
 module veslide_solver_dr
-    use, intrinsic :: iso_c_binding, only: c_f_pointer, c_loc
-    use, intrinsic :: iso_fortran_env, only: real32
     use veslide_kinds, only: dp
-    use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: resolvent_t
-    use veslide_contact, only: contact_problem_t, contact_state_t
+    use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
     use veslide_anderson, only: anderson_coefficients
     use veslide_collective, only: ordered_sum, global_max
+    use veslide_arrays, only: rarray_t, carray_t, sarray_t
+    use veslide_passes, only: centre_divide, divided_copy
+    use veslide_dr_passes, only: dr_map, dr_update, dr_rebalance, dr_project, dr_restore, dr_add_gap
+    use veslide_device, only: device_failed
     implicit none
     private
     public :: douglas_rachford
 
-    !> Kind of the Anderson history (the differences of the residuals and of the iterates): single
-    !> precision halves the memory traffic of the mixing; the mixing is then exact to about 1e-7
-    !> of the step, which the fixed-point iteration absorbs (the residual itself is double)
-    integer, parameter :: hk = real32
-
 contains
 
     !> The iteration is memory-bound outside its FFT pair, so the map and the Anderson mixing
-    !> (type II, as `anderson_t`, memory m) are fused into two passes over the grid:
+    !> (type II, as `anderson_t`, memory m) are fused into two passes over the grid
+    !> (veslide_dr_passes):
     !>   A  the map (y = max(2x - z, 0), f = y - x, the residuals) with the new history columns
     !>      dF = f - f_prev, G = (z - z_prev) + dF and their inner products with the history;
     !>   B  z <- z + f - G c (f recomputed from x and z), keeping (z, f), and the next map's input
@@ -43,59 +40,63 @@ contains
     !> y and f are never stored. A path that skips pass B (the safeguard, balancing) clears the
     !> history, whose newest column pass A has already written. Pass A sums row by row and then
     !> over the rows in order (veslide_collective), so the path is the same for any number of
-    !> threads or processes.
-    subroutine douglas_rachford(problem, fft, opts, state, gap0)
+    !> threads or processes. The history is single precision: it halves the memory traffic of the
+    !> mixing, which is then exact to about 1e-7 of the step, absorbed by the fixed-point
+    !> iteration (the residual itself is double).
+    subroutine douglas_rachford(problem, f, opts, state, gap0)
         type(contact_problem_t), intent(in) :: problem
-        type(fft2d_t), intent(inout) :: fft
+        type(contact_fields_t), intent(inout) :: f
         type(solver_options_t), intent(in) :: opts
-        !> on entry the starting pressure (problem%start); on exit the solution
+        !> on entry the starting pressure (problem%start, in f%p); on exit the solution
         type(contact_state_t), intent(inout) :: state
         !> gap of the starting pressure [m] (default: zero gap)
         real(dp), intent(in), optional :: gap0(:, :)
         real(dp), parameter :: aa_growth = 2.0_dp
-        real(dp), allocatable, target :: zz(:, :)
-        real(dp), pointer :: z(:), xb(:)
-        real(dp), allocatable :: zprev(:), fprev(:), gram(:, :)
-        real(hk), allocatable :: df(:, :), gm(:, :)
-        complex(dp), allocatable :: hkern(:, :)
+        type(rarray_t) :: z, zprev, fprev
+        type(sarray_t) :: df, gm
+        type(carray_t) :: hkern
+        real(dp), allocatable :: gram(:, :)
         type(resolvent_t) :: res
-        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, xv, zv, yv, fv, dfv, zn, scale, p_mean
+        real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, scale, p_mean
         real(dp) :: coef(max(opts%anderson_memory, 1)), dots(max(opts%anderson_memory, 1), 2)
         real(dp) :: part(1 + 2*max(opts%anderson_memory, 1)), ext(2)
         real(dp), allocatable :: rows(:, :)
-        integer :: nx, ny, n, since_balance, i, j, k, m, slot, mk, stored, info
+        integer :: nx, ny, n, since_balance, m, slot, mk, stored, info
         logical :: accelerated, have_prev
         type(progress_ticker_t) :: ticker
 
-        nx = size(problem%h, 1); ny = size(problem%h, 2); n = nx*ny
+        nx = f%p%n1; ny = f%p%n2; n = nx*ny
         hs = problem%height_scale_m
         p_mean = problem%p_mean_pa
         state%method = 'dr'
         call ticker%start(opts, 'dr')
         scale = p_mean/hs                       ! K in units of h_s per p_mean
-        fft%x = (problem%h - problem%h_mean)/hs
-        call fft%forward()
-        hkern = fft%k
+        call centre_divide(f%t%x, f%h, problem%h_mean, hs)
+        call f%t%forward()
+        call hkern%create(f%t%k%n1, f%t%k%n2, f%device)
+        call hkern%assign(f%t%k)
         gamma = opts%step
         if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp/problem%kernel%typical_abs(scale)
-        call problem%kernel%resolvent(gamma, scale, res)
+        call res%set(f%kd, gamma, scale, problem%kernel%grid%cells(), problem%kernel%grid%owns_mean_mode())
 
         m = max(0, opts%anderson_memory)
-        allocate (zz(nx, ny), zprev(n), fprev(n), df(n, max(m, 1)), gm(n, max(m, 1)), gram(max(m, 1), max(m, 1)))
-        allocate (rows(1 + 2*max(m, 1), ny))
-        z(1:n) => zz
-        call c_f_pointer(c_loc(fft%x), xb, [n])    ! a flat view of the FFT buffer
-        zz = state%p/p_mean                     ! z = p + gamma g
-        if (present(gap0)) zz = zz + gamma*gap0/hs
+        call z%create(nx, ny, f%device); call zprev%create(nx, ny, f%device); call fprev%create(nx, ny, f%device)
+        call df%create(n, max(m, 1), f%device); call gm%create(n, max(m, 1), f%device)
+        allocate (gram(max(m, 1), max(m, 1)), rows(1 + 2*max(m, 1), ny))
+        call divided_copy(z, f%p, p_mean)       ! z = p + gamma g
+        if (present(gap0)) then
+            call f%t%x%upload(gap0)
+            call dr_add_gap(z, f%t%x, gamma, hs)
+        end if
         have_prev = .false.; stored = 0; slot = 0
         accelerated = .false.
         fnorm_prev = huge(1.0_dp); since_balance = 0
         inner_tol = opts%tolerance
-        fft%x = zz
+        call f%t%x%assign(z)
 
         do
             ! the map: x = resolvent(z) (left in the FFT buffer, which holds z on entry)
-            call res%solve(fft, hkern, gamma, 1.0_dp)
+            call res%solve(f%t, hkern, gamma, 1.0_dp)
             state%operator_applications = state%operator_applications + 1
 
             ! pass A: y, f = y - x and the residuals; the new history column and its products
@@ -103,69 +104,40 @@ contains
             if (m > 0 .and. have_prev) then
                 slot = modulo(slot, m) + 1; mk = min(stored + 1, m)
             end if
-            rp = 0.0_dp; rg = 0.0_dp
-            !$omp parallel do schedule(guided) private(i, xv, zv, yv, fv, dfv, k, part) reduction(max:rp, rg)
-            do j = 1, ny
-                part(1:1 + 2*mk) = 0.0_dp
-                do i = (j - 1)*nx + 1, j*nx
-                    xv = xb(i); zv = z(i)
-                    yv = max(2.0_dp*xv - zv, 0.0_dp)
-                    fv = yv - xv
-                    if (yv > 0.0_dp) then
-                        rg = max(rg, abs(fv))
-                    else
-                        rp = max(rp, abs(xv))
-                    end if
-                    part(1) = part(1) + fv**2
-                    if (mk > 0) then
-                        df(i, slot) = real(fv - fprev(i), hk)
-                        gm(i, slot) = real((zv - zprev(i)) + (fv - fprev(i)), hk)
-                        dfv = real(df(i, slot), dp)
-                        do k = 1, mk
-                            part(1 + k) = part(1 + k) + real(df(i, k), dp)*dfv
-                            part(1 + mk + k) = part(1 + mk + k) + real(df(i, k), dp)*fv
-                        end do
-                    end if
-                end do
-                rows(1:1 + 2*mk, j) = part(1:1 + 2*mk)
-            end do
-            !$omp end parallel do
+            call dr_map(f%t%x, z, df, gm, zprev, fprev, slot, mk, rows, rp, rg)
             call ordered_sum(problem%kernel%grid, rows(1:1 + 2*mk, :), part(1:1 + 2*mk))
             ext = [rp, rg]
             call global_max(problem%kernel%grid, ext)
             rsq = part(1); rp = ext(1); rg = ext(2)/gamma
             dots(1:mk, 1) = part(2:1 + mk); dots(1:mk, 2) = part(2 + mk:1 + 2*mk)
             fnorm = sqrt(rsq)
+            if (f%device) then
+                if (device_failed()) exit
+            end if
 
             ! safeguard: an accelerated step that made |f| grow is replaced by the plain step
             if (accelerated) then          ! (nested: fnorm_prev may still be huge() otherwise)
                 if (fnorm > aa_growth*fnorm_prev) then
-                    z = zprev + fprev
+                    call dr_restore(f%t%x, z, zprev, fprev)
                     call clear_history()
-                    fft%x = zz
                     cycle
                 end if
             end if
 
             if (max(rp, rg) <= inner_tol) then
-                state%p = p_mean*max(2.0_dp*fft%x - zz, 0.0_dp)
-                call problem%kernel%apply(fft, state%p, state%u)
-                state%operator_applications = state%operator_applications + 1
-                call problem%residuals(state)
-                if (state%residual <= opts%tolerance) then
-                    state%converged = .true.; exit
-                end if
+                call dr_project(f%p, f%t%x, z, p_mean)
+                call problem%confirm(f, state, opts%tolerance)
+                if (state%converged) exit
                 inner_tol = inner_tol/10.0_dp
                 if (inner_tol < 1.0e-15_dp) exit
                 ! evaluate the map again at z (the same point: pass A rewrites the same column)
                 if (mk > 0) slot = modulo(slot - 2, m) + 1
-                fft%x = zz
+                call f%t%x%assign(z)
                 cycle
             end if
             if (state%iterations >= opts%max_iterations) then
-                state%p = p_mean*max(2.0_dp*fft%x - zz, 0.0_dp)
-                call problem%kernel%apply(fft, state%p, state%u)
-                call problem%residuals(state)
+                call dr_project(f%p, f%t%x, z, p_mean)
+                call problem%confirm(f, state, opts%tolerance)
                 exit
             end if
             state%iterations = state%iterations + 1
@@ -180,15 +152,10 @@ contains
                 if (rp > opts%balance_ratio*rg) s = 1.0_dp/opts%balance_factor
                 if (s /= 1.0_dp) then
                     ! z = y + s (z - y): z = p + gamma g remapped to the new gamma
-                    !$omp parallel do schedule(guided) private(yv)
-                    do i = 1, n
-                        yv = max(2.0_dp*xb(i) - z(i), 0.0_dp)
-                        z(i) = yv + s*(z(i) - yv)
-                        xb(i) = z(i)
-                    end do
-                    !$omp end parallel do
+                    call dr_rebalance(f%t%x, z, s)
                     gamma = gamma*s
-                    call problem%kernel%resolvent(gamma, scale, res)
+                    call res%set(f%kd, gamma, scale, problem%kernel%grid%cells(), &
+                                 problem%kernel%grid%owns_mean_mode())
                     call clear_history()
                     fnorm_prev = huge(1.0_dp)
                     cycle
@@ -209,22 +176,12 @@ contains
             accelerated = mk > 0
 
             ! pass B: z <- z + f - G c, keeping (z, f); the next map's input into the buffer
-            !$omp parallel do schedule(guided) private(xv, zv, fv, zn, k)
-            do i = 1, n
-                xv = xb(i); zv = z(i)
-                fv = max(2.0_dp*xv - zv, 0.0_dp) - xv
-                zn = zv + fv
-                do k = 1, mk
-                    zn = zn - real(gm(i, k), dp)*coef(k)
-                end do
-                zprev(i) = zv; fprev(i) = fv
-                z(i) = zn
-                xb(i) = zn
-            end do
-            !$omp end parallel do
+            call dr_update(f%t%x, z, gm, zprev, fprev, coef, mk)
             have_prev = .true.
             fnorm_prev = fnorm
         end do
+        call z%destroy(); call zprev%destroy(); call fprev%destroy(); call df%destroy(); call gm%destroy()
+        call hkern%destroy(); call res%destroy()
 
     contains
 

@@ -14,14 +14,21 @@ module veslide_solver_options
     public :: solver_options_t, solver_method_id, solver_method_names
     public :: solver_progress_t, solver_progress_callback, progress_ticker_t, progress_line
     public :: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR
+    public :: DEVICE_AUTO, DEVICE_CPU, DEVICE_GPU, device_names, device_choice_id
 
     integer, parameter :: SOLVER_AUTO = 1, SOLVER_PK = 2, SOLVER_DR = 3, SOLVER_BCCG = 4, SOLVER_PDR = 5
     !> Names of the methods, indexed by their SOLVER_* id (the namelist's `&solver method`)
     character(len=*), parameter :: solver_method_names(5) = [character(len=4) :: 'auto', 'pk', 'dr', 'bccg', &
                                                              'pdr']
 
+    !> Where a solve runs (the namelist's `&solver device`): 'auto' the GPU when this build has
+    !> one and a GPU is visible, else the CPU; 'cpu'; 'gpu' (refused when there is none)
+    integer, parameter :: DEVICE_AUTO = 1, DEVICE_CPU = 2, DEVICE_GPU = 3
+    character(len=*), parameter :: device_names(3) = [character(len=4) :: 'auto', 'cpu', 'gpu']
+
     type :: solver_options_t
         integer :: method = SOLVER_AUTO         !! SOLVER_* id
+        integer :: device = DEVICE_AUTO         !! DEVICE_* id
         real(dp) :: tolerance = 1.0e-10_dp      !! target of the residual [-]
         integer :: max_iterations = 20000       !! iteration cap
         integer :: refresh_every = 200          !! recompute K p exactly this often (pk)
@@ -74,6 +81,12 @@ contains
         character(len=*), intent(in) :: name
         id = name_index(name, solver_method_names)
     end function solver_method_id
+
+    !> DEVICE_* id from a name ('auto', 'cpu', 'gpu'); 0 when unknown
+    pure integer function device_choice_id(name) result(id)
+        character(len=*), intent(in) :: name
+        id = name_index(name, device_names)
+    end function device_choice_id
 
     !> The line a program prints for a progress report
     function progress_line(info) result(line)

@@ -18,7 +18,7 @@ module veslide_case
     use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id, KERNEL_SPECTRAL
     use veslide_persson, only: persson_t, persson_estimate
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem_moving
-    use veslide_solver_options, only: solver_options_t, solver_method_id, solver_progress_callback
+    use veslide_solver_options, only: solver_options_t, solver_method_id, solver_progress_callback, device_choice_id
     use veslide_solver, only: solve_contact
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation, slope_force
     use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta
@@ -265,6 +265,7 @@ contains
         type(config_t), intent(in) :: cfg
         type(solver_options_t) :: opts
         opts%method = solver_method_id(cfg%solver%method)
+        opts%device = device_choice_id(cfg%solver%device)
         opts%tolerance = cfg%solver%tolerance
         opts%max_iterations = cfg%solver%max_iterations
         opts%anderson_memory = cfg%solver%anderson_memory
@@ -296,7 +297,6 @@ contains
         opts = solver_options(cfg)
         if (present(progress)) opts%progress => progress
         call solve_contact(problem, fft, opts, c%state, error, p_init=p_init, g_init=g_init)
-        if (.not. allocated(error)) call problem%confirm(fft, c%state, cfg%solver%tolerance)  ! the reported residual decides
         call problem%release(c%kernel, c%h)
         if (allocated(error)) return
         c%solve_seconds = wall_seconds() - t0

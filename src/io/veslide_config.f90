@@ -107,6 +107,7 @@ contains
         cfg%material%model = 'elastic'
         allocate (cfg%material%prony_coef(0), cfg%material%prony_time_s(0))
         cfg%solver%method = 'auto'; cfg%solver%kernel = 'spectral'; cfg%solver%fft_planner = 'measure'
+        cfg%solver%device = 'auto'
         allocate (cfg%sweep%speeds(0), cfg%sweep%alphas(0), cfg%sweep%eccentricities(0), cfg%sweep%pressures(0))
         allocate (cfg%sweep%seeds(0))
         cfg%output%file = 'veslide.h5'

@@ -1,11 +1,11 @@
-!> &solver: the method, its tolerance and knobs, the kernel variant, the FFT planner
+!> &solver: the method, its tolerance and knobs, the kernel variant, the FFT planner, the device
 module veslide_config_solver
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_strings, only: str
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
                                      finite_in
-    use veslide_solver_options, only: solver_method_names
+    use veslide_solver_options, only: solver_method_names, device_names
     use veslide_kernel, only: kernel_names
     use veslide_fftw, only: fft_planner_names
     implicit none
@@ -25,14 +25,15 @@ module veslide_config_solver
         integer :: anderson_memory = -1
         integer :: balance_every = 50                    ! docs/solver-scaling.md: why not 100
         real(dp) :: balance_ratio = 10.0_dp, balance_factor = 3.0_dp
+        character(len=:), allocatable :: device          !! one of device_names: where the solve runs
     end type solver_config_t
 
-    character(len=*), parameter :: names(12) = [character(len=15) :: 'method', 'tolerance', 'max_iterations', &
+    character(len=*), parameter :: names(13) = [character(len=15) :: 'method', 'tolerance', 'max_iterations', &
         'kernel', 'alias_tol', 'alias_max', 'fft_planner', 'threads', 'anderson_memory', 'balance_every', &
-        'balance_ratio', 'balance_factor']
-    character(len=*), parameter :: kinds(12) = [character(len=24) :: "a quoted text ('auto')", 'a real number', &
+        'balance_ratio', 'balance_factor', 'device']
+    character(len=*), parameter :: kinds(13) = [character(len=24) :: "a quoted text ('auto')", 'a real number', &
         'an integer', "a quoted text ('spectral')", 'a real number', 'an integer', "a quoted text ('measure')", &
-        'an integer', 'an integer', 'an integer', 'a real number', 'a real number']
+        'an integer', 'an integer', 'an integer', 'a real number', 'a real number', "a quoted text ('auto')"]
     !> The smallest tolerance double precision reaches: K p is computed to about 1e-15 relative,
     !> and the residual's measures sum over the grid
     real(dp), parameter :: min_tolerance = 1.0e-13_dp
@@ -45,15 +46,15 @@ contains
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        character(len=16) :: method, fft_planner
+        character(len=16) :: method, fft_planner, device
         character(len=24) :: kernel
         real(dp) :: tolerance, alias_tol, balance_ratio, balance_factor
         integer :: max_iterations, alias_max, threads, anderson_memory, balance_every, stat
         character(len=512) :: msg
         character(len=:), allocatable :: lines(:)
         namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &
-            anderson_memory, balance_every, balance_ratio, balance_factor
-        method = 'auto'; tolerance = self%tolerance; max_iterations = self%max_iterations; kernel = 'spectral'
+            anderson_memory, balance_every, balance_ratio, balance_factor, device
+        method = 'auto'; device = 'auto'; tolerance = self%tolerance; max_iterations = self%max_iterations; kernel = 'spectral'
         alias_tol = self%alias_tol; alias_max = self%alias_max; fft_planner = 'measure'; threads = self%threads
         anderson_memory = self%anderson_memory; balance_every = self%balance_every
         balance_ratio = self%balance_ratio; balance_factor = self%balance_factor
@@ -67,6 +68,7 @@ contains
         self%fft_planner = trim(fft_planner); self%threads = threads
         self%anderson_memory = anderson_memory; self%balance_every = balance_every
         self%balance_ratio = balance_ratio; self%balance_factor = balance_factor
+        self%device = trim(device)
 
         call require(error, is_one_of(self%method, solver_method_names), path, 'solver', 'method', &
                      "'"//self%method//"'", choices_text(solver_method_names))
@@ -92,17 +94,19 @@ contains
                      'balance_factor', str(balance_factor), "> 1 and <= 100")
         call require(error, threads >= 0 .and. threads <= 1024, path, 'solver', 'threads', str(threads), &
                      "0 (as OMP_NUM_THREADS) to 1024")
+        call require(error, is_one_of(self%device, device_names), path, 'solver', 'device', "'"//self%device//"'", &
+                     choices_text(device_names))
     contains
         subroutine try(lines, stat, msg)
             character(len=*), intent(in) :: lines(:)
             integer, intent(out) :: stat
             character(len=*), intent(out) :: msg
-            character(len=16) :: method, fft_planner
+            character(len=16) :: method, fft_planner, device
             character(len=24) :: kernel
             real(dp) :: tolerance, alias_tol, balance_ratio, balance_factor
             integer :: max_iterations, alias_max, threads, anderson_memory, balance_every
             namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &
-                anderson_memory, balance_every, balance_ratio, balance_factor
+                anderson_memory, balance_every, balance_ratio, balance_factor, device
             read (lines, nml=solver, iostat=stat, iomsg=msg)
         end subroutine try
     end subroutine read_solver_config

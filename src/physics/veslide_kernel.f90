@@ -18,8 +18,10 @@
 !> What the solvers and the analysis use (they never touch the multiplier or the FFT themselves):
 !>  - `apply`:  out = K f (zero mean); `apply_buffer`: the same in place on an FFT buffer;
 !>  - `impulse_response`: K applied to a unit pressure on cell (1, 1) (one column of the matrix);
-!>  - `resolvent`: the multiplier of (I + gamma s K)^-1 as a `resolvent_t`, whose `solve` gives
-!>    x = (I + gamma s K)^-1 (z + gamma r) with the mean of x fixed;
+!>  - `resolvent_t`: the multiplier of (I + gamma s K)^-1 (`set` from K_d), whose `solve` gives
+!>    x = (I + gamma s K)^-1 (z + gamma r) with the mean of x fixed, on the host or the device
+!>    (its two passes in veslide_kernel_passes);
+!>  - `multiplier_array`: K_d where a solve runs (a view on the host, a copy on the device);
 !>  - `tangential_force`: F = <p grad w> of a pressure field, exact for the discrete operator;
 !>  - `multiplier`: s K_d/(nx ny), for solvers that build operators of their own from it (the
 !>    symmetric part or the modulus as a metric, their inverses as preconditioners);
@@ -33,6 +35,9 @@ module veslide_kernel
     use veslide_fftw, only: fft2d_t
     use veslide_collective, only: ordered_sum, global_min, global_max, global_any
     use veslide_material, only: material_t
+    use veslide_arrays, only: carray_t
+    use veslide_transform, only: transform_t
+    use veslide_kernel_passes, only: resolvent_multiplier, resolvent_apply
     implicit none
     private
     public :: kernel_t, resolvent_t, new_kernel, new_kernel_from_multiplier, kernel_variant_id, kernel_names
@@ -58,7 +63,6 @@ module veslide_kernel
         procedure :: apply => kernel_apply
         procedure :: apply_buffer => kernel_apply_buffer
         procedure :: impulse_response => kernel_impulse_response
-        procedure :: resolvent => kernel_resolvent
         procedure :: tangential_force => kernel_tangential_force
         procedure :: value => kernel_value
         procedure :: multiplier => kernel_multiplier
@@ -66,16 +70,18 @@ module veslide_kernel
         procedure :: max_abs => kernel_max_abs
         procedure :: typical_abs => kernel_typical_abs
         procedure :: move_to => kernel_move_to
-        procedure :: lend_multiplier => kernel_lend_multiplier
-        procedure :: take_back_multiplier => kernel_take_back_multiplier
+        procedure :: multiplier_array => kernel_multiplier_array
     end type kernel_t
 
-    !> The multiplier of (I + gamma s K)^-1 / (nx ny) (FFTW's normalisation folded in)
+    !> The multiplier of (I + gamma s K)^-1 / (nx ny) (FFTW's normalisation folded in), held
+    !> where the K_d it is made from is
     type :: resolvent_t
-        complex(dp), allocatable, private :: mult(:, :)
+        type(carray_t) :: mult
         logical, private :: owns_mean = .true.     !! this process holds q = 0
     contains
+        procedure :: set => resolvent_set
         procedure :: solve => resolvent_solve
+        procedure :: destroy => resolvent_destroy
     end type resolvent_t
 
 contains
@@ -247,21 +253,19 @@ contains
 
     end subroutine new_kernel
 
-    !> Lend the multiplier K_d [m/Pa] on the grid's spectral storage to a solver that needs it in
-    !> its own loops, moved out instead of copied (8 bytes per cell); the kernel cannot be applied
-    !> until `take_back_multiplier` returns it
-    subroutine kernel_lend_multiplier(self, kd)
-        class(kernel_t), intent(inout) :: self
-        complex(dp), allocatable, intent(out) :: kd(:, :)
-        call move_alloc(self%kd, kd)
-    end subroutine kernel_lend_multiplier
-
-    !> The multiplier lent by `lend_multiplier` back, unchanged
-    subroutine kernel_take_back_multiplier(self, kd)
-        class(kernel_t), intent(inout) :: self
-        complex(dp), allocatable, intent(inout) :: kd(:, :)
-        call move_alloc(kd, self%kd)
-    end subroutine kernel_take_back_multiplier
+    !> K_d [m/Pa] on the grid's spectral storage where a solve runs: a view of the kernel's own on
+    !> the host (the kernel must outlive it), a copy on the device
+    subroutine kernel_multiplier_array(self, kd, device)
+        class(kernel_t), intent(in), target :: self
+        type(carray_t), intent(inout) :: kd
+        logical, intent(in) :: device
+        if (device) then
+            call kd%create(size(self%kd, 1), size(self%kd, 2), .true.)
+            call kd%upload(self%kd)
+        else
+            call kd%view(self%kd)
+        end if
+    end subroutine kernel_multiplier_array
 
     !> Hand the operator to `dest` without copying its multiplier; `self` is left without one
     subroutine kernel_move_to(self, dest)
@@ -367,27 +371,35 @@ contains
         green = fft%x
     end subroutine kernel_impulse_response
 
-    !> The resolvent (I + gamma s K)^-1 as a multiplier (s scales K, e.g. to dimensionless units)
-    subroutine kernel_resolvent(self, gamma, s, r)
-        class(kernel_t), intent(in) :: self
-        real(dp), intent(in) :: gamma, s
-        type(resolvent_t), intent(out) :: r
-        r%mult = 1.0_dp/((1.0_dp + gamma*(self%kd*s))*self%grid%cells())
-        r%owns_mean = self%grid%owns_mean_mode()
-    end subroutine kernel_resolvent
+    !> The resolvent (I + gamma s K)^-1 as a multiplier (s scales K, e.g. to dimensionless
+    !> units), from K_d as `kd` holds it (host or device) on a grid of `cells` cells
+    subroutine resolvent_set(self, kd, gamma, s, cells, owns_mean)
+        class(resolvent_t), intent(inout) :: self
+        type(carray_t), intent(in) :: kd
+        real(dp), intent(in) :: gamma, s, cells
+        logical, intent(in) :: owns_mean    !! this process holds q = 0
+        if (self%mult%n1 /= kd%n1 .or. self%mult%n2 /= kd%n2 .or. (self%mult%device .neqv. kd%device)) &
+            call self%mult%create(kd%n1, kd%n2, kd%device)
+        call resolvent_multiplier(self%mult, kd, gamma, s, cells)
+        self%owns_mean = owns_mean
+    end subroutine resolvent_set
 
-    !> x = (I + gamma s K)^-1 (z + gamma r) with mean(x) = mean_x: on entry fft%x holds z and
-    !> `rk` the unnormalised transform of r; on exit fft%x holds x (one FFT pair)
-    subroutine resolvent_solve(self, fft, rk, gamma, mean_x)
+    !> x = (I + gamma s K)^-1 (z + gamma r) with mean(x) = mean_x: on entry t%x holds z and
+    !> `rk` the unnormalised transform of r; on exit t%x holds x (one FFT pair)
+    subroutine resolvent_solve(self, t, rk, gamma, mean_x)
         class(resolvent_t), intent(in) :: self
-        type(fft2d_t), intent(inout) :: fft
-        complex(dp), intent(in) :: rk(:, :)
+        type(transform_t), intent(inout) :: t
+        type(carray_t), intent(in) :: rk
         real(dp), intent(in) :: gamma, mean_x
-        call fft%forward()
-        fft%k = self%mult*(fft%k + gamma*rk)
-        if (self%owns_mean) fft%k(1, 1) = mean_x
-        call fft%backward_unscaled()
+        call t%forward()
+        call resolvent_apply(t%k, self%mult, rk, gamma, self%owns_mean, mean_x)
+        call t%backward_unscaled()
     end subroutine resolvent_solve
+
+    subroutine resolvent_destroy(self)
+        class(resolvent_t), intent(inout) :: self
+        call self%mult%destroy()
+    end subroutine resolvent_destroy
 
     !> Tangential force per unit nominal area exerted by the solid on the rigid surface,
     !> F = <p grad w> [Pa], evaluated exactly for the discrete operator:
