@@ -28,6 +28,7 @@ program veslide_tests
     use test_veslide_case, only: collect_case
     use test_veslide_study, only: collect_study
     use test_veslide_hard, only: collect_hard
+    use test_veslide_device, only: collect_device
     use test_veslide_postproc, only: collect_postproc
     implicit none
     type(testsuite_t), allocatable :: suites(:)
@@ -68,6 +69,7 @@ program veslide_tests
         new_testsuite("case", collect_case), &
         new_testsuite("study", collect_study), &
         new_testsuite("hard", collect_hard), &
+        new_testsuite("device", collect_device), &
         new_testsuite("postproc", collect_postproc) &
         ]
     want_suite = ''; want_test = ''

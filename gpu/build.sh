@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# The GPU build of veslide: the device passes (src/**/veslide_*.cu) compiled with nvcc and linked,
+# with cuFFT and the CUDA runtime, into the release build of the programs (the Fortran compiled
+# with -DVESLIDE_CUDA). Built where no GPU is visible it runs on the CPU, and says so once.
+#
+#   bash gpu/build.sh [--emulate] [PROGRAM]     build; print the path of PROGRAM (veslide,
+#                                               veslide-bench or veslide-tests; default veslide)
+#   bash gpu/build.sh [--emulate] test [ARGS]   build and run the Fortran suite (ARGS: suite, test)
+#   bash gpu/build.sh [--emulate] --paths       build; print the three programs' paths
+#
+# --emulate compiles the same .cu sources as host C++ (-DVESLIDE_EMULATE): the "emulated device",
+# which runs every device pass on the host in the GPU's order of summation, with FFTW in place of
+# cuFFT. It needs no CUDA at all; the tests of the device path run on it where there is no GPU.
+#
+# Where nvcc comes from: $CUDA_HOME/bin/nvcc when CUDA_HOME is set (a cluster's CUDA: `module load
+# cuda`, then CUDA_HOME=$CUDA_HOME or $CUDA_PATH), else PyPI's CUDA 13.0 wheels, installed into
+# the project's .venv when missing (~700 MB). Machine code is built for $VESLIDE_CUDA_ARCH
+# (default "80 90": A100 and H100/H200); add 100 for Blackwell with a CUDA that has it.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/.." && pwd)
+cd "$root"
+emulate=0
+if [ "${1:-}" = --emulate ]; then emulate=1; shift; fi
+bash scripts/setup.sh >&2
+export PATH="$root/.venv/bin:$PATH"
+
+sources=(src/core/veslide_device.cu src/grid/veslide_transform.cu src/grid/veslide_passes.cu
+         src/physics/veslide_kernel_passes.cu src/contact/veslide_contact_passes.cu
+         src/contact/veslide_bccg_passes.cu src/contact/veslide_pdr_passes.cu src/contact/veslide_dr_passes.cu)
+
+if [ "$emulate" = 1 ]; then
+    mode=emulate
+    compile() { g++ -std=c++17 -O2 -fopenmp -ffp-contract=off -fPIC -DVESLIDE_EMULATE -x c++ -c "$1" -o "$2"; }
+    device_libs="-lfftw3 -fopenmp"
+    defines="-DVESLIDE_CUDA -DVESLIDE_DEVICE_EMULATED"
+else
+    mode=cuda
+    if [ -n "${CUDA_HOME:-}" ] && [ -x "$CUDA_HOME/bin/nvcc" ]; then
+        nvcc="$CUDA_HOME/bin/nvcc"
+        libdir="$CUDA_HOME/lib64"; [ -d "$libdir" ] || libdir="$CUDA_HOME/lib"
+        cudart="-L$libdir -lcudart"; cufft="-lcufft"
+    else
+        site=$(.venv/bin/python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+        cu="$site/nvidia/cu13"
+        if [ ! -x "$cu/bin/nvcc" ] || [ ! -e "$cu/lib/libcufft.so.12" ] || [ ! -e "$cu/lib/libcudart.so.13" ]; then
+            echo "veslide gpu build: installing CUDA 13.0's nvcc, runtime and cuFFT from PyPI into .venv" >&2
+            # (the compiler's parts pinned with it: unpinned, pip takes a newer nvvm whose PTX
+            # this ptxas refuses)
+            .venv/bin/pip install -q --disable-pip-version-check "nvidia-cuda-nvcc==13.0.*" "nvidia-nvvm==13.0.*" \
+                "nvidia-cuda-crt==13.0.*" "nvidia-nvjitlink==13.0.*" "nvidia-cuda-runtime==13.0.*" \
+                "nvidia-cufft==12.0.*" >&2
+        fi
+        nvcc="$cu/bin/nvcc"; libdir="$cu/lib"
+        # the wheels hold only versioned libraries: link them by file name
+        cudart="$libdir/libcudart.so.13"; cufft="$libdir/libcufft.so.12"
+    fi
+    gencode=()
+    for a in ${VESLIDE_CUDA_ARCH:-80 90}; do gencode+=(-gencode "arch=compute_$a,code=sm_$a"); done
+    compile() { "$nvcc" -std=c++17 -O3 --fmad=false "${gencode[@]}" -Xcompiler -fPIC -c "$1" -o "$2"; }
+    device_libs="$cufft $cudart -Wl,-rpath,$libdir"
+    defines="-DVESLIDE_CUDA"
+fi
+
+# The device objects become one shared library, libveslide_device.so, that the programs load:
+# fpm puts link flags before the objects, where a static archive would not be searched, and
+# a shared library is found whatever the order (and needs no relink when it is rebuilt).
+obj="$root/build/device-$mode"
+mkdir -p "$obj"
+objects=()
+changed=0
+for s in "${sources[@]}"; do
+    o="$obj/$(basename "${s%.cu}").o"
+    if [ ! -e "$o" ] || [ "$s" -nt "$o" ] || [ src/core/veslide_device.cuh -nt "$o" ]; then
+        echo "veslide gpu build: compiling $s ($mode)" >&2
+        compile "$s" "$o"
+        changed=1
+    fi
+    objects+=("$o")
+done
+lib="$obj/libveslide_device.so"
+if [ "$changed" = 1 ] || [ ! -e "$lib" ]; then
+    g++ -shared -o "$lib" "${objects[@]}" $device_libs
+fi
+
+flags=(--profile release --flag "$defines"
+       --link-flag "-L$obj -Wl,--no-as-needed -lveslide_device -Wl,-rpath,$obj -lstdc++")
+paths() {
+    fpm run "${flags[@]}" veslide --runner echo 2>/dev/null | tail -1
+    fpm run "${flags[@]}" veslide-bench --runner echo 2>/dev/null | tail -1
+    fpm test "${flags[@]}" --runner echo 2>/dev/null | tail -1
+}
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+fpm build "${flags[@]}" --tests >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
+# fpm 0.12 relinks the programs when the library changes, but not always the test program
+tests_exe=$(fpm test "${flags[@]}" --runner echo 2>/dev/null | tail -1)
+rm -f "$tests_exe"
+fpm build "${flags[@]}" --tests >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
+
+case "${1:-veslide}" in
+    test)
+        shift
+        exec fpm test "${flags[@]}" -- "$@"
+        ;;
+    --paths)
+        for p in $(paths); do echo "$root/$p"; done
+        ;;
+    veslide|veslide-bench)
+        echo "$root/$(fpm run "${flags[@]}" "$1" --runner echo 2>/dev/null | tail -1)"
+        ;;
+    veslide-tests)
+        echo "$root/$(fpm test "${flags[@]}" --runner echo 2>/dev/null | tail -1)"
+        ;;
+    *)
+        echo "usage: bash gpu/build.sh [--emulate] [veslide | veslide-bench | veslide-tests | --paths | test [ARGS]]" >&2
+        exit 2
+        ;;
+esac

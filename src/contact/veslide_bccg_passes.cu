@@ -1,0 +1,205 @@
+// CUDA twins of veslide_bccg_passes.F90 (the bound-constrained CG's passes); each functor does
+// for one element what the CPU twin's loop body does, in the same order of operations.
+#include "../core/veslide_device.cuh"
+#include <stdint.h>
+
+namespace {
+
+struct metric_f {
+    double *ks;
+    const double2 *kd;
+    double f;
+    int modulus;
+    VS_HD void operator()(long n) const {
+        ks[n] = modulus ? f * hypot(kd[n].x, kd[n].y) : kd[n].x * f;
+    }
+};
+
+struct set_contact_f {
+    int8_t *act;
+    const double *p;
+    VS_HD void operator()(long n) const { act[n] = p[n] > 0.0 ? 1 : 0; }
+};
+
+// sums: [g on the set, p g, p, set size]; minima: [g]
+struct statistics_f {
+    const double *x, *p;
+    const int8_t *act;
+    double gprev;
+    int nx;
+    VS_HD void operator()(int i, int j, double *s, double *m) const {
+        long n = i + (long)nx * j;
+        double g = x[n] - gprev;
+        if (act[n] != 0) {
+            s[3] += 1.0;
+            s[0] += g;
+        }
+        m[0] = fmin(m[0], g);
+        s[1] += p[n] * g;
+        s[2] += p[n];
+    }
+};
+
+struct residual_f {
+    double *x;
+    int8_t *act;
+    const double *v;
+    double gbar;
+    int nx;
+    VS_HD void operator()(int i, int j, double *s, double *) const {
+        long n = i + (long)nx * j;
+        double g = x[n] - gbar;
+        int8_t a = act[n];
+        if (a == 0 && g < 0.0) {
+            a = 1;
+            act[n] = 1;
+        }
+        if (a != 0) {
+            x[n] = -g;
+            s[0] -= g * v[n];
+        } else {
+            x[n] = 0.0;
+        }
+    }
+};
+
+struct precondition_f {
+    double2 *k;
+    const double *ks, *wa;
+    double n2;
+    int na;
+    VS_HD void operator()(int i, int j, double *s, double *) const {
+        long n = i + (long)na * j;
+        double w = 0.0;
+        if (ks[n] > 0.0) w = 1.0 / (ks[n] * n2);
+        double2 kv = k[n];
+        s[0] += wa[i] * w * (kv.x * kv.x + kv.y * kv.y);
+        k[n] = vs::cx(kv.x * w, kv.y * w);
+    }
+};
+
+struct direction_f {
+    double *x, *v;
+    const int8_t *act;
+    double beta;
+    VS_HD void operator()(long n) const {
+        double z = act[n] != 0 ? x[n] + beta * v[n] : 0.0;
+        v[n] = z;
+        x[n] = z;
+    }
+};
+
+struct energy_f {
+    const double2 *k;
+    const double *ks, *wa;
+    int na;
+    VS_HD void operator()(int i, int j, double *s, double *) const {
+        long n = i + (long)na * j;
+        double2 kv = k[n];
+        s[0] += wa[i] * ks[n] * (kv.x * kv.x + kv.y * kv.y);
+    }
+};
+
+// sums: [p, clipped]
+struct step_f {
+    double *x, *p, *v;
+    int8_t *act;
+    double a, alpha;
+    int nx;
+    VS_HD void operator()(int i, int j, double *s, double *) const {
+        long n = i + (long)nx * j;
+        double pt, xv = 0.0;
+        if (act[n] != 0) {
+            pt = a * p[n] + alpha * v[n];
+            if (pt < 0.0) {
+                xv = -pt;
+                s[1] += 1.0;
+                pt = 0.0;
+                act[n] = 0;
+                v[n] = 0.0;
+            }
+        } else {
+            pt = 0.0;
+        }
+        x[n] = xv;
+        p[n] = pt;
+        s[0] += pt;
+    }
+};
+
+struct spectral_f {
+    double2 *pk, *k;
+    const double *ks;
+    const double2 *hk;
+    double a, alpha, b;
+    int mode;
+    VS_HD void operator()(long n) const {
+        if (mode == 2) {   // k = pk (a ks) - hk
+            k[n] = vs::csub(vs::cscale(a * ks[n], pk[n]), hk[n]);
+            return;
+        }
+        double2 p = vs::cadd(vs::cscale(a, pk[n]), vs::cscale(alpha, k[n]));
+        pk[n] = p;
+        if (mode == 1) k[n] = vs::csub(vs::cscale(b * ks[n], p), hk[n]);
+    }
+};
+
+struct add_points_f {
+    double2 *pk;
+    const double2 *ex, *ey;
+    int na, nb, m;
+    VS_HD void operator()(long n) const {
+        int a = (int)(n % na), b = (int)(n / na);
+        double2 s = vs::cx(0.0, 0.0);
+        for (int k = 0; k < m; ++k) s = vs::cadd(s, vs::cmul(ex[a + (long)na * k], ey[b + (long)nb * k]));
+        pk[n] = vs::cadd(pk[n], s);
+    }
+};
+
+}  // namespace
+
+extern "C" {
+
+void veslide_bccg_metric(long n, double *ks, const double2 *kd, double f, int modulus) {
+    vs::for_each(metric_f{ks, kd, f, modulus}, n);
+}
+
+void veslide_bccg_set_contact(long n, int8_t *act, const double *p) { vs::for_each(set_contact_f{act, p}, n); }
+
+void veslide_bccg_statistics(int nx, int ny, const double *x, const int8_t *act, const double *p, double gprev,
+                             double *rows) {
+    vs::reduce_rows<4, 1>(statistics_f{x, p, act, gprev, nx}, nx, ny, rows);
+}
+
+void veslide_bccg_residual(int nx, int ny, double *x, int8_t *act, const double *v, double gbar, double *rows) {
+    vs::reduce_rows<1, 0>(residual_f{x, act, v, gbar, nx}, nx, ny, rows);
+}
+
+void veslide_bccg_precondition(int na, int nb, double2 *k, const double *ks, const double *wa, double n2,
+                               double *cols) {
+    vs::reduce_rows<1, 0>(precondition_f{k, ks, wa, n2, na}, na, nb, cols);
+}
+
+void veslide_bccg_direction(long n, double *x, const int8_t *act, double *v, double beta) {
+    vs::for_each(direction_f{x, v, act, beta}, n);
+}
+
+void veslide_bccg_energy(int na, int nb, const double2 *k, const double *ks, const double *wa, double *cols) {
+    vs::reduce_rows<1, 0>(energy_f{k, ks, wa, na}, na, nb, cols);
+}
+
+void veslide_bccg_step(int nx, int ny, double *x, int8_t *act, double *p, double *v, double a, double alpha,
+                       double *rows) {
+    vs::reduce_rows<2, 0>(step_f{x, p, v, act, a, alpha, nx}, nx, ny, rows);
+}
+
+void veslide_bccg_spectral(long n, double2 *pk, double2 *k, const double *ks, const double2 *hk, double a,
+                           double alpha, double b, int mode) {
+    vs::for_each(spectral_f{pk, k, ks, hk, a, alpha, b, mode}, n);
+}
+
+void veslide_bccg_add_points(int na, int nb, int m, double2 *pk, const double2 *ex, const double2 *ey) {
+    vs::for_each(add_points_f{pk, ex, ey, na, nb, m}, (long)na * nb);
+}
+
+}  // extern "C"

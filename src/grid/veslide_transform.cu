@@ -1,0 +1,153 @@
+// The device twin of veslide_fftw's fft2d_t: 2-D real transforms of an nx x ny field (i fastest,
+// Fortran order) into its half-spectrum (nx/2+1) x ny, unnormalised, forward exp(-i q.x), on
+// buffers the caller allocated on the device (veslide_transform.F90). On a GPU: cuFFT's D2Z and
+// Z2D plans (one-dimensional when ny = 1) sharing one work area, allocated and counted by
+// veslide (veslide_device_peak_bytes), kept for as long as the transform lives. On the emulated
+// device: FFTW's 2-D plans on the same buffers (veslide_device.cuh).
+#include "../core/veslide_device.cuh"
+#include <stdio.h>
+#include <stdlib.h>
+#ifdef VESLIDE_EMULATE
+#include <fftw3.h>
+#else
+#include <cufft.h>
+#endif
+
+namespace {
+
+struct plan_t {
+    int nx, ny;
+    double *x;      // real buffer (nx, ny)
+    double2 *k;     // half-spectrum buffer (nx/2+1, ny)
+#ifdef VESLIDE_EMULATE
+    fftw_plan f, b;
+#else
+    cufftHandle f, b;
+    void *work;
+#endif
+    size_t work_bytes;
+};
+
+#ifndef VESLIDE_EMULATE
+const char *cufft_text(cufftResult r) {
+    switch (r) {
+    case CUFFT_SUCCESS: return "success";
+    case CUFFT_INVALID_PLAN: return "invalid plan";
+    case CUFFT_ALLOC_FAILED: return "allocation failed";
+    case CUFFT_INVALID_VALUE: return "invalid value";
+    case CUFFT_INTERNAL_ERROR: return "internal error";
+    case CUFFT_EXEC_FAILED: return "execution failed";
+    case CUFFT_SETUP_FAILED: return "setup failed (no usable GPU?)";
+    case CUFFT_INVALID_SIZE: return "invalid size";
+    default: return "error";
+    }
+}
+
+bool ok(cufftResult r, const char *what) {
+    if (r == CUFFT_SUCCESS) return true;
+    vs::note_error(what, cufft_text(r));
+    return false;
+}
+#endif
+
+}  // namespace
+
+extern "C" {
+
+// A transform of nx x ny on the device buffers x (nx ny doubles) and k ((nx/2+1) ny complex);
+// *work_bytes: the work area it holds
+int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, double *work_bytes) {
+    *handle = NULL;
+    *work_bytes = 0;
+    if (vs::failed()) return 1;
+    plan_t *p = (plan_t *)calloc(1, sizeof(plan_t));
+    if (!p) return 1;
+    p->nx = nx;
+    p->ny = ny;
+    p->x = x;
+    p->k = (double2 *)k;
+#ifdef VESLIDE_EMULATE
+    p->f = fftw_plan_dft_r2c_2d(ny, nx, x, (fftw_complex *)k, FFTW_ESTIMATE);
+    p->b = fftw_plan_dft_c2r_2d(ny, nx, (fftw_complex *)k, x, FFTW_ESTIMATE);
+    if (!p->f || !p->b) {
+        vs::note_error("transform", "FFTW returned a null plan");
+        free(p);
+        return 1;
+    }
+#else
+    size_t wf = 0, wb = 0;
+    bool good = ok(cufftCreate(&p->f), "cufftCreate") && ok(cufftCreate(&p->b), "cufftCreate") &&
+                ok(cufftSetAutoAllocation(p->f, 0), "cufftSetAutoAllocation") &&
+                ok(cufftSetAutoAllocation(p->b, 0), "cufftSetAutoAllocation");
+    if (good) {
+        if (ny == 1) {
+            good = ok(cufftMakePlan1d(p->f, nx, CUFFT_D2Z, 1, &wf), "cufftMakePlan1d (D2Z)") &&
+                   ok(cufftMakePlan1d(p->b, nx, CUFFT_Z2D, 1, &wb), "cufftMakePlan1d (Z2D)");
+        } else {
+            // cuFFT is row-major: the slowest dimension (y, ny) first
+            good = ok(cufftMakePlan2d(p->f, ny, nx, CUFFT_D2Z, &wf), "cufftMakePlan2d (D2Z)") &&
+                   ok(cufftMakePlan2d(p->b, ny, nx, CUFFT_Z2D, &wb), "cufftMakePlan2d (Z2D)");
+        }
+    }
+    if (good) {
+        // the two plans never run at once: one work area for both
+        p->work_bytes = wf > wb ? wf : wb;
+        p->work = p->work_bytes > 0 ? vs::alloc(p->work_bytes) : NULL;
+        good = p->work_bytes == 0 || p->work;
+        if (good && p->work)
+            good = ok(cufftSetWorkArea(p->f, p->work), "cufftSetWorkArea") &&
+                   ok(cufftSetWorkArea(p->b, p->work), "cufftSetWorkArea");
+    }
+    if (!good) {
+        cufftDestroy(p->f);
+        cufftDestroy(p->b);
+        if (p->work) vs::release(p->work);
+        free(p);
+        return 1;
+    }
+#endif
+    *work_bytes = (double)p->work_bytes;
+    *handle = p;
+    return 0;
+}
+
+// k <- transform of x (x is kept)
+int veslide_transform_forward(void *handle) {
+    plan_t *p = (plan_t *)handle;
+    if (vs::failed()) return 1;
+#ifdef VESLIDE_EMULATE
+    fftw_execute(p->f);
+    return 0;
+#else
+    return ok(cufftExecD2Z(p->f, p->x, (cufftDoubleComplex *)p->k), "cufftExecD2Z") ? 0 : 1;
+#endif
+}
+
+// x <- unnormalised inverse transform of k (k is destroyed)
+int veslide_transform_backward(void *handle) {
+    plan_t *p = (plan_t *)handle;
+    if (vs::failed()) return 1;
+#ifdef VESLIDE_EMULATE
+    fftw_execute(p->b);
+    return 0;
+#else
+    return ok(cufftExecZ2D(p->b, (cufftDoubleComplex *)p->k, p->x), "cufftExecZ2D") ? 0 : 1;
+#endif
+}
+
+int veslide_transform_destroy(void *handle) {
+    plan_t *p = (plan_t *)handle;
+    if (!p) return 0;
+#ifdef VESLIDE_EMULATE
+    fftw_destroy_plan(p->f);
+    fftw_destroy_plan(p->b);
+#else
+    cufftDestroy(p->f);
+    cufftDestroy(p->b);
+    if (p->work) vs::release(p->work);
+#endif
+    free(p);
+    return vs::failed();
+}
+
+}  // extern "C"

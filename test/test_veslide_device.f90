@@ -1,0 +1,656 @@
+!> The device path. Which tests run depends on the build:
+!>  - without a usable device (the CPU build, or the GPU build where no GPU is visible): 'gpu' is
+!>    refused with a message naming the choices, and 'auto' solves on the CPU;
+!>  - with one (a GPU, or the emulated device of `gpu/build.sh --emulate`): every device pass
+!>    against its CPU twin on random data (1e-13 relative), the cuFFT twin against FFTW, dense
+!>    references and hard cases solved on the device, the device against the CPU on the same
+!>    cases (pressure, area, friction, lateral force to 1e-10; FFT pairs within 2 %), a solve
+!>    repeated bit for bit, the refusals of what the device does not run, and its memory count.
+module test_veslide_device
+    use, intrinsic :: iso_fortran_env, only: int8, real32
+    use veslide_kinds, only: dp, i8
+    use veslide_error, only: fatal_error
+    use veslide_grid, only: grid_t, new_grid
+    use veslide_fftw, only: fft2d_t
+    use veslide_device, only: device_enabled, device_count, device_emulated, device_info_t, device_info, &
+                              device_peak_bytes, device_reset_peak, device_bytes_in_use, device_check
+    use veslide_arrays, only: rarray_t, carray_t, iarray_t, sarray_t
+    use veslide_transform, only: transform_t
+    use veslide_passes, only: fill, scale, divide, subtract, scaled_copy, divided_copy, centre_scale, centre_divide, &
+                              clip_and_sum, row_sums, count_below, complex_scale, complex_add, complex_divide, &
+                              multiply_spectrum
+    use veslide_kernel_passes, only: resolvent_multiplier, resolvent_apply
+    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
+    use veslide_bccg_passes, only: metric, set_contact, statistics, residual, precondition, direction, energy, step, &
+                                   update_transform, step_transform, gap_multiply, add_points, clipped_points
+    use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
+                                  full_contact, gap_to_z, sum_of, one_plus, difference_from
+    use veslide_dr_passes, only: dr_map, dr_update, dr_rebalance, dr_project, dr_restore, dr_add_gap
+    use veslide_material, only: material_t, new_elastic
+    use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
+    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
+    use veslide_solver_options, only: solver_options_t, solver_method_id, DEVICE_GPU, DEVICE_CPU, DEVICE_AUTO
+    use veslide_solver, only: solve_contact, gpu_visible
+    use veslide_config, only: config_t
+    use veslide_case, only: case_t, run_case
+    use veslide_scenes, only: hard_case_count, hard_case
+    use veslide_analysis, only: contact_area_fraction
+    use testsuite, only: error_t, unittest_t, new_unittest, check, report
+    use test_support, only: solve_case
+    use dense_reference, only: dense_compare
+    use reference_oracles, only: paper_rough, paper_solid, peak_speed
+    implicit none
+    private
+    public :: collect_device, device_usable
+
+    !> the tolerance of a device pass against its CPU twin: the same operations, summed in
+    !> another order (and, for complex division, 1 ulp apart)
+    real(dp), parameter :: pass_tol = 1.0e-13_dp
+    integer, parameter :: nx = 48, ny = 20      ! a field not a multiple of the block (256)
+
+contains
+
+    !> Can this process solve on a device (a GPU, or the emulated one)?
+    logical function device_usable()
+        device_usable = device_enabled .and. device_count() > 0
+    end function device_usable
+
+    subroutine collect_device(tests)
+        type(unittest_t), allocatable, intent(out) :: tests(:)
+        if (.not. device_usable()) then
+            tests = [ &
+                new_unittest("gpu-refused-without-a-device", test_gpu_refused), &
+                new_unittest("auto-solves-on-the-cpu", test_auto_cpu) &
+                ]
+            return
+        end if
+        tests = [ &
+            new_unittest("device-info", test_info), &
+            new_unittest("passes-shared", test_passes_shared), &
+            new_unittest("passes-kernel-and-contact", test_passes_contact), &
+            new_unittest("passes-bccg", test_passes_bccg), &
+            new_unittest("passes-pdr", test_passes_pdr), &
+            new_unittest("passes-dr", test_passes_dr), &
+            new_unittest("transform-against-fftw", test_transform), &
+            new_unittest("dense-elastic-bccg", test_dense_bccg), &
+            new_unittest("dense-visco-pdr", test_dense_pdr), &
+            new_unittest("dense-visco-dr", test_dense_dr), &
+            new_unittest("profile-one-row", test_profile), &
+            new_unittest("hard-cases-on-the-device", test_hard), &
+            new_unittest("device-against-cpu", test_against_cpu), &
+            new_unittest("repeats-bit-for-bit", test_repeat), &
+            new_unittest("refusals", test_refusals), &
+            new_unittest("memory-counted-and-returned", test_memory) &
+            ]
+    end subroutine collect_device
+
+    ! ---- without a device ----------------------------------------------------------------
+
+    subroutine test_gpu_refused(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(contact_state_t) :: s
+        real(dp) :: h(16, 16)
+        character(len=:), allocatable :: msg
+        call paper_rough(16, h, error); if (allocated(error)) return
+        call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, device='gpu')
+        call refusal(error, msg, "device = 'gpu'"); if (allocated(error)) return
+        call check(error, index(msg, "&solver device = 'gpu'") > 0 .and. index(msg, "'cpu'") > 0, &
+                   "the refusal does not name the choice and the alternatives: "//msg)
+    end subroutine test_gpu_refused
+
+    subroutine test_auto_cpu(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(contact_state_t) :: s
+        real(dp) :: h(16, 16)
+        call paper_rough(16, h, error); if (allocated(error)) return
+        call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, device='auto'); if (allocated(error)) return
+        call check(error, s%device == 'cpu', "'auto' without a device solved on "//s%device)
+        if (allocated(error)) return
+        call check(error, .not. gpu_visible(), "'auto' finds a GPU where the suite found none")
+    end subroutine test_auto_cpu
+
+    ! ---- helpers -----------------------------------------------------------------------
+
+    !> An expected refusal: its message in `msg` and the error cleared; none is an error
+    subroutine refusal(error, msg, what)
+        type(error_t), allocatable, intent(inout) :: error
+        character(len=:), allocatable, intent(out) :: msg
+        character(len=*), intent(in) :: what
+        if (.not. allocated(error)) then
+            call fatal_error(error, what//" was not refused"); return
+        end if
+        msg = error%message
+        deallocate (error)
+    end subroutine refusal
+
+    !> A host array and its device twin with the same random contents
+    subroutine twin_real(n1, n2, a, ah, ad, lo, hi)
+        integer, intent(in) :: n1, n2
+        real(dp), allocatable, target, intent(inout) :: a(:, :)
+        type(rarray_t), intent(inout) :: ah, ad
+        real(dp), intent(in), optional :: lo, hi
+        real(dp) :: l, u
+        if (allocated(a)) deallocate (a)
+        l = -1.0_dp; u = 1.0_dp
+        if (present(lo)) l = lo
+        if (present(hi)) u = hi
+        allocate (a(n1, n2))
+        call random_number(a); a = l + (u - l)*a
+        call ah%view(a)
+        call ad%create(n1, n2, .true.); call ad%upload(a)
+    end subroutine twin_real
+
+    subroutine twin_complex(n1, n2, a, ah, ad)
+        integer, intent(in) :: n1, n2
+        complex(dp), allocatable, target, intent(inout) :: a(:, :)
+        type(carray_t), intent(inout) :: ah, ad
+        real(dp) :: re(n1, n2), im(n1, n2)
+        call random_number(re); call random_number(im)
+        a = cmplx(re - 0.5_dp, im - 0.5_dp, dp)
+        call ah%view(a)
+        call ad%create(n1, n2, .true.); call ad%upload(a)
+    end subroutine twin_complex
+
+    !> |device - host| <= tol max |host| over a real array (the device's read back)
+    subroutine same_real(error, ah, ad, what, tol)
+        type(error_t), allocatable, intent(inout) :: error
+        type(rarray_t), intent(in) :: ah, ad
+        character(len=*), intent(in) :: what
+        real(dp), intent(in), optional :: tol
+        real(dp), allocatable :: b(:, :)
+        real(dp) :: t, d
+        if (allocated(error)) return
+        t = pass_tol; if (present(tol)) t = tol
+        allocate (b(ad%n1, ad%n2))
+        call ad%download(b)
+        d = maxval(abs(b - ah%h))/max(maxval(abs(ah%h)), tiny(1.0_dp))
+        call check(error, d <= t, what//": device and CPU differ by "//real_text(d))
+    end subroutine same_real
+
+    subroutine same_complex(error, ah, ad, what)
+        type(error_t), allocatable, intent(inout) :: error
+        type(carray_t), intent(in) :: ah, ad
+        character(len=*), intent(in) :: what
+        complex(dp), allocatable :: b(:, :)
+        real(dp) :: d
+        if (allocated(error)) return
+        allocate (b(ad%n1, ad%n2))
+        call ad%download(b)
+        d = maxval(abs(b - ah%h))/max(maxval(abs(ah%h)), tiny(1.0_dp))
+        call check(error, d <= pass_tol, what//": device and CPU differ by "//real_text(d))
+    end subroutine same_complex
+
+    !> Partial sums against their CPU twins, relative to the largest
+    subroutine same_values(error, a, b, what)
+        type(error_t), allocatable, intent(inout) :: error
+        real(dp), intent(in) :: a(:), b(:)
+        character(len=*), intent(in) :: what
+        real(dp) :: d
+        if (allocated(error)) return
+        d = maxval(abs(a - b))/max(maxval(abs(b)), tiny(1.0_dp))
+        call check(error, d <= pass_tol, what//": device and CPU differ by "//real_text(d))
+    end subroutine same_values
+
+    function real_text(x) result(t)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: t
+        character(len=24) :: b
+        write (b, '(es10.3)') x
+        t = trim(adjustl(b))
+    end function real_text
+
+    subroutine device_errors(error, what)
+        type(error_t), allocatable, intent(inout) :: error
+        character(len=*), intent(in) :: what
+        call device_check(error, what)
+    end subroutine device_errors
+
+    ! ---- with a device -----------------------------------------------------------------
+
+    subroutine test_info(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(device_info_t) :: info
+        call device_info(info, error); if (allocated(error)) return
+        call report("device: "//info%name, info%memory_bytes)
+        call check(error, len(info%name) > 0, "no device name"); if (allocated(error)) return
+        if (.not. info%emulated) then
+            call check(error, info%memory_bytes > 0.0_dp .and. info%driver_version > 0 .and. &
+                       info%runtime_version > 0, "a GPU without memory or versions")
+        end if
+    end subroutine test_info
+
+    subroutine test_passes_shared(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), allocatable, target :: a(:, :), b(:, :)
+        complex(dp), allocatable, target :: c(:, :), d(:, :)
+        type(rarray_t) :: ah, ad, bh, bd
+        type(carray_t) :: ch, cd, dh, dd
+        real(dp) :: rh(ny), rdv(ny)
+        integer(i8) :: n1, n2
+        call twin_real(nx, ny, a, ah, ad); call twin_real(nx, ny, b, bh, bd)
+        call fill(ah, 0.3_dp); call fill(ad, 0.3_dp); call same_real(error, ah, ad, "fill")
+        call twin_real(nx, ny, a, ah, ad)
+        call scale(ah, 1.7_dp); call scale(ad, 1.7_dp); call same_real(error, ah, ad, "scale")
+        call divide(ah, 1.3_dp); call divide(ad, 1.3_dp); call same_real(error, ah, ad, "divide")
+        call subtract(ah, 0.2_dp); call subtract(ad, 0.2_dp); call same_real(error, ah, ad, "subtract")
+        call scaled_copy(ah, bh, 2.5_dp); call scaled_copy(ad, bd, 2.5_dp); call same_real(error, ah, ad, "scaled_copy")
+        call divided_copy(ah, bh, 2.5_dp); call divided_copy(ad, bd, 2.5_dp)
+        call same_real(error, ah, ad, "divided_copy")
+        call centre_scale(ah, bh, 0.1_dp, 3.0_dp); call centre_scale(ad, bd, 0.1_dp, 3.0_dp)
+        call same_real(error, ah, ad, "centre_scale")
+        call centre_divide(ah, bh, 0.1_dp, 3.0_dp); call centre_divide(ad, bd, 0.1_dp, 3.0_dp)
+        call same_real(error, ah, ad, "centre_divide")
+        call clip_and_sum(ah, rh); call clip_and_sum(ad, rdv)
+        call same_real(error, ah, ad, "clip"); call same_values(error, rdv, rh, "clip_and_sum")
+        call row_sums(bh, rh); call row_sums(bd, rdv); call same_values(error, rdv, rh, "row_sums")
+        n1 = count_below(bh, 0.1_dp); n2 = count_below(bd, 0.1_dp)
+        if (.not. allocated(error)) call check(error, n1 == n2 .and. n1 > 0, "count_below")
+        call twin_complex(nx/2 + 1, ny, c, ch, cd); call twin_complex(nx/2 + 1, ny, d, dh, dd)
+        call complex_scale(ch, 0.7_dp); call complex_scale(cd, 0.7_dp); call same_complex(error, ch, cd, "complex_scale")
+        call complex_divide(ch, 0.7_dp); call complex_divide(cd, 0.7_dp)
+        call same_complex(error, ch, cd, "complex_divide")
+        call complex_add(ch, dh); call complex_add(cd, dd); call same_complex(error, ch, cd, "complex_add")
+        call multiply_spectrum(ch, dh, 0.3_dp); call multiply_spectrum(cd, dd, 0.3_dp)
+        call same_complex(error, ch, cd, "multiply_spectrum")
+        call device_errors(error, "shared passes")
+        call ad%destroy(); call bd%destroy(); call cd%destroy(); call dd%destroy()
+    end subroutine test_passes_shared
+
+    subroutine test_passes_contact(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), allocatable, target :: u(:, :), h(:, :), p(:, :), g(:, :)
+        complex(dp), allocatable, target :: kd(:, :), m(:, :), k(:, :), rk(:, :)
+        type(rarray_t) :: uh, ud, hh, hd, ph, pd, gh, gd
+        type(carray_t) :: kdh, kdd, mh, md, kh, kdv, rkh, rkd
+        real(dp) :: rh(ny), rdv(ny), r3h(3, ny), r3d(3, ny), gmax(2), mins(4)
+        integer(i8) :: nc(2)
+        call twin_real(nx, ny, u, uh, ud); call twin_real(nx, ny, h, hh, hd)
+        call twin_real(nx, ny, p, ph, pd); call twin_real(nx, ny, g, gh, gd)
+        call gap_and_contact_sums(uh, hh, 0.1_dp, ph, gh, rh, nc(1), gmax(1))
+        call gap_and_contact_sums(ud, hd, 0.1_dp, pd, gd, rdv, nc(2), gmax(2))
+        call same_real(error, gh, gd, "gap"); call same_values(error, rdv, rh, "contact sums")
+        if (.not. allocated(error)) call check(error, nc(1) == nc(2) .and. gmax(1) == gmax(2), "contact count, max g")
+        call gap_measures(ph, gh, 0.05_dp, r3h, mins(1), mins(2))
+        call gap_measures(pd, gd, 0.05_dp, r3d, mins(3), mins(4))
+        call same_real(error, gh, gd, "gap + d"); call same_values(error, reshape(r3d, [3*ny]), reshape(r3h, [3*ny]), &
+                                                                   "gap measures")
+        if (.not. allocated(error)) call check(error, all(mins(1:2) == mins(3:4)), "min g, min p")
+        ! the resolvent (real part of K_d positive, as a kernel's)
+        call twin_complex(nx/2 + 1, ny, kd, kdh, kdd)
+        kd = cmplx(abs(real(kd)) + 0.1_dp, aimag(kd), dp); call kdd%upload(kd)
+        call twin_complex(nx/2 + 1, ny, m, mh, md)
+        call resolvent_multiplier(mh, kdh, 0.8_dp, 3.0_dp, real(nx*ny, dp))
+        call resolvent_multiplier(md, kdd, 0.8_dp, 3.0_dp, real(nx*ny, dp))
+        call same_complex(error, mh, md, "resolvent multiplier")
+        call twin_complex(nx/2 + 1, ny, k, kh, kdv); call twin_complex(nx/2 + 1, ny, rk, rkh, rkd)
+        call resolvent_apply(kh, mh, rkh, 0.8_dp, .true., 0.5_dp)
+        call resolvent_apply(kdv, md, rkd, 0.8_dp, .true., 0.5_dp)
+        call same_complex(error, kh, kdv, "resolvent apply")
+        call device_errors(error, "contact passes")
+        call ud%destroy(); call hd%destroy(); call pd%destroy(); call gd%destroy()
+        call kdd%destroy(); call md%destroy(); call kdv%destroy(); call rkd%destroy()
+    end subroutine test_passes_contact
+
+    subroutine test_passes_bccg(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: na = nx/2 + 1
+        real(dp), allocatable, target :: x(:, :), p(:, :), v(:, :), ks(:, :), wa2(:, :)
+        complex(dp), allocatable, target :: kd(:, :), k(:, :), pk(:, :), hk(:, :)
+        integer(int8), allocatable :: acth(:, :)
+        type(rarray_t) :: xh, xd, ph, pd, vh, vd, ksh, ksd, wah, wad
+        type(carray_t) :: kdh, kdd, kh, kdv, pkh, pkd, hkh, hkd
+        type(iarray_t) :: ah, ad
+        type(grid_t) :: grid
+        real(dp) :: wa(na), wb(ny), r3h(3, ny), r3d(3, ny), rh(ny), rdv(ny), ch(ny), cdv(ny), gmin(2), clip(ny)
+        real(dp) :: pts_h(3, 8), pts_d(3, 8)
+        complex(dp) :: ex(na, 3), ey(ny, 3)
+        integer(i8) :: nact(2)
+        integer :: ncl(2), kh_, kd_, i
+        call new_grid(grid, nx, ny, 1.0_dp, 1.0_dp, error); if (allocated(error)) return
+        call twin_real(nx, ny, x, xh, xd); call twin_real(nx, ny, p, ph, pd, lo=-0.2_dp, hi=1.0_dp)
+        call twin_real(nx, ny, v, vh, vd)
+        call twin_complex(na, ny, kd, kdh, kdd)
+        call twin_real(na, ny, ks, ksh, ksd)
+        ! metric, both ways
+        call metric(ksh, kdh, 0.7_dp, modulus=.true.); call metric(ksd, kdd, 0.7_dp, modulus=.true.)
+        call same_real(error, ksh, ksd, "metric |K|")
+        call metric(ksh, kdh, 0.7_dp, modulus=.false.); call metric(ksd, kdd, 0.7_dp, modulus=.false.)
+        call same_real(error, ksh, ksd, "metric Re K")
+        ks(1, 1) = 0.0_dp; ks(3, 2) = -1.0_dp; call ksd%upload(ks)     ! zeros of the multiplier
+        call ah%create(nx, ny, .false.); call ad%create(nx, ny, .true.)
+        call set_contact(ah, ph); call set_contact(ad, pd)
+        wa = [(merge(1.0_dp, 2.0_dp, i == 1 .or. i == na), i=1, na)]; wb = 1.0_dp
+        allocate (wa2(na, 1)); wa2(:, 1) = wa
+        call wah%view(wa2); call wad%create(na, 1, .true.); call wad%upload(wa2)
+        call statistics(xh, ah, ph, 0.1_dp, r3h, nact(1), gmin(1))
+        call statistics(xd, ad, pd, 0.1_dp, r3d, nact(2), gmin(2))
+        call same_values(error, reshape(r3d, [3*ny]), reshape(r3h, [3*ny]), "statistics")
+        if (.not. allocated(error)) call check(error, nact(1) == nact(2) .and. gmin(1) == gmin(2), "set size, min g")
+        call residual(xh, ah, vh, 0.05_dp, rh); call residual(xd, ad, vd, 0.05_dp, rdv)
+        call same_real(error, xh, xd, "residual"); call same_values(error, rdv, rh, "residual r.v")
+        call twin_complex(na, ny, k, kh, kdv)
+        call precondition(kh, ksh, wa, wah, wb, 1.0e3_dp, ch); call precondition(kdv, ksd, wa, wad, wb, 1.0e3_dp, cdv)
+        call same_complex(error, kh, kdv, "precondition"); call same_values(error, cdv, ch, "precondition r.z")
+        call direction(xh, ah, vh, 0.4_dp); call direction(xd, ad, vd, 0.4_dp)
+        call same_real(error, xh, xd, "direction x"); call same_real(error, vh, vd, "direction v")
+        call energy(kh, ksh, wa, wah, wb, ch); call energy(kdv, ksd, wa, wad, wb, cdv)
+        call same_values(error, cdv, ch, "energy")
+        call step(xh, ah, ph, vh, 1.1_dp, 0.9_dp, rh, ncl(1), clip)
+        call step(xd, ad, pd, vd, 1.1_dp, 0.9_dp, rdv, ncl(2), clip)
+        call same_real(error, ph, pd, "step p"); call same_real(error, xh, xd, "step clipped")
+        call same_values(error, rdv, rh, "step sum p")
+        if (.not. allocated(error)) call check(error, ncl(1) == ncl(2) .and. ncl(1) > 0, "points clipped")
+        call clipped_points(xh, clip, 0, 8, pts_h, kh_); call clipped_points(xd, clip, 0, 8, pts_d, kd_)
+        if (.not. allocated(error)) call check(error, kh_ == kd_ .and. all(pts_h(:, 1:kh_) == pts_d(:, 1:kd_)), &
+                                               "clipped points")
+        call twin_complex(na, ny, pk, pkh, pkd); call twin_complex(na, ny, hk, hkh, hkd)
+        call update_transform(pkh, kh, 1.2_dp, 0.3_dp); call update_transform(pkd, kdv, 1.2_dp, 0.3_dp)
+        call same_complex(error, pkh, pkd, "update_transform")
+        call step_transform(pkh, kh, ksh, hkh, 1.2_dp, 0.3_dp, 0.8_dp)
+        call step_transform(pkd, kdv, ksd, hkd, 1.2_dp, 0.3_dp, 0.8_dp)
+        call same_complex(error, pkh, pkd, "step_transform p^"); call same_complex(error, kh, kdv, "step_transform gap")
+        call gap_multiply(kh, pkh, ksh, hkh, 0.6_dp); call gap_multiply(kdv, pkd, ksd, hkd, 0.6_dp)
+        call same_complex(error, kh, kdv, "gap_multiply")
+        ex = cmplx(0.3_dp, -0.2_dp, dp)*reshape([(real(i, dp), i=1, 3*na)], [na, 3])
+        ey = cmplx(-0.1_dp, 0.4_dp, dp)*reshape([(real(i, dp), i=1, 3*ny)], [ny, 3])
+        call add_points(pkh, ex, ey, grid); call add_points(pkd, ex, ey, grid)
+        call same_complex(error, pkh, pkd, "add_points")
+        call device_errors(error, "bccg passes")
+        call xd%destroy(); call pd%destroy(); call vd%destroy(); call ksd%destroy(); call wad%destroy()
+        call kdd%destroy(); call kdv%destroy(); call pkd%destroy(); call hkd%destroy(); call ad%destroy()
+        call ah%destroy()
+    end subroutine test_passes_bccg
+
+    subroutine test_passes_pdr(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: na = nx/2 + 1
+        real(dp), allocatable, target :: x(:, :), h(:, :), p(:, :), z(:, :), ks(:, :)
+        complex(dp), allocatable, target :: kd(:, :), k(:, :), hk(:, :), cm(:, :), pk(:, :)
+        type(rarray_t) :: xh, xd, hh, hd, ph, pd, zh, zd, ksh, ksd
+        type(carray_t) :: kdh, kdd, kh, kdv, hkh, hkd, cmh, cmd, pkh, pkd
+        real(dp) :: rh(ny), rdv(ny), r2h(2, ny), r2d(2, ny), gmin(2)
+        integer(i8) :: nc(2)
+        call twin_real(nx, ny, x, xh, xd); call twin_real(nx, ny, h, hh, hd)
+        call twin_real(nx, ny, p, ph, pd, lo=-0.3_dp, hi=1.0_dp); call twin_real(nx, ny, z, zh, zd)
+        call twin_real(na, ny, ks, ksh, ksd, lo=-0.1_dp, hi=2.0_dp)
+        call twin_complex(na, ny, kd, kdh, kdd)
+        kd = cmplx(abs(real(kd)) + 0.1_dp, aimag(kd), dp); call kdd%upload(kd)
+        call twin_complex(na, ny, k, kh, kdv); call twin_complex(na, ny, hk, hkh, hkd)
+        call twin_complex(na, ny, cm, cmh, cmd); call twin_complex(na, ny, pk, pkh, pkd)
+        call step_constant(cmh, kh, ksh, kdh, 0.9_dp, 0.4_dp, 37.0_dp)
+        call step_constant(cmd, kdv, ksd, kdd, 0.9_dp, 0.4_dp, 37.0_dp)
+        call same_complex(error, cmh, cmd, "step_constant")
+        call resolvent(kh, hkh, ksh, kdh, cmh, 0.4_dp, 37.0_dp); call resolvent(kdv, hkd, ksd, kdd, cmd, 0.4_dp, 37.0_dp)
+        call same_complex(error, kh, kdv, "resolvent x^"); call same_complex(error, hkh, hkd, "resolvent heights")
+        call scaled_product(kh, kdh, pkh, 0.3_dp); call scaled_product(kdv, kdd, pkd, 0.3_dp)
+        call same_complex(error, kh, kdv, "scaled_product")
+        call full_contact(kh, ksh, kdh, 5.0_dp); call full_contact(kdv, ksd, kdd, 5.0_dp)
+        call same_complex(error, kh, kdv, "full_contact")
+        call gap_to_z(kh, ksh, 0.9_dp, 37.0_dp); call gap_to_z(kdv, ksd, 0.9_dp, 37.0_dp)
+        call same_complex(error, kh, kdv, "gap_to_z")
+        call residual_sums(xh, hh, 0.1_dp, 2.0_dp, ph, rh, nc(1)); call residual_sums(xd, hd, 0.1_dp, 2.0_dp, pd, rdv, nc(2))
+        call same_values(error, rdv, rh, "residual_sums")
+        if (.not. allocated(error)) call check(error, nc(1) == nc(2), "contact count")
+        call residual_gap(xh, hh, 0.1_dp, 2.0_dp, 0.3_dp, ph, r2h, gmin(1))
+        call residual_gap(xd, hd, 0.1_dp, 2.0_dp, 0.3_dp, pd, r2d, gmin(2))
+        call same_values(error, reshape(r2d, [2*ny]), reshape(r2h, [2*ny]), "residual_gap")
+        if (.not. allocated(error)) call check(error, gmin(1) == gmin(2), "min g")
+        call relax(zh, ph, xh, 1.5_dp); call relax(zd, pd, xd, 1.5_dp); call same_real(error, zh, zd, "relax")
+        call sum_of(zh, ph, xh); call sum_of(zd, pd, xd); call same_real(error, zh, zd, "sum_of")
+        call one_plus(zh, xh); call one_plus(zd, xd); call same_real(error, zh, zd, "one_plus")
+        call difference_from(zh, ph); call difference_from(zd, pd); call same_real(error, zh, zd, "difference_from")
+        call device_errors(error, "pdr passes")
+        call xd%destroy(); call hd%destroy(); call pd%destroy(); call zd%destroy(); call ksd%destroy()
+        call kdd%destroy(); call kdv%destroy(); call hkd%destroy(); call cmd%destroy(); call pkd%destroy()
+    end subroutine test_passes_pdr
+
+    subroutine test_passes_dr(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: m = 3
+        real(dp), allocatable, target :: x(:, :), z(:, :), zp(:, :), fp(:, :), p(:, :), g(:, :)
+        type(rarray_t) :: xh, xd, zh, zd, zph, zpd, fph, fpd, ph, pd, gh, gd
+        type(sarray_t) :: dfh, dfd, gmh, gmd
+        real(dp) :: rows_h(1 + 2*m, ny), rows_d(1 + 2*m, ny), rp(2), rg(2), coef(m)
+        real(real32), allocatable :: hist(:, :)
+        integer :: mk
+        call twin_real(nx, ny, x, xh, xd); call twin_real(nx, ny, z, zh, zd)
+        call twin_real(nx, ny, zp, zph, zpd); call twin_real(nx, ny, fp, fph, fpd)
+        call twin_real(nx, ny, p, ph, pd); call twin_real(nx, ny, g, gh, gd)
+        call dfh%create(nx*ny, m, .false.); call gmh%create(nx*ny, m, .false.)
+        call dfd%create(nx*ny, m, .true.); call gmd%create(nx*ny, m, .true.)
+        allocate (hist(nx*ny, m)); call random_number(hist)
+        dfh%h = hist; gmh%h = hist
+        call upload_single(dfd, hist); call upload_single(gmd, hist)
+        do mk = 0, m
+            call dr_map(xh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, rows_h, rp(1), rg(1))
+            call dr_map(xd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, rows_d, rp(2), rg(2))
+            call same_values(error, reshape(rows_d(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), &
+                             reshape(rows_h(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), "dr map")
+            if (.not. allocated(error)) call check(error, rp(1) == rp(2) .and. rg(1) == rg(2), "dr map rp, rg")
+            call same_history(dfh, dfd, "dF"); call same_history(gmh, gmd, "G")
+        end do
+        coef = [0.3_dp, -0.2_dp, 0.1_dp]
+        call dr_update(xh, zh, gmh, zph, fph, coef, m); call dr_update(xd, zd, gmd, zpd, fpd, coef, m)
+        call same_real(error, zh, zd, "dr update z"); call same_real(error, fph, fpd, "dr update f")
+        call dr_rebalance(xh, zh, 3.0_dp); call dr_rebalance(xd, zd, 3.0_dp); call same_real(error, zh, zd, "rebalance")
+        call dr_project(ph, xh, zh, 2.0_dp); call dr_project(pd, xd, zd, 2.0_dp); call same_real(error, ph, pd, "project")
+        call dr_restore(xh, zh, zph, fph); call dr_restore(xd, zd, zpd, fpd); call same_real(error, xh, xd, "restore")
+        call dr_add_gap(zh, gh, 0.7_dp, 3.0_dp); call dr_add_gap(zd, gd, 0.7_dp, 3.0_dp)
+        call same_real(error, zh, zd, "add_gap")
+        call device_errors(error, "dr passes")
+        call xd%destroy(); call zd%destroy(); call zpd%destroy(); call fpd%destroy(); call pd%destroy(); call gd%destroy()
+        call dfd%destroy(); call gmd%destroy(); call dfh%destroy(); call gmh%destroy()
+    contains
+        subroutine upload_single(a, v)
+            use veslide_device, only: device_upload
+            type(sarray_t), intent(inout) :: a
+            real(real32), intent(in) :: v(:, :)
+            call device_upload(a%d, v, 4_i8*size(v))
+        end subroutine upload_single
+        subroutine same_history(ah, ad, what)
+            use veslide_device, only: device_download
+            type(sarray_t), intent(in) :: ah, ad
+            character(len=*), intent(in) :: what
+            real(real32) :: b(ad%n1, ad%n2)
+            if (allocated(error)) return
+            call device_download(b, ad%d, 4_i8*size(b))
+            call check(error, all(b == ah%h), "dr history "//what//" differs")
+        end subroutine same_history
+    end subroutine test_passes_dr
+
+    !> cuFFT (or the emulated device's FFTW 2-D) against veslide's FFTW blocks, both ways
+    subroutine test_transform(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: sizes(2, 3) = reshape([64, 64, 96, 40, 128, 1], [2, 3])
+        type(fft2d_t), target :: fft
+        type(transform_t) :: t
+        real(dp), allocatable :: x(:, :), xb(:, :)
+        complex(dp), allocatable :: k(:, :)
+        real(dp) :: d
+        integer :: c, n1, n2
+        do c = 1, size(sizes, 2)
+            n1 = sizes(1, c); n2 = sizes(2, c)
+            call fft%init(n1, n2, error, planner='estimate'); if (allocated(error)) return
+            call t%on_device(n1, n2, error); if (allocated(error)) return
+            allocate (x(n1, n2), xb(n1, n2), k(n1/2 + 1, n2))
+            call random_number(x)
+            fft%x = x; call fft%forward()
+            call t%x%upload(x); call t%forward(); call t%k%download(k)
+            d = maxval(abs(k - fft%k))/maxval(abs(fft%k))
+            call report("forward, relative", d)
+            call check(error, d <= 1.0e-14_dp, "forward transform differs from FFTW"); if (allocated(error)) return
+            call t%backward_unscaled(); call t%x%download(xb)
+            d = maxval(abs(xb/(n1*n2) - x))/maxval(abs(x))
+            call check(error, d <= 1.0e-14_dp, "backward(forward(x)) /= x"); if (allocated(error)) return
+            call device_errors(error, "transform"); if (allocated(error)) return
+            call t%destroy(); call fft%destroy()
+            deallocate (x, xb, k)
+        end do
+    end subroutine test_transform
+
+    subroutine test_dense_bccg(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: h(16, 16)
+        call paper_rough(16, h, error); if (allocated(error)) return
+        call new_elastic(m, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
+        call dense_compare(h, m, [0.0_dp, 0.0_dp], 5.0e4_dp, error, method='bccg', device='gpu')
+    end subroutine test_dense_bccg
+
+    subroutine test_dense_pdr(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: h(32, 32)
+        call paper_rough(32, h, error); if (allocated(error)) return
+        call paper_solid(100.0_dp, m, error); if (allocated(error)) return
+        call dense_compare(h, m, [peak_speed(100.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr', device='gpu')
+    end subroutine test_dense_pdr
+
+    subroutine test_dense_dr(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: h(16, 16)
+        call paper_rough(16, h, error); if (allocated(error)) return
+        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        call dense_compare(h, m, [peak_speed(11.0_dp, 2.0_dp), 0.0_dp], 5.0e4_dp, error, method='dr', device='gpu')
+    end subroutine test_dense_dr
+
+    !> A one-row profile (ny = 1: the device's 1-D transforms) against the CPU
+    subroutine test_profile(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(contact_state_t) :: sc, sg
+        real(dp) :: h(256, 1)
+        integer :: i
+        h(:, 1) = [(1.0e-5_dp*(cos(6.283185307179586_dp*i/256) + 0.3_dp*sin(6.283185307179586_dp*5*i/256)), i=1, 256)]
+        call solve_case(h, 0.01_dp, 0.01_dp/256, 3.0e4_dp, sc, error, device='cpu'); if (allocated(error)) return
+        call solve_case(h, 0.01_dp, 0.01_dp/256, 3.0e4_dp, sg, error, device='gpu'); if (allocated(error)) return
+        call check(error, sg%device == 'gpu', "not solved on the device"); if (allocated(error)) return
+        call check(error, maxval(abs(sg%p - sc%p)) <= 1.0e-10_dp*maxval(sc%p), "profile: device and CPU differ")
+    end subroutine test_profile
+
+    !> Every hard case at 32^2 (64^2 on a GPU) converges on the device, friction with its sign
+    subroutine test_hard(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        character(len=:), allocatable :: name
+        real(dp) :: fric
+        integer :: k, n, pairs
+        n = merge(32, 64, device_emulated())
+        pairs = 0
+        do k = 1, hard_case_count()
+            call hard_case(k, n, cfg, name, error); if (allocated(error)) return
+            cfg%solver%device = 'gpu'
+            call run_case(cfg, c, error)
+            if (allocated(error)) then
+                error%message = name//": "//error%message; return
+            end if
+            call check(error, c%state%device == 'gpu', name//": not on the device"); if (allocated(error)) return
+            call check(error, c%state%converged, name//": not converged"); if (allocated(error)) return
+            fric = -c%force_pa(1)/cfg%load%mean_pressure_pa
+            if (cfg%motion%speed_m_s == 0.0_dp) then
+                call check(error, fric == 0.0_dp, name//": friction at rest")
+            else
+                call check(error, fric > 0.0_dp, name//": friction must resist the motion")
+            end if
+            if (allocated(error)) return
+            pairs = pairs + c%state%operator_applications
+        end do
+        call report("FFT pairs over the hard cases", real(pairs, dp))
+    end subroutine test_hard
+
+    !> The same cases on the device and the CPU: pressure, area, friction and lateral force to
+    !> 1e-10 relative (tolerance 1e-12: both solutions within it of the exact one), FFT pairs
+    !> within 2 % (the iteration's path depends on round-off only near its decisions)
+    subroutine test_against_cpu(error)
+        type(error_t), allocatable, intent(out) :: error
+        ! at rest (bccg), near the loss peak (pdr and dr), ratio 1000 at speed, anisotropic at 45 deg
+        integer, parameter :: cases(5) = [1, 4, 4, 17, 27]
+        character(len=4), parameter :: methods(5) = [character(len=4) :: 'auto', 'pdr', 'dr', 'auto', 'pdr']
+        type(config_t) :: cfg
+        type(case_t) :: cc, cg
+        character(len=:), allocatable :: name
+        real(dp) :: dpres, df(2), da
+        integer :: i, n
+        n = merge(32, 128, device_emulated())
+        do i = 1, size(cases)
+            call hard_case(cases(i), n, cfg, name, error); if (allocated(error)) return
+            name = name//" ("//trim(methods(i))//")"
+            cfg%solver%tolerance = 1.0e-12_dp; cfg%solver%method = trim(methods(i))
+            cfg%solver%device = 'cpu'
+            call run_case(cfg, cc, error); if (allocated(error)) return
+            cfg%solver%device = 'gpu'
+            call run_case(cfg, cg, error); if (allocated(error)) return
+            dpres = maxval(abs(cg%state%p - cc%state%p))/maxval(cc%state%p)
+            da = abs(contact_area_fraction(cg%state%p) - contact_area_fraction(cc%state%p))
+            df = abs(cg%force_pa - cc%force_pa)/max(norm2(cc%force_pa), tiny(1.0_dp))
+            call report(name//": |dp|/max p", dpres)
+            call report(name//": FFT pairs, device - CPU", real(cg%state%operator_applications - &
+                                                               cc%state%operator_applications, dp))
+            call check(error, cg%state%device == 'gpu' .and. cc%state%device == 'cpu', name//": where solved")
+            if (allocated(error)) return
+            call check(error, dpres <= 1.0e-10_dp, name//": pressures differ by "//real_text(dpres))
+            if (allocated(error)) return
+            call check(error, da <= 1.0e-10_dp, name//": contact areas differ"); if (allocated(error)) return
+            call check(error, all(df <= 1.0e-10_dp), name//": forces differ by "//real_text(maxval(df)))
+            if (allocated(error)) return
+            call check(error, abs(cg%state%operator_applications - cc%state%operator_applications) <= &
+                       max(2, nint(0.02_dp*cc%state%operator_applications)), name//": FFT pairs differ")
+            if (allocated(error)) return
+        end do
+    end subroutine test_against_cpu
+
+    !> Two solves of the same case on the device give the same bits
+    subroutine test_repeat(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: a, b
+        character(len=:), allocatable :: name
+        integer :: k
+        do k = 4, 22, 18        ! ratio 11 near the loss peak; a contact of a fraction of a percent
+            call hard_case(k, merge(32, 128, device_emulated()), cfg, name, error); if (allocated(error)) return
+            cfg%solver%device = 'gpu'
+            call run_case(cfg, a, error); if (allocated(error)) return
+            call run_case(cfg, b, error); if (allocated(error)) return
+            call check(error, all(a%state%p == b%state%p) .and. all(a%state%g == b%state%g) .and. &
+                       a%state%operator_applications == b%state%operator_applications, name//": not bitwise repeatable")
+            if (allocated(error)) return
+        end do
+    end subroutine test_repeat
+
+    !> What the device does not run is refused by name with 'gpu', and solved on the CPU by 'auto'
+    subroutine test_refusals(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(contact_state_t) :: s
+        real(dp) :: h(16, 16)
+        character(len=:), allocatable :: msg
+        call paper_rough(16, h, error); if (allocated(error)) return
+        call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='pk', device='gpu')
+        call refusal(error, msg, "pk on the device"); if (allocated(error)) return
+        call check(error, index(msg, "'pk' does not run on the device") > 0, "message: "//msg)
+        if (allocated(error)) return
+        call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='pk', device='auto')
+        if (allocated(error)) return
+        call check(error, s%device == 'cpu', "'auto' with pk did not take the CPU")
+    end subroutine test_refusals
+
+    !> The device memory a solve holds is counted, and all of it is given back
+    subroutine test_memory(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        character(len=:), allocatable :: name
+        real(dp) :: before, cells
+        call hard_case(4, 64, cfg, name, error); if (allocated(error)) return
+        cfg%solver%device = 'gpu'; cfg%solver%method = 'pdr'
+        before = device_bytes_in_use()
+        call device_reset_peak()
+        call run_case(cfg, c, error); if (allocated(error)) return
+        cells = 64.0_dp**2
+        call report("device peak [bytes/cell]", (device_peak_bytes() - before)/cells)
+        call check(error, device_peak_bytes() - before > 60.0_dp*cells, "device memory not counted")
+        if (allocated(error)) return
+        call check(error, device_bytes_in_use() <= before + 1.0e6_dp, "device memory not given back")
+    end subroutine test_memory
+
+end module test_veslide_device
