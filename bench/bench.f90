@@ -3,6 +3,13 @@
 !>                                 FFTW r2c+c2r pair, for the default rough surface at N^2
 !>                                 (writes results/bench-solver-N.h5 for bench/tamaas_parity.py)
 !>   veslide-bench kernels          Westergaard errors of every kernel variant under refinement
+!>   veslide-bench gpu [N ...]      the paper scene (tolerance 1e-8) on the device at N^2 (default
+!>                                 1024^2 .. 32768^2, each grid the card holds): solve time, FFT
+!>                                 pairs, time per FFT pair spent against one cuFFT pair timed in
+!>                                 the same process, peak device memory per cell; then the CPU path
+!>                                 on all the machine's cores at VESLIDE_BENCH_CPU (default
+!>                                 "2048 4096"). Table on stdout, CSV into VESLIDE_BENCH_CSV
+!>                                 (default results/bench-gpu.csv)
 program veslide_bench
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit
     use veslide_kinds, only: dp, pi
@@ -23,6 +30,10 @@ program veslide_bench
     use veslide_surface, only: cosine_surface
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation
     use veslide_scenes, only: hard_case_count, hard_case
+    use veslide_device, only: device_enabled, device_count, device_info_t, device_info, device_memory, &
+                              device_peak_bytes, device_reset_peak, device_bytes_in_use, device_clock, device_check, &
+                              device_profile
+    use veslide_transform, only: transform_t
     implicit none
     character(len=64) :: arg
     integer :: k, n
@@ -72,6 +83,14 @@ program veslide_bench
             call get_command_argument(3, arg); read (arg, *) k
         end if
         call bench_iteration(n, k)
+    case ('gpu')
+        allocate (sizes(0))
+        do k = 2, command_argument_count()
+            call get_command_argument(k, arg); read (arg, *) n
+            sizes = [sizes, n]
+        end do
+        if (size(sizes) == 0) sizes = [1024, 2048, 4096, 8192, 16384, 32768]
+        call bench_gpu(sizes)
     case ('hard')
         n = 256
         if (command_argument_count() >= 2) then
@@ -107,7 +126,7 @@ program veslide_bench
     case default
         write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | accuracy [NMAX]", &
             "                     | hard [N [memory [balance_every [ratio [factor [method [first [last]]]]]]]]", &
-            "                     | scaling elastic|visco METHOD TOL N [N ...] | iteration [N [ROUNDS]]"
+            "                     | scaling elastic|visco METHOD TOL N [N ...] | iteration [N [ROUNDS]] | gpu [N ...]"
         error stop 1
     end select
 
@@ -185,6 +204,154 @@ contains
                 contact_area_fraction(c%state%p), mean_separation(c%state%g)/sqrt(sum(c%h**2)/size(c%h))
         end do
     end subroutine bench_solver
+
+    !> The paper scene on the device at each N^2 the card holds, and on the CPU beside it (see the
+    !> program's header). The cuFFT pair is timed with the device's default plans and with its
+    !> smallest work area; the solve uses the plans the environment chooses
+    !> (VESLIDE_CUFFT_WORKAREA). solve [s] is the wall time of the whole solve: the uploads, the
+    !> device's allocations and plans, the iteration and the download of p, u and g.
+    subroutine bench_gpu(sizes)
+        integer, intent(in) :: sizes(:)
+        type(device_info_t) :: info
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        character(len=256) :: csv_path, cpu_list
+        real(dp) :: free_b, total_b, need, tpair(2), work(2), peak, base, tcpu
+        integer :: k, u, l, st, ncpu
+        integer, allocatable :: cpu_sizes(:)
+        if (.not. device_enabled .or. device_count() == 0) then
+            write (stdout, '(a)') "veslide-bench gpu: no device (a GPU build, gpu/build.sh, on a machine with a GPU)"
+            error stop 1
+        end if
+        call device_info(info, error); call check(error)
+        write (stdout, '(a,f0.1,a,i0,a,i0,a,i0)') "device: "//info%name//", ", info%memory_bytes/1.0e9_dp, &
+            " GB, driver ", info%driver_version, ", runtime ", info%runtime_version, ", compute capability ", &
+            info%compute_capability
+        call get_environment_variable('VESLIDE_BENCH_CSV', csv_path, l, st)
+        if (st /= 0 .or. l == 0) csv_path = 'results/bench-gpu.csv'
+        open (newunit=u, file=trim(csv_path), status='replace', action='write')
+        write (u, '(a)') 'backend,n,solve_s,fft_pairs,iterations,pair_ms,pair_min_work_ms,pairs_per_pair,'// &
+            'peak_bytes_per_cell,work_bytes_per_cell,work_min_bytes_per_cell,area,friction,converged'
+        write (stdout, '(a)') "paper scene, tolerance 1e-8, method auto (pdr)"
+        write (stdout, '(a)') "| N | solve [s] | FFT pairs | iterations | cuFFT pair [ms] | per FFT pair spent"// &
+            " [cuFFT pairs] | peak device [B/cell] | cuFFT work [B/cell] (min policy) | pair, min work [ms] |"// &
+            " area | friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|"
+        do k = 1, size(sizes)
+            call device_memory(free_b, total_b, error); call check(error)
+            need = 110.0_dp*real(sizes(k), dp)**2
+            if (free_b >= 0.0_dp .and. need > free_b) then
+                write (stdout, '("| ",i0," | skipped: needs about ",f0.1," GB of the ",f0.1," GB free |")') sizes(k), &
+                    need/1.0e9_dp, free_b/1.0e9_dp
+                cycle
+            end if
+            call cufft_pair(sizes(k), .false., tpair(1), work(1))
+            call cufft_pair(sizes(k), .true., tpair(2), work(2))
+            call scene(sizes(k), 'visco', 'auto', 1.0e-8_dp, cfg)
+            cfg%solver%device = 'gpu'; cfg%solver%threads = 0; cfg%solver%fft_planner = 'estimate'
+            base = device_bytes_in_use()
+            call device_reset_peak()
+            call device_profile()                  ! (VESLIDE_DEVICE_PROFILE=1: the pair timings' table)
+            call run_case(cfg, c, error)
+            if (allocated(error)) then
+                write (stdout, '("| ",i0," | ",a," |")') sizes(k), error%message
+                deallocate (error); cycle
+            end if
+            peak = (device_peak_bytes() - base)/real(sizes(k), dp)**2
+            write (stdout, '("| ",i0," | ",f9.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f6.1," | ",f5.1," (",f5.1, &
+                &") | ",f8.3," | ",f9.6," | ",es11.4," |")') sizes(k), c%solve_seconds, c%state%operator_applications, &
+                c%state%iterations, 1e3*tpair(1), c%solve_seconds/c%state%operator_applications/tpair(1), peak, &
+                work(1)/real(sizes(k), dp)**2, work(2)/real(sizes(k), dp)**2, 1e3*tpair(2), &
+                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa
+            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1)') 'gpu', sizes(k), &
+                c%solve_seconds, c%state%operator_applications, c%state%iterations, 1e3*tpair(1), 1e3*tpair(2), &
+                c%solve_seconds/c%state%operator_applications/tpair(1), peak, work(1)/real(sizes(k), dp)**2, &
+                work(2)/real(sizes(k), dp)**2, contact_area_fraction(c%state%p), &
+                -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged
+            flush (stdout); flush (u)
+            call device_profile()                  ! (VESLIDE_DEVICE_PROFILE=1: where the solve's time went)
+        end do
+        call get_environment_variable('VESLIDE_BENCH_CPU', cpu_list, l, st)
+        if (st /= 0 .or. l == 0) cpu_list = '2048 4096'
+        if (trim(cpu_list) == 'none') cpu_list = ''
+        allocate (cpu_sizes(0))
+        block
+            integer :: ios, v, pos
+            character(len=256) :: rest
+            rest = cpu_list
+            do
+                rest = adjustl(rest)
+                if (len_trim(rest) == 0) exit
+                pos = index(rest, ' ')
+                read (rest(1:pos - 1), *, iostat=ios) v
+                if (ios == 0) cpu_sizes = [cpu_sizes, v]
+                rest = rest(pos:)
+            end do
+        end block
+        write (stdout, '(a)') "the CPU path on the same machine (all its cores; FFTW measured plans)"
+        write (stdout, '(a)') "| N | threads | solve [s] | FFT pairs | FFTW pair [ms] | per FFT pair spent [FFTW pairs] |"// &
+            " area | friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|"
+        do k = 1, size(cpu_sizes)
+            call scene(cpu_sizes(k), 'visco', 'auto', 1.0e-8_dp, cfg)
+            cfg%solver%device = 'cpu'; cfg%solver%threads = 0
+            call run_case(cfg, c, error)
+            if (allocated(error)) then
+                write (stdout, '("| ",i0," | ",a," |")') cpu_sizes(k), error%message
+                deallocate (error); cycle
+            end if
+            tcpu = fft_pair_seconds(cpu_sizes(k))
+            ncpu = omp_threads()
+            write (stdout, '("| ",i0," | ",i0," | ",f9.3," | ",i0," | ",f8.3," | ",f6.2," | ",f9.6," | ",es11.4," |")') &
+                cpu_sizes(k), ncpu, c%solve_seconds, c%state%operator_applications, 1e3*tcpu, &
+                c%solve_seconds/c%state%operator_applications/tcpu, contact_area_fraction(c%state%p), &
+                -c%force_pa(1)/cfg%load%mean_pressure_pa
+            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1)') 'cpu', cpu_sizes(k), &
+                c%solve_seconds, c%state%operator_applications, c%state%iterations, 1e3*tcpu, 0.0_dp, &
+                c%solve_seconds/c%state%operator_applications/tcpu, 0.0_dp, 0.0_dp, 0.0_dp, &
+                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged
+            flush (stdout); flush (u)
+        end do
+        close (u)
+    end subroutine bench_gpu
+
+    !> Median time of one cuFFT D2Z + Z2D pair at n^2 (after a warm-up), and the work area it holds
+    subroutine cufft_pair(n, minimal, seconds, work_bytes)
+        integer, intent(in) :: n
+        logical, intent(in) :: minimal
+        real(dp), intent(out) :: seconds, work_bytes
+        type(transform_t) :: t
+        type(error_t), allocatable :: error
+        real(dp), allocatable :: x(:, :)
+        real(dp) :: ts(7), t0
+        integer :: r, i, reps
+        call t%on_device(n, n, error, minimal_work=minimal); call check(error)
+        allocate (x(n, n))
+        call random_number(x(:, 1:min(n, 64)))
+        x(:, min(n, 64) + 1:) = 0.5_dp
+        call t%x%upload(x)
+        deallocate (x)
+        call t%forward(); call t%backward_unscaled()
+        reps = max(3, min(50, int(2.0e9_dp/real(n, dp)**2)))
+        do r = 1, size(ts)
+            t0 = device_clock()
+            do i = 1, reps
+                call t%forward(); call t%backward_unscaled()
+            end do
+            ts(r) = (device_clock() - t0)/reps
+        end do
+        call device_check(error, "cuFFT pair"); call check(error)
+        seconds = median(ts)
+        work_bytes = t%work_bytes
+        call t%destroy()
+    end subroutine cufft_pair
+
+    integer function omp_threads()
+        !$ use omp_lib, only: omp_get_max_threads
+        omp_threads = 1
+        !$ omp_threads = omp_get_max_threads()
+    end function omp_threads
 
     !> Westergaard (h0 cos 2 pi x/l, plane strain, p/p* = 0.3) under refinement, per variant
     subroutine bench_kernels()

@@ -92,10 +92,14 @@ paths() {
 }
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-fpm build "${flags[@]}" --tests >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
-# fpm 0.12 relinks the programs when the library changes, but not always the test program
-tests_exe=$(fpm test "${flags[@]}" --runner echo 2>/dev/null | tail -1)
-rm -f "$tests_exe"
+# fpm 0.12 keeps objects per compiler flags but the library archive per all flags, and does not
+# re-archive when the objects were compiled by another build with other link flags (the CPU, GPU
+# and emulated builds here): the archives and the programs are made anew every time (seconds)
+# (nor does it recompile the test and program sources when a library module they use changed:
+# their objects are made anew too)
+rm -f build/gfortran_*/veslide/libveslide.a build/gfortran_*/veslide/test_*.o build/gfortran_*/veslide/app_*.o \
+      build/gfortran_*/veslide/bench_*.o
+for p in $(paths 2>/dev/null); do rm -f "$p"; done
 fpm build "${flags[@]}" --tests >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
 
 case "${1:-veslide}" in

@@ -127,7 +127,7 @@ struct step_f {
     }
 };
 
-struct spectral_f {
+struct bccg_spectral_f {
     double2 *pk, *k;
     const double *ks;
     const double2 *hk;
@@ -195,7 +195,7 @@ void veslide_bccg_step(int nx, int ny, double *x, int8_t *act, double *p, double
 
 void veslide_bccg_spectral(long n, double2 *pk, double2 *k, const double *ks, const double2 *hk, double a,
                            double alpha, double b, int mode) {
-    vs::for_each(spectral_f{pk, k, ks, hk, a, alpha, b, mode}, n);
+    vs::for_each(bccg_spectral_f{pk, k, ks, hk, a, alpha, b, mode}, n);
 }
 
 void veslide_bccg_add_points(int na, int nb, int m, double2 *pk, const double2 *ex, const double2 *ey) {

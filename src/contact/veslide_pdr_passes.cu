@@ -6,7 +6,7 @@ namespace {
 
 // the spectral passes, one kernel: mode 0 step_constant, 1 resolvent, 2 scaled_product,
 // 3 full_contact, 4 gap_to_z
-struct spectral_f {
+struct pdr_spectral_f {
     double2 *k, *hk, *cm;
     const double *ks;
     const double2 *kd, *pk;
@@ -102,7 +102,7 @@ extern "C" {
 
 void veslide_pdr_spectral(long n, int mode, double2 *k, double2 *hk, double2 *cm, const double *ks,
                           const double2 *kd, const double2 *pk, double gamma, double gs, double c) {
-    vs::for_each(spectral_f{k, hk, cm, ks, kd, pk, gamma, gs, c, mode}, n);
+    vs::for_each(pdr_spectral_f{k, hk, cm, ks, kd, pk, gamma, gs, c, mode}, n);
 }
 
 void veslide_pdr_residual_sums(int nx, int ny, const double *x, const double *h, double h_mean, double hs,

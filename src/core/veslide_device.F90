@@ -18,7 +18,7 @@ module veslide_device
     public :: device_enabled, device_emulated, device_count, device_select, device_info_t, device_info, &
               device_alloc, device_free, device_upload, device_download, device_copy, device_zero, &
               device_sync, device_check, device_failed, device_bytes_in_use, device_peak_bytes, &
-              device_reset_peak, device_clock, device_memory
+              device_reset_peak, device_clock, device_memory, device_profile
 
     !> Was the library built with a device (-DVESLIDE_CUDA)?
 #ifdef VESLIDE_CUDA
@@ -115,6 +115,8 @@ module veslide_device
         real(c_double) function c_clock() bind(c, name='veslide_device_clock')
             import :: c_double
         end function c_clock
+        subroutine c_profile() bind(c, name='veslide_device_profile')
+        end subroutine c_profile
     end interface
 #endif
 
@@ -322,6 +324,15 @@ contains
         t = 0.0_dp
 #endif
     end function device_clock
+
+    !> With VESLIDE_DEVICE_PROFILE=1: the time of every pass since the last call, as a table on
+    !> standard output (a benchmark's; the library itself prints nothing otherwise)
+    subroutine device_profile()
+#ifdef VESLIDE_CUDA
+        flush (6)
+        call c_profile()
+#endif
+    end subroutine device_profile
 
 #ifdef VESLIDE_CUDA
     !> A NUL-terminated C string as Fortran text

@@ -8,6 +8,11 @@
 #include <string.h>
 #include <time.h>
 #include <unordered_map>
+#include <map>
+#include <string>
+#include <vector>
+#include <algorithm>
+#include <cxxabi.h>
 
 namespace vs {
 
@@ -41,6 +46,44 @@ int grid_size(long n) {
     return (int)(b < cap ? b : cap);
 }
 #endif
+
+// ---- profiling ----------------------------------------------------------------------------
+bool profiling() {
+    static int on = -1;
+    if (on < 0) {
+        const char *e = getenv("VESLIDE_DEVICE_PROFILE");
+        on = (e && e[0] == '1') ? 1 : 0;
+    }
+    return on == 1;
+}
+
+double now() {
+#ifndef VESLIDE_EMULATE
+    cudaDeviceSynchronize();
+#endif
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+struct profile_entry {
+    long calls = 0;
+    double seconds = 0.0;
+};
+static std::map<std::string, profile_entry> profile_table;
+
+void profile_add(const char *name, double seconds) {
+    int status = 0;
+    char *plain = abi::__cxa_demangle(name, NULL, NULL, &status);
+    std::string key = (status == 0 && plain) ? plain : name;
+    free(plain);
+    // "(anonymous namespace)::resolvent_f" -> "resolvent_f"
+    size_t c = key.rfind("::");
+    if (c != std::string::npos && key.find('<') == std::string::npos) key = key.substr(c + 2);
+    profile_entry &e = profile_table[key];
+    e.calls += 1;
+    e.seconds += seconds;
+}
 
 // ---- memory accounting: everything veslide allocates on the device, cuFFT's work area too ----
 static size_t bytes_now = 0, bytes_peak = 0;
@@ -276,13 +319,24 @@ double veslide_device_peak_bytes(void) { return (double)vs::bytes_peak; }
 void veslide_device_reset_peak(void) { vs::bytes_peak = vs::bytes_now; }
 
 // seconds since an arbitrary origin, after the device has finished its work
-double veslide_device_clock(void) {
-#ifndef VESLIDE_EMULATE
-    cudaDeviceSynchronize();
-#endif
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
+double veslide_device_clock(void) { return vs::now(); }
+
+// the profile (VESLIDE_DEVICE_PROFILE=1) printed on stdout, largest first, and cleared
+void veslide_device_profile(void) {
+    if (!vs::profiling()) return;
+    std::vector<std::pair<std::string, vs::profile_entry>> rows(vs::profile_table.begin(), vs::profile_table.end());
+    std::sort(rows.begin(), rows.end(),
+              [](const std::pair<std::string, vs::profile_entry> &a, const std::pair<std::string, vs::profile_entry> &b) {
+                  return a.second.seconds > b.second.seconds;
+              });
+    double total = 0;
+    for (auto &r : rows) total += r.second.seconds;
+    printf("| pass | calls | total [ms] | per call [ms] | share |\n|---|---|---|---|---|\n");
+    for (auto &r : rows)
+        printf("| %s | %ld | %.2f | %.4f | %.1f %% |\n", r.first.c_str(), r.second.calls, 1e3 * r.second.seconds,
+               1e3 * r.second.seconds / r.second.calls, 100.0 * r.second.seconds / (total > 0 ? total : 1));
+    fflush(stdout);
+    vs::profile_table.clear();
 }
 
 }  // extern "C"

@@ -19,6 +19,7 @@
 #pragma once
 #include <stddef.h>
 #include <math.h>
+#include <typeinfo>
 
 #ifdef VESLIDE_EMULATE
 #define VS_HD
@@ -51,6 +52,16 @@ double *row_buffer(size_t n);           // device, at least n doubles (kept, gro
 double *host_buffer(size_t n);          // host staging (pinned on a GPU), at least n doubles
 int copy_rows(double *rows_h, const double *rows_d, size_t n);   // device -> caller's array
 
+// ---- profiling: with VESLIDE_DEVICE_PROFILE=1 every launch is timed (the device synchronised
+// around it) and its time added under the pass's name; veslide_device_profile prints the table
+bool profiling();
+double now();                                   // seconds, after the device has finished
+void profile_add(const char *name, double seconds);
+template <class F>
+const char *pass_name() {
+    return typeid(F).name();
+}
+
 // ---- complex arithmetic (double2 = Fortran's complex(dp), (re, im)) -------------------------
 VS_HD inline double2 cx(double re, double im) {
     double2 z;
@@ -78,8 +89,10 @@ VS_HD inline double2 cdiv(double2 a, double2 b) {
 #ifdef VESLIDE_EMULATE
 template <class F>
 int for_each(const F &f, long n) {
+    double t0 = profiling() ? now() : 0.0;
 #pragma omp parallel for schedule(static)
     for (long idx = 0; idx < n; ++idx) f(idx);
+    if (profiling()) profile_add(pass_name<F>(), now() - t0);
     return 0;
 }
 #else
@@ -92,8 +105,11 @@ int grid_size(long n);   // blocks of a grid-stride launch over n elements
 template <class F>
 int for_each(const F &f, long n) {
     if (n <= 0 || failed()) return failed();
+    double t0 = profiling() ? now() : 0.0;
     each_kernel<<<grid_size(n), block>>>(f, n);
-    return check(cudaGetLastError(), "for_each launch") ? 0 : 1;
+    bool good = check(cudaGetLastError(), "for_each launch");
+    if (profiling()) profile_add(pass_name<F>(), now() - t0);
+    return good ? 0 : 1;
 }
 #endif
 
@@ -124,6 +140,7 @@ void tree(acc_t<NS, NM> *v, int n) {
 template <int NS, int NM, class F>
 int reduce_rows(const F &f, int nx, int ny, double *rows_h) {
     constexpr int K = NS + NM;
+    double t0 = profiling() ? now() : 0.0;
 #pragma omp parallel for schedule(static)
     for (int j = 0; j < ny; ++j) {
         acc_t<NS, NM> t[block], w[warps];
@@ -139,6 +156,7 @@ int reduce_rows(const F &f, int nx, int ny, double *rows_h) {
         for (int k = 0; k < NS; ++k) rows_h[(size_t)j * K + k] = w[0].s[k];
         for (int k = 0; k < NM; ++k) rows_h[(size_t)j * K + NS + k] = w[0].m[k];
     }
+    if (profiling()) profile_add(pass_name<F>(), now() - t0);
     return 0;
 }
 #else
@@ -183,9 +201,12 @@ int reduce_rows(const F &f, int nx, int ny, double *rows_h) {
     if (failed()) return 1;
     double *rows_d = row_buffer((size_t)K * ny);
     if (!rows_d) return 1;
+    double t0 = profiling() ? now() : 0.0;
     rows_kernel<NS, NM><<<ny, block>>>(f, nx, rows_d);
     if (!check(cudaGetLastError(), "reduce_rows launch")) return 1;
-    return copy_rows(rows_h, rows_d, (size_t)K * ny);
+    int r = copy_rows(rows_h, rows_d, (size_t)K * ny);
+    if (profiling()) profile_add(pass_name<F>(), now() - t0);
+    return r;
 }
 #endif
 

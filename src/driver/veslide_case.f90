@@ -25,7 +25,9 @@ module veslide_case
     use veslide_patches, only: patch_stats_t, contact_patches, percolates
     use veslide_quantities, only: results_t, add_force_quantities, add_solver_quantities
     use veslide_topography, only: read_topography, topography_shape
-    use veslide_memory, only: memory_estimate_bytes, format_gib
+    use veslide_memory, only: memory_estimate_bytes, device_estimate_bytes, format_gib
+    use veslide_device, only: device_info_t, device_info, device_memory
+    use veslide_solver, only: gpu_visible
     use veslide_system, only: available_memory_bytes, peak_memory_bytes, use_threads
     use veslide_hdf5, only: h5file_t
     use veslide_hdf5_parallel, only: create_collective, write_rows
@@ -34,7 +36,7 @@ module veslide_case
     private
     public :: case_t, build_surface, build_material, build_kernel, case_grid, run_case, solve_prepared, &
               case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines, &
-              case_memory
+              case_memory, case_on_device
 
     !> Everything one solve produced
     type :: case_t
@@ -48,6 +50,7 @@ module veslide_case
         real(dp) :: slope_force_pa(2) = 0.0_dp    !! <p grad h> [Pa] (check)
         real(dp) :: kernel_seconds = 0.0_dp, solve_seconds = 0.0_dp, surface_seconds = 0.0_dp
         integer(i8) :: memory_estimate_bytes = 0    !! estimated peak of the run, before allocating [bytes]
+        integer(i8) :: device_estimate_bytes = 0    !! estimated peak on the device (0: solved on the CPU) [bytes]
         ! &analysis anisotropy
         logical :: have_anisotropy = .false.
         real(dp) :: band_q(2) = 0.0_dp                    !! [zeta1, zeta2] q0 [1/m]
@@ -174,19 +177,27 @@ contains
     !> refused in one line naming &grid nx, ny (or the file) when it does not fit. Returns the
     !> estimate. On a grid shared by `ranks` processes, `node_ranks` of them on this machine, the
     !> estimate is one process's share and the memory free on the machine is shared among those.
-    subroutine size_and_check_memory(cfg, estimate, error, ranks, node_ranks)
+    !> A case solved on the device is refused, in the same way, when the device's estimate
+    !> (`device_estimate`, 0 for a case on the CPU) exceeds the device's free memory.
+    subroutine size_and_check_memory(cfg, estimate, error, ranks, node_ranks, device_estimate)
         type(config_t), intent(inout) :: cfg
         integer(i8), intent(out) :: estimate
         type(error_t), allocatable, intent(out) :: error
         integer, intent(in), optional :: ranks, node_ranks
-        integer(i8) :: available
+        integer(i8), intent(out), optional :: device_estimate
+        integer(i8) :: available, dev
         integer :: ranks_, node_ranks_
         character(len=:), allocatable :: what, who
         ranks_ = 1; if (present(ranks)) ranks_ = max(1, ranks)
         node_ranks_ = 1; if (present(node_ranks)) node_ranks_ = max(1, node_ranks)
+        if (present(device_estimate)) device_estimate = 0
         what = "&grid nx, ny = "
         if (cfg%surface%kind == 'file') what = "&surface file '"//cfg%surface%file//"' of "
-        call case_memory(cfg, estimate, error, ranks_); if (allocated(error)) return
+        call case_memory(cfg, estimate, error, ranks_, dev); if (allocated(error)) return
+        if (present(device_estimate)) device_estimate = dev
+        if (dev > 0) then
+            call check_device_memory(cfg, dev, error); if (allocated(error)) return
+        end if
         available = available_memory_bytes()
         if (available >= 0) available = available/node_ranks_
         if (available >= 0 .and. estimate > available) then
@@ -203,22 +214,60 @@ contains
         end if
     end subroutine size_and_check_memory
 
+    !> The device estimate `dev` against the device's free memory (refused in one line naming both)
+    subroutine check_device_memory(cfg, dev, error)
+        type(config_t), intent(in) :: cfg
+        integer(i8), intent(in) :: dev
+        type(error_t), allocatable, intent(out) :: error
+        type(device_info_t) :: info
+        real(dp) :: free_b, total_b
+        call device_memory(free_b, total_b, error); if (allocated(error)) return
+        if (free_b < 0.0_dp .or. real(dev, dp) <= free_b) return
+        call device_info(info, error); if (allocated(error)) return
+        call fatal_error(error, "veslide: "//cfg%path//": &grid nx, ny = "//str(cfg%grid%nx)//" x "// &
+            str(cfg%grid%ny)//" needs about "//format_gib(dev)//" of device memory, and "// &
+            format_gib(int(free_b, i8))//" is free on the "//info%name//" (of "//format_gib(int(total_b, i8))// &
+            "): choose a smaller &grid nx, ny, a device with more memory, or &solver device = 'cpu'")
+    end subroutine check_device_memory
+
+    !> Will the case of `cfg` be solved on the device (on `ranks` processes: never shared)?
+    logical function case_on_device(cfg, ranks) result(yes)
+        type(config_t), intent(in) :: cfg
+        integer, intent(in), optional :: ranks
+        yes = .false.
+        if (present(ranks)) then
+            if (ranks > 1) return
+        end if
+        select case (cfg%solver%device)
+        case ('gpu')
+            yes = cfg%solver%method /= 'pk'
+        case ('auto')
+            yes = cfg%solver%method /= 'pk' .and. gpu_visible()
+        end select
+    end function case_on_device
+
     !> The memory the case or study of `cfg` will need, per process when `ranks` processes share its
-    !> grid [bytes], before anything is allocated (a measured topography's grid from its file)
-    subroutine case_memory(cfg, estimate, error, ranks)
+    !> grid [bytes], before anything is allocated (a measured topography's grid from its file); with
+    !> `device_estimate`, what a solve on the device holds there (0: the case is solved on the CPU)
+    subroutine case_memory(cfg, estimate, error, ranks, device_estimate)
         type(config_t), intent(inout) :: cfg
         integer(i8), intent(out) :: estimate
         type(error_t), allocatable, intent(out) :: error
         integer, intent(in), optional :: ranks
+        integer(i8), intent(out), optional :: device_estimate
         integer :: n
+        logical :: device
         estimate = 0
+        if (present(device_estimate)) device_estimate = 0
         if (cfg%surface%kind == 'file') then
             call topography_shape(cfg%surface%file, cfg%surface%dataset, n, error, cfg%grid%lx_m)
             call add_context(error, "veslide: "//cfg%path//": &surface ")
             if (allocated(error)) return
             cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%ly_m = cfg%grid%lx_m
         end if
-        estimate = memory_estimate_bytes(cfg, ranks)
+        device = case_on_device(cfg, ranks)
+        estimate = memory_estimate_bytes(cfg, ranks, device)
+        if (device .and. present(device_estimate)) device_estimate = device_estimate_bytes(cfg)
     end subroutine case_memory
 
     !> Build and solve one case; with `comm` (an MPI communicator, the MPI build) on a grid shared
@@ -240,7 +289,7 @@ contains
             if (allocated(error)) return
             ranks = c%grid%ranks
         end if
-        call size_and_check_memory(cfg, c%memory_estimate_bytes, error, ranks, node_ranks)
+        call size_and_check_memory(cfg, c%memory_estimate_bytes, error, ranks, node_ranks, c%device_estimate_bytes)
         call share_error(c%grid, error); if (allocated(error)) return
         call case_grid(cfg, c%grid, error); if (allocated(error)) return
         if (present(comm)) then

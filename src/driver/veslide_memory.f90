@@ -18,6 +18,14 @@
 !> kernels hold 32 while they are summed. Analyses after the solve:
 !> slope force 8, patches 32, Persson 24. A study adds one kernel per speed (8 each), the previous
 !> speed's p and g (16) and the case's copies of heights and kernel (16).
+!>
+!> A solve on the device (veslide_device) holds its solver's arrays there, not on the host: the
+!> host keeps the case (heights, kernel, FFT buffers for the analyses, p, u, g) and the device
+!> holds, per cell, the heights (8), the kernel's multiplier (8), the transform's buffers (16), p,
+!> u, g (24), and per solver: bccg 29 (M 4, the transforms of the heights and of the pressure 16,
+!> the direction 8, the contact set 1), pdr bccg's and the resolvent's constant part (37), dr
+!> 40 + 8 m (z, the previous z and f, the transform of h, the resolvent's multiplier, the history
+!> in single precision); plus cuFFT's work area (at most 8, one for both plans, `cufft_work`).
 module veslide_memory
     use veslide_kinds, only: dp, i8
     use veslide_config, only: config_t
@@ -25,19 +33,25 @@ module veslide_memory
     use veslide_solver_options, only: SOLVER_DR, SOLVER_PDR
     implicit none
     private
-    public :: memory_estimate_bytes, format_gib
+    public :: memory_estimate_bytes, device_estimate_bytes, format_gib
 
     !> Libraries, FFTW plans, HDF5 buffers and the program itself [bytes]
     integer(i8), parameter :: fixed_bytes = 16_i8*1024*1024
+    !> On the device: the runtime's own and the row partials [bytes]
+    integer(i8), parameter :: device_fixed_bytes = 64_i8*1024*1024
+    !> cuFFT's work area of a D2Z and a Z2D plan sharing it, at most [bytes per cell]
+    real(dp), parameter :: cufft_work = 8.0_dp
 
 contains
 
     !> Peak memory of the case or study of `cfg` on its grid [bytes]; with `ranks`, of one of that
     !> many processes sharing the grid (its rows, plus FFTW's MPI transposes: one more complex
     !> half-spectrum of its share, 8 bytes per cell)
-    pure integer(i8) function memory_estimate_bytes(cfg, ranks) result(bytes)
+    !> With `device`, a case solved on the device: the host's share (its solver's arrays are there)
+    pure integer(i8) function memory_estimate_bytes(cfg, ranks, device) result(bytes)
         type(config_t), intent(in) :: cfg
         integer, intent(in), optional :: ranks
+        logical, intent(in), optional :: device
         real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
         logical :: symmetric
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
@@ -62,6 +76,9 @@ contains
                 solver = dr_bytes()
             end if
         end select
+        if (present(device)) then
+            if (device) solver = 0
+        end if
         analysis = 8
         if (cfg%analysis%patches) analysis = analysis + 32
         if (cfg%analysis%persson) analysis = analysis + 24
@@ -92,6 +109,39 @@ contains
         end function pdr_bytes
 
     end function memory_estimate_bytes
+
+    !> Device memory a solve of the case of `cfg` holds at its peak [bytes] (veslide_device: what
+    !> the heading lists), the method 'auto' takes as veslide_solver does
+    pure integer(i8) function device_estimate_bytes(cfg) result(bytes)
+        type(config_t), intent(in) :: cfg
+        real(dp) :: n, per_cell, solver
+        logical :: symmetric
+        n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
+        symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
+                                                          size(cfg%sweep%speeds) == 0)
+        select case (cfg%solver%method)
+        case ('bccg', 'pk')
+            solver = 29
+        case ('dr')
+            solver = dr_device()
+        case ('pdr')
+            solver = 37
+        case default
+            if (symmetric) then
+                solver = 29
+            else if (n >= real(pdr_min_cells, dp)) then
+                solver = 37
+            else
+                solver = dr_device()
+            end if
+        end select
+        per_cell = 8 + 8 + 16 + 24 + solver + cufft_work
+        bytes = device_fixed_bytes + int(per_cell*n, i8)
+    contains
+        pure real(dp) function dr_device()
+            dr_device = 40 + 8*default_anderson_memory(SOLVER_DR, cfg%solver%anderson_memory)
+        end function dr_device
+    end function device_estimate_bytes
 
     !> "12.34 GiB"
     pure function format_gib(bytes) result(s)

@@ -32,10 +32,11 @@ module veslide_transform
 
 #ifdef VESLIDE_CUDA
     interface
-        integer(c_int) function c_create(handle, nx, ny, x, k, work_bytes) bind(c, name='veslide_transform_create')
+        integer(c_int) function c_create(handle, nx, ny, x, k, policy, work_bytes) &
+            bind(c, name='veslide_transform_create')
             import :: c_ptr, c_int, c_double
             type(c_ptr), intent(out) :: handle
-            integer(c_int), value :: nx, ny
+            integer(c_int), value :: nx, ny, policy
             type(c_ptr), value :: x, k
             real(c_double), intent(out) :: work_bytes
         end function c_create
@@ -68,13 +69,18 @@ contains
         call self%k%view(fft%k)
     end subroutine transform_on_host
 
-    !> Transforms of nx x ny on the device (buffers and cuFFT plans allocated there)
-    subroutine transform_on_device(self, nx, ny, error)
+    !> Transforms of nx x ny on the device (buffers and cuFFT plans allocated there).
+    !> `minimal_work`: cuFFT's smallest work area (true), its fastest plans (false); absent: as
+    !> the environment's VESLIDE_CUFFT_WORKAREA says ('minimal' or 'performance', the default)
+    subroutine transform_on_device(self, nx, ny, error, minimal_work)
         class(transform_t), intent(inout) :: self
         integer, intent(in) :: nx, ny
         type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: minimal_work
 #ifdef VESLIDE_CUDA
-        integer(c_int) :: stat
+        integer(c_int) :: stat, policy
+        policy = -1
+        if (present(minimal_work)) policy = merge(1, 0, minimal_work)
         call self%destroy()
         if (nx < 2) then
             call fatal_error(error, "veslide:transform:on_device: the device's transforms need nx >= 2"); return
@@ -84,7 +90,7 @@ contains
         call self%x%create(nx, ny, .true.)
         call self%k%create(nx/2 + 1, ny, .true.)
         call device_check(error, "veslide:transform:on_device"); if (allocated(error)) return
-        stat = c_create(self%plan, int(nx, c_int), int(ny, c_int), self%x%d, self%k%d, self%work_bytes)
+        stat = c_create(self%plan, int(nx, c_int), int(ny, c_int), self%x%d, self%k%d, policy, self%work_bytes)
         call device_check(error, "veslide:transform:on_device")
 #else
         call fatal_error(error, "veslide:transform:on_device: this build has no device support (gpu/build.sh)")

@@ -11,6 +11,8 @@
 #include <fftw3.h>
 #else
 #include <cufft.h>
+#include <cufftXt.h>
+#include <string.h>
 #endif
 
 namespace {
@@ -55,8 +57,10 @@ bool ok(cufftResult r, const char *what) {
 extern "C" {
 
 // A transform of nx x ny on the device buffers x (nx ny doubles) and k ((nx/2+1) ny complex);
-// *work_bytes: the work area it holds
-int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, double *work_bytes) {
+// *work_bytes: the work area it holds. policy: 1 cuFFT's smallest work area
+// (CUFFT_WORKAREA_MINIMAL), 0 its default (the fastest plans), -1 as the environment's
+// VESLIDE_CUFFT_WORKAREA says ('minimal' or 'performance'; unset: the default)
+int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, int policy, double *work_bytes) {
     *handle = NULL;
     *work_bytes = 0;
     if (vs::failed()) return 1;
@@ -67,6 +71,7 @@ int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, 
     p->x = x;
     p->k = (double2 *)k;
 #ifdef VESLIDE_EMULATE
+    (void)policy;
     p->f = fftw_plan_dft_r2c_2d(ny, nx, x, (fftw_complex *)k, FFTW_ESTIMATE);
     p->b = fftw_plan_dft_c2r_2d(ny, nx, (fftw_complex *)k, x, FFTW_ESTIMATE);
     if (!p->f || !p->b) {
@@ -76,9 +81,16 @@ int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, 
     }
 #else
     size_t wf = 0, wb = 0;
+    if (policy < 0) {
+        const char *e = getenv("VESLIDE_CUFFT_WORKAREA");
+        policy = (e && strcmp(e, "minimal") == 0) ? 1 : 0;
+    }
     bool good = ok(cufftCreate(&p->f), "cufftCreate") && ok(cufftCreate(&p->b), "cufftCreate") &&
                 ok(cufftSetAutoAllocation(p->f, 0), "cufftSetAutoAllocation") &&
                 ok(cufftSetAutoAllocation(p->b, 0), "cufftSetAutoAllocation");
+    if (good && policy == 1)
+        good = ok(cufftXtSetWorkAreaPolicy(p->f, CUFFT_WORKAREA_MINIMAL, NULL), "cufftXtSetWorkAreaPolicy") &&
+               ok(cufftXtSetWorkAreaPolicy(p->b, CUFFT_WORKAREA_MINIMAL, NULL), "cufftXtSetWorkAreaPolicy");
     if (good) {
         if (ny == 1) {
             good = ok(cufftMakePlan1d(p->f, nx, CUFFT_D2Z, 1, &wf), "cufftMakePlan1d (D2Z)") &&
@@ -115,24 +127,30 @@ int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, 
 int veslide_transform_forward(void *handle) {
     plan_t *p = (plan_t *)handle;
     if (vs::failed()) return 1;
+    double t0 = vs::profiling() ? vs::now() : 0.0;
 #ifdef VESLIDE_EMULATE
     fftw_execute(p->f);
-    return 0;
+    int r = 0;
 #else
-    return ok(cufftExecD2Z(p->f, p->x, (cufftDoubleComplex *)p->k), "cufftExecD2Z") ? 0 : 1;
+    int r = ok(cufftExecD2Z(p->f, p->x, (cufftDoubleComplex *)p->k), "cufftExecD2Z") ? 0 : 1;
 #endif
+    if (vs::profiling()) vs::profile_add("transform forward (D2Z)", vs::now() - t0);
+    return r;
 }
 
 // x <- unnormalised inverse transform of k (k is destroyed)
 int veslide_transform_backward(void *handle) {
     plan_t *p = (plan_t *)handle;
     if (vs::failed()) return 1;
+    double t0 = vs::profiling() ? vs::now() : 0.0;
 #ifdef VESLIDE_EMULATE
     fftw_execute(p->b);
-    return 0;
+    int r = 0;
 #else
-    return ok(cufftExecZ2D(p->b, (cufftDoubleComplex *)p->k, p->x), "cufftExecZ2D") ? 0 : 1;
+    int r = ok(cufftExecZ2D(p->b, (cufftDoubleComplex *)p->k, p->x), "cufftExecZ2D") ? 0 : 1;
 #endif
+    if (vs::profiling()) vs::profile_add("transform backward (Z2D)", vs::now() - t0);
+    return r;
 }
 
 int veslide_transform_destroy(void *handle) {

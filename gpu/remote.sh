@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# On the GPU machine, from the repository root with gpu/dist packed by gpu/pack.sh: the device
+# checks (gpu/check.sh) and the benchmark (veslide-bench gpu) in stages, each with a time limit,
+# inside a budget of VESLIDE_REMOTE_BUDGET seconds (default 420); a stage that no longer fits is
+# skipped and said so. Logs and the benchmark's CSV go to $OUT (default gpu-out/), at most 8
+# files: summary.txt, device.log, bench.log, bench-gpu.csv, profile.log, suites.log, big.log.
+set -uo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+out=${OUT:-gpu-out}; mkdir -p "$out"
+dist=gpu/dist
+cudalib=""
+for d in /usr/local/cuda/targets/x86_64-linux/lib /usr/local/cuda/lib64 /usr/lib/x86_64-linux-gnu \
+         $(ls -d /opt/*/.venv/lib/python3*/site-packages/nvidia/cu13/lib 2>/dev/null); do
+    if [ -e "$d/libcufft.so.12" ] && [ -e "$d/libcudart.so.13" ]; then cudalib=$d; break; fi
+done
+if [ -z "$cudalib" ]; then
+    f=$(find /usr /opt -name libcufft.so.12 2>/dev/null | head -1)
+    [ -n "$f" ] && cudalib=$(dirname "$f")
+fi
+export LD_LIBRARY_PATH="$PWD/$dist/lib${cudalib:+:$cudalib}"
+export OMP_NUM_THREADS=${OMP_NUM_THREADS:-$(nproc)} OMP_WAIT_POLICY=passive
+export VESLIDE_FFTW_WISDOM=none
+budget=${VESLIDE_REMOTE_BUDGET:-420}
+start=$(date +%s)
+summary="$out/summary.txt"
+{
+    echo "machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GB", $2/1e6}' /proc/meminfo); CUDA libraries: ${cudalib:-NOT FOUND}"
+    nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.sm,clocks.mem --format=csv 2>&1
+    ldd "$dist/bin/veslide-tests" | grep -E "not found|cufft|cudart|veslide_device"
+} > "$summary"
+# stage NAME LIMIT LOG COMMAND...: run when at least LIMIT/2 seconds of the budget are left
+stage() {
+    local name=$1 limit=$2 log=$3; shift 3
+    local left=$((budget - ($(date +%s) - start)))
+    if [ "$left" -lt $((limit / 2)) ]; then
+        echo "$name: skipped ($left s of the budget left)" >> "$summary"; return
+    fi
+    [ "$limit" -gt "$left" ] && limit=$left
+    local t0; t0=$(date +%s)
+    timeout "$limit" "$@" >> "$log" 2>&1
+    local rc=$?
+    echo "$name: rc $rc in $(($(date +%s) - t0)) s$([ $rc -eq 124 ] && echo ' (timed out)')" >> "$summary"
+}
+bin=$dist/bin
+stage "device suite" 120 "$out/device.log" "$bin/veslide-tests" device
+VESLIDE_BENCH_CSV="$out/bench-gpu.csv" stage "benchmark 1024..16384 and the CPU at 2048, 4096" 240 \
+    "$out/bench.log" "$bin/veslide-bench" gpu 1024 2048 4096 8192 16384
+VESLIDE_DEVICE_PROFILE=1 VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/profile.csv \
+    stage "profile at 4096, 8192" 60 "$out/profile.log" "$bin/veslide-bench" gpu 4096 8192
+stage "the other suites and memcheck (gpu/check.sh)" 180 "$out/suites.log" bash gpu/check.sh "$bin"
+VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/big.csv stage "benchmark 32768" 150 "$out/big.log" \
+    "$bin/veslide-bench" gpu 32768
+cat /tmp/big.csv >> "$out/bench-gpu.csv" 2>/dev/null
+echo "total: $(($(date +%s) - start)) s" >> "$summary"
+cat "$summary"
+grep -E "passed|failed|FAIL" "$out/device.log" | tail -5
+tail -5 "$out/suites.log"
+grep -E "^\|" "$out/bench.log" "$out/big.log" 2>/dev/null | cut -c1-200
