@@ -232,12 +232,12 @@ contains
         if (st /= 0 .or. l == 0) csv_path = 'results/bench-gpu.csv'
         open (newunit=u, file=trim(csv_path), status='replace', action='write')
         write (u, '(a)') 'backend,n,solve_s,fft_pairs,iterations,pair_ms,pair_min_work_ms,pairs_per_pair,'// &
-            'peak_bytes_per_cell,work_bytes_per_cell,work_min_bytes_per_cell,area,friction,converged'
+            'peak_bytes_per_cell,work_bytes_per_cell,work_min_bytes_per_cell,area,friction,converged,transfer_s'
         write (stdout, '(a)') "paper scene, tolerance 1e-8, method auto (pdr)"
-        write (stdout, '(a)') "| N | solve [s] | FFT pairs | iterations | cuFFT pair [ms] | per FFT pair spent"// &
-            " [cuFFT pairs] | peak device [B/cell] | cuFFT work [B/cell] (min policy) | pair, min work [ms] |"// &
-            " area | friction |"
-        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|"
+        write (stdout, '(a)') "| N | solve [s] | of which set-up and transfers [s] | FFT pairs | iterations |"// &
+            " cuFFT pair [ms] | per FFT pair spent [cuFFT pairs] | the same without set-up and transfers |"// &
+            " peak device [B/cell] | cuFFT work [B/cell] (min policy) | pair, min work [ms] | area | friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
         do k = 1, size(sizes)
             call device_memory(free_b, total_b, error); call check(error)
             need = 110.0_dp*real(sizes(k), dp)**2
@@ -259,16 +259,19 @@ contains
                 deallocate (error); cycle
             end if
             peak = (device_peak_bytes() - base)/real(sizes(k), dp)**2
-            write (stdout, '("| ",i0," | ",f9.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f6.1," | ",f5.1," (",f5.1, &
-                &") | ",f8.3," | ",f9.6," | ",es11.4," |")') sizes(k), c%solve_seconds, c%state%operator_applications, &
-                c%state%iterations, 1e3*tpair(1), c%solve_seconds/c%state%operator_applications/tpair(1), peak, &
+            write (stdout, '("| ",i0," | ",f9.3," | ",f8.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f6.2," | ",f6.1, &
+                &" | ",f5.1," (",f5.1,") | ",f8.3," | ",f9.6," | ",es11.4," |")') sizes(k), c%solve_seconds, &
+                c%state%transfer_seconds, c%state%operator_applications, &
+                c%state%iterations, 1e3*tpair(1), c%solve_seconds/c%state%operator_applications/tpair(1), &
+                (c%solve_seconds - c%state%transfer_seconds)/c%state%operator_applications/tpair(1), peak, &
                 work(1)/real(sizes(k), dp)**2, work(2)/real(sizes(k), dp)**2, 1e3*tpair(2), &
                 contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa
-            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1)') 'gpu', sizes(k), &
+            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1,",",es14.7)') 'gpu', &
+                sizes(k), &
                 c%solve_seconds, c%state%operator_applications, c%state%iterations, 1e3*tpair(1), 1e3*tpair(2), &
                 c%solve_seconds/c%state%operator_applications/tpair(1), peak, work(1)/real(sizes(k), dp)**2, &
                 work(2)/real(sizes(k), dp)**2, contact_area_fraction(c%state%p), &
-                -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged
+                -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged, c%state%transfer_seconds
             flush (stdout); flush (u)
             call device_profile()                  ! (VESLIDE_DEVICE_PROFILE=1: where the solve's time went)
         end do
@@ -307,10 +310,10 @@ contains
                 cpu_sizes(k), ncpu, c%solve_seconds, c%state%operator_applications, 1e3*tcpu, &
                 c%solve_seconds/c%state%operator_applications/tcpu, contact_area_fraction(c%state%p), &
                 -c%force_pa(1)/cfg%load%mean_pressure_pa
-            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1)') 'cpu', cpu_sizes(k), &
-                c%solve_seconds, c%state%operator_applications, c%state%iterations, 1e3*tcpu, 0.0_dp, &
+            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1,",",es14.7)') 'cpu', &
+                cpu_sizes(k), c%solve_seconds, c%state%operator_applications, c%state%iterations, 1e3*tcpu, 0.0_dp, &
                 c%solve_seconds/c%state%operator_applications/tcpu, 0.0_dp, 0.0_dp, 0.0_dp, &
-                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged
+                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged, 0.0_dp
             flush (stdout); flush (u)
         end do
         close (u)

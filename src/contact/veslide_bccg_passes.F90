@@ -18,7 +18,7 @@ module veslide_bccg_passes
     use, intrinsic :: iso_fortran_env, only: int8
     use veslide_kinds, only: dp, i8
     use veslide_grid, only: grid_t
-    use veslide_arrays, only: rarray_t, carray_t, iarray_t
+    use veslide_arrays, only: rarray_t, carray_t, iarray_t, elements
     use veslide_device, only: device_alloc, device_free, device_upload, device_download
     implicit none
     private
@@ -102,10 +102,6 @@ module veslide_bccg_passes
 
 contains
 
-    pure integer(c_long) function n_of(n1, n2)
-        integer, intent(in) :: n1, n2
-        n_of = int(n1, c_long)*int(n2, c_long)
-    end function n_of
 
     ! ---- dispatchers --------------------------------------------------------------------
 
@@ -117,7 +113,7 @@ contains
         logical, intent(in) :: modulus
 #ifdef VESLIDE_CUDA
         if (ks%device) then
-            call metric_gpu(n_of(ks%n1, ks%n2), ks%d, kd%d, f, merge(1_c_int, 0_c_int, modulus)); return
+            call metric_gpu(elements(ks), ks%d, kd%d, f, merge(1_c_int, 0_c_int, modulus)); return
         end if
 #endif
         call metric_cpu(ks%h, kd%h, f, modulus)
@@ -129,7 +125,7 @@ contains
         type(rarray_t), intent(in) :: p
 #ifdef VESLIDE_CUDA
         if (act%device) then
-            call set_contact_gpu(n_of(act%n1, act%n2), act%d, p%d); return
+            call set_contact_gpu(elements(act), act%d, p%d); return
         end if
 #endif
         act%h = merge(1_int8, 0_int8, p%h > 0.0_dp)
@@ -189,7 +185,7 @@ contains
         real(dp), intent(in) :: beta
 #ifdef VESLIDE_CUDA
         if (x%device) then
-            call direction_gpu(n_of(x%n1, x%n2), x%d, act%d, v%d, beta); return
+            call direction_gpu(elements(x), x%d, act%d, v%d, beta); return
         end if
 #endif
         call direction_cpu(x%h, act%h, v%h, beta)
@@ -238,7 +234,7 @@ contains
         real(dp), intent(in) :: a, alpha
 #ifdef VESLIDE_CUDA
         if (pk%device) then
-            call spectral_gpu(n_of(pk%n1, pk%n2), pk%d, k%d, k%d, k%d, a, alpha, 0.0_dp, PK_UPDATE); return
+            call spectral_gpu(elements(pk), pk%d, k%d, k%d, k%d, a, alpha, 0.0_dp, PK_UPDATE); return
         end if
 #endif
         call update_transform_cpu(pk%h, k%h, a, alpha)
@@ -252,7 +248,7 @@ contains
         real(dp), intent(in) :: a, alpha, a_new
 #ifdef VESLIDE_CUDA
         if (pk%device) then
-            call spectral_gpu(n_of(pk%n1, pk%n2), pk%d, k%d, ks%d, hk%d, a, alpha, a_new, PK_STEP); return
+            call spectral_gpu(elements(pk), pk%d, k%d, ks%d, hk%d, a, alpha, a_new, PK_STEP); return
         end if
 #endif
         call step_transform_cpu(pk%h, k%h, ks%h, hk%h, a, alpha, a_new)
@@ -266,7 +262,7 @@ contains
         real(dp), intent(in) :: a
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(n_of(k%n1, k%n2), pk%d, k%d, ks%d, hk%d, a, 0.0_dp, 0.0_dp, PK_GAP); return
+            call spectral_gpu(elements(k), pk%d, k%d, ks%d, hk%d, a, 0.0_dp, 0.0_dp, PK_GAP); return
         end if
 #endif
         call gap_multiply_cpu(k%h, pk%h, ks%h, hk%h, a)

@@ -28,6 +28,7 @@ module veslide_contact
     use veslide_passes, only: multiply_spectrum
     use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
     use veslide_device, only: device_check
+    use veslide_clock, only: wall_seconds
     implicit none
     private
     public :: contact_problem_t, contact_state_t, contact_fields_t, new_contact_problem, new_contact_problem_moving, &
@@ -64,6 +65,8 @@ module veslide_contact
         real(dp) :: residual = huge(1.0_dp)
         character(len=:), allocatable :: method  !! name of the method used
         character(len=3) :: device = 'cpu'      !! where it was solved: 'cpu' or 'gpu'
+        !> on the device: the time of its set-up (memory, cuFFT plans), uploads and downloads [s]
+        real(dp) :: transfer_seconds = 0.0_dp
     end type contact_state_t
 
     !> The arrays of one solve, where it runs: on the host views of the problem's heights, the
@@ -167,9 +170,14 @@ contains
         real(dp), intent(in), optional :: p_init(:, :)
         integer :: nx, ny
         real(dp) :: total
+        integer :: j
         nx = size(self%h, 1); ny = size(self%h, 2)
         allocate (state%p(nx, ny), state%u(nx, ny), state%g(nx, ny))
-        state%p = self%p_mean_pa
+        !$omp parallel do schedule(static)
+        do j = 1, ny
+            state%p(:, j) = self%p_mean_pa
+        end do
+        !$omp end parallel do
         if (present(p_init)) then
             if (all(shape(p_init) == [nx, ny])) then
                 total = field_sum(self%kernel%grid, max(p_init, 0.0_dp))
@@ -205,6 +213,7 @@ contains
         logical, intent(in) :: device
         type(error_t), allocatable, intent(out) :: error
         integer :: nx, ny
+        real(dp) :: t0
         f%device = device
         if (.not. device) then
             call f%t%on_host(fft)
@@ -218,6 +227,7 @@ contains
                              " a device (an MPI study gives each rank its own)"); return
         end if
         nx = size(self%h, 1); ny = size(self%h, 2)
+        t0 = wall_seconds()
         call f%t%on_device(nx, ny, error); if (allocated(error)) return
         call f%h%create(nx, ny, .true.); call f%h%upload(self%h)
         call self%kernel%multiplier_array(f%kd, .true.)
@@ -225,6 +235,7 @@ contains
         call f%u%create(nx, ny, .true.); call f%g%create(nx, ny, .true.)
         call device_check(error, "veslide:contact:fields")
         if (allocated(error)) call f%finish()
+        state%transfer_seconds = wall_seconds() - t0
     end subroutine problem_fields
 
     !> The fields done with: on the device p, u and g read back into `state` (when given) and
@@ -232,8 +243,11 @@ contains
     subroutine fields_finish(self, state)
         class(contact_fields_t), intent(inout) :: self
         type(contact_state_t), intent(inout), optional :: state
+        real(dp) :: t0
         if (self%device .and. present(state)) then
+            t0 = wall_seconds()
             call self%p%download(state%p); call self%u%download(state%u); call self%g%download(state%g)
+            state%transfer_seconds = state%transfer_seconds + (wall_seconds() - t0)
         end if
         call self%t%destroy()
         call self%h%destroy(); call self%kd%destroy()

@@ -15,7 +15,7 @@ module veslide_dr_passes
     use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_long
     use, intrinsic :: iso_fortran_env, only: real32
     use veslide_kinds, only: dp
-    use veslide_arrays, only: rarray_t, sarray_t
+    use veslide_arrays, only: rarray_t, sarray_t, elements
     implicit none
     private
     public :: dr_map, dr_update, dr_rebalance, dr_project, dr_restore, dr_add_gap, device_max_memory
@@ -52,10 +52,6 @@ module veslide_dr_passes
 
 contains
 
-    pure integer(c_long) function cells(a)
-        type(rarray_t), intent(in) :: a
-        cells = int(a%n1, c_long)*int(a%n2, c_long)
-    end function cells
 
     ! ---- dispatchers --------------------------------------------------------------------
 
@@ -87,10 +83,10 @@ contains
         integer, intent(in) :: mk
 #ifdef VESLIDE_CUDA
         if (x%device) then
-            call update_gpu(cells(x), x%d, z%d, gm%d, zprev%d, fprev%d, coef, mk); return
+            call update_gpu(elements(x), x%d, z%d, gm%d, zprev%d, fprev%d, coef, mk); return
         end if
 #endif
-        call dr_update_cpu(cells(x), x%h, z%h, gm%h, zprev%h, fprev%h, coef, mk)
+        call dr_update_cpu(elements(x), x%h, z%h, gm%h, zprev%h, fprev%h, coef, mk)
     end subroutine dr_update
 
     !> z = y + s (z - y), y = max(2x - z, 0); x = z
@@ -99,10 +95,10 @@ contains
         real(dp), intent(in) :: s
 #ifdef VESLIDE_CUDA
         if (x%device) then
-            call elementwise_gpu(cells(x), 0_c_int, x%d, z%d, z%d, z%d, z%d, s, 0.0_dp); return
+            call elementwise_gpu(elements(x), 0_c_int, x%d, z%d, z%d, z%d, z%d, s, 0.0_dp); return
         end if
 #endif
-        call dr_rebalance_cpu(cells(x), x%h, z%h, s)
+        call dr_rebalance_cpu(elements(x), x%h, z%h, s)
     end subroutine dr_rebalance
 
     !> p = p_mean max(2x - z, 0)
@@ -112,7 +108,7 @@ contains
         real(dp), intent(in) :: p_mean
 #ifdef VESLIDE_CUDA
         if (p%device) then
-            call elementwise_gpu(cells(p), 1_c_int, x%d, z%d, p%d, p%d, p%d, p_mean, 0.0_dp); return
+            call elementwise_gpu(elements(p), 1_c_int, x%d, z%d, p%d, p%d, p%d, p_mean, 0.0_dp); return
         end if
 #endif
         p%h = p_mean*max(2.0_dp*x%h - z%h, 0.0_dp)
@@ -124,10 +120,10 @@ contains
         type(rarray_t), intent(in) :: zprev, fprev
 #ifdef VESLIDE_CUDA
         if (x%device) then
-            call elementwise_gpu(cells(x), 2_c_int, x%d, z%d, z%d, zprev%d, fprev%d, 0.0_dp, 0.0_dp); return
+            call elementwise_gpu(elements(x), 2_c_int, x%d, z%d, z%d, zprev%d, fprev%d, 0.0_dp, 0.0_dp); return
         end if
 #endif
-        call dr_restore_cpu(cells(x), x%h, z%h, zprev%h, fprev%h)
+        call dr_restore_cpu(elements(x), x%h, z%h, zprev%h, fprev%h)
     end subroutine dr_restore
 
     !> z = z + gamma g/hs
@@ -137,7 +133,7 @@ contains
         real(dp), intent(in) :: gamma, hs
 #ifdef VESLIDE_CUDA
         if (z%device) then
-            call elementwise_gpu(cells(z), 3_c_int, g%d, z%d, z%d, z%d, z%d, gamma, hs); return
+            call elementwise_gpu(elements(z), 3_c_int, g%d, z%d, z%d, z%d, z%d, gamma, hs); return
         end if
 #endif
         z%h = z%h + gamma*g%h/hs

@@ -15,7 +15,7 @@
 module veslide_pdr_passes
     use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_long
     use veslide_kinds, only: dp, i8
-    use veslide_arrays, only: rarray_t, carray_t
+    use veslide_arrays, only: rarray_t, carray_t, elements
     implicit none
     private
     public :: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, full_contact, &
@@ -66,15 +66,7 @@ module veslide_pdr_passes
 
 contains
 
-    pure integer(c_long) function n_of(a)
-        type(carray_t), intent(in) :: a
-        n_of = int(a%n1, c_long)*int(a%n2, c_long)
-    end function n_of
 
-    pure integer(c_long) function cells(a)
-        type(rarray_t), intent(in) :: a
-        cells = int(a%n1, c_long)*int(a%n2, c_long)
-    end function cells
 
     ! ---- dispatchers --------------------------------------------------------------------
 
@@ -86,7 +78,7 @@ contains
         real(dp), intent(in) :: gamma, gs, n
 #ifdef VESLIDE_CUDA
         if (cm%device) then
-            call spectral_gpu(n_of(cm), 0_c_int, k%d, k%d, cm%d, ks%d, kd%d, kd%d, gamma, gs, n); return
+            call spectral_gpu(elements(cm), 0_c_int, k%d, k%d, cm%d, ks%d, kd%d, kd%d, gamma, gs, n); return
         end if
 #endif
         call step_constant_cpu(cm%h, k%h, ks%h, kd%h, gamma, gs, n)
@@ -100,7 +92,7 @@ contains
         real(dp), intent(in) :: gs, n
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(n_of(k), 1_c_int, k%d, hk%d, cm%d, ks%d, kd%d, kd%d, 0.0_dp, gs, n); return
+            call spectral_gpu(elements(k), 1_c_int, k%d, hk%d, cm%d, ks%d, kd%d, kd%d, 0.0_dp, gs, n); return
         end if
 #endif
         call resolvent_cpu(k%h, hk%h, ks%h, kd%h, cm%h, gs, n)
@@ -113,7 +105,7 @@ contains
         real(dp), intent(in) :: s
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(n_of(k), 2_c_int, k%d, k%d, k%d, kd%d, kd%d, pk%d, 0.0_dp, 0.0_dp, s); return
+            call spectral_gpu(elements(k), 2_c_int, k%d, k%d, k%d, kd%d, kd%d, pk%d, 0.0_dp, 0.0_dp, s); return
         end if
 #endif
         call scaled_product_cpu(k%h, kd%h, pk%h, s)
@@ -127,7 +119,7 @@ contains
         real(dp), intent(in) :: c
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(n_of(k), 3_c_int, k%d, k%d, k%d, ks%d, kd%d, kd%d, 0.0_dp, 0.0_dp, c); return
+            call spectral_gpu(elements(k), 3_c_int, k%d, k%d, k%d, ks%d, kd%d, kd%d, 0.0_dp, 0.0_dp, c); return
         end if
 #endif
         call full_contact_cpu(k%h, ks%h, kd%h, c)
@@ -140,7 +132,7 @@ contains
         real(dp), intent(in) :: gamma, n
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(n_of(k), 4_c_int, k%d, k%d, k%d, ks%d, k%d, k%d, gamma, 0.0_dp, n); return
+            call spectral_gpu(elements(k), 4_c_int, k%d, k%d, k%d, ks%d, k%d, k%d, gamma, 0.0_dp, n); return
         end if
 #endif
         call gap_to_z_cpu(k%h, ks%h, gamma, n)
@@ -188,7 +180,7 @@ contains
         real(dp), intent(in) :: lambda
 #ifdef VESLIDE_CUDA
         if (z%device) then
-            call relax_gpu(cells(z), z%d, y%d, x%d, lambda); return
+            call relax_gpu(elements(z), z%d, y%d, x%d, lambda); return
         end if
 #endif
         call relax_cpu(z%h, y%h, x%h, lambda)
@@ -200,7 +192,7 @@ contains
         type(rarray_t), intent(in) :: b, c
 #ifdef VESLIDE_CUDA
         if (a%device) then
-            call combine_gpu(cells(a), a%d, b%d, c%d, COMBINE_SUM); return
+            call combine_gpu(elements(a), a%d, b%d, c%d, COMBINE_SUM); return
         end if
 #endif
         call combine_cpu(a%h, b%h, c%h, COMBINE_SUM)
@@ -212,7 +204,7 @@ contains
         type(rarray_t), intent(in) :: b
 #ifdef VESLIDE_CUDA
         if (a%device) then
-            call combine_gpu(cells(a), a%d, b%d, b%d, COMBINE_ONE_PLUS); return
+            call combine_gpu(elements(a), a%d, b%d, b%d, COMBINE_ONE_PLUS); return
         end if
 #endif
         call combine_cpu(a%h, b%h, b%h, COMBINE_ONE_PLUS)
@@ -224,7 +216,7 @@ contains
         type(rarray_t), intent(in) :: b
 #ifdef VESLIDE_CUDA
         if (a%device) then
-            call combine_gpu(cells(a), a%d, b%d, b%d, COMBINE_DIFFERENCE); return
+            call combine_gpu(elements(a), a%d, b%d, b%d, COMBINE_DIFFERENCE); return
         end if
 #endif
         call combine_cpu(a%h, b%h, b%h, COMBINE_DIFFERENCE)

@@ -168,6 +168,75 @@ int copy_rows(double *dest, const double *src_d, size_t n) {
 #endif
 }
 
+// ---- transfers ------------------------------------------------------------------------------
+// A host array is copied by all the host's threads (which also touch its pages in parallel, the
+// first time), in chunks through two pinned buffers, while the copy engine moves the other
+// chunk: pageable copies go at one thread's speed, and a first write to fresh pages at the speed
+// of one thread's page faults.
+void host_copy(void *dest, const void *src, size_t bytes) {
+    const size_t piece = (size_t)1 << 20;
+    long n = (long)((bytes + piece - 1) / piece);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) {
+        size_t off = (size_t)i * piece, m = bytes - off < piece ? bytes - off : piece;
+        memcpy((char *)dest + off, (const char *)src + off, m);
+    }
+}
+
+#ifndef VESLIDE_EMULATE
+static const size_t chunk = (size_t)64 << 20;
+static char *pinned[2] = {NULL, NULL};
+static cudaStream_t copier = NULL;
+static cudaEvent_t done[2];
+
+static bool transfer_setup() {
+    if (pinned[0]) return true;
+    if (!check(cudaMallocHost((void **)&pinned[0], chunk), "cudaMallocHost") ||
+        !check(cudaMallocHost((void **)&pinned[1], chunk), "cudaMallocHost") ||
+        !check(cudaStreamCreate(&copier), "cudaStreamCreate") || !check(cudaEventCreate(&done[0]), "cudaEventCreate") ||
+        !check(cudaEventCreate(&done[1]), "cudaEventCreate"))
+        return false;
+    return true;
+}
+
+int transfer(void *dest, const void *src, size_t bytes, bool up) {
+    if (failed()) return 1;
+    if (bytes <= chunk) {   // small: one pageable copy
+        return check(cudaMemcpy(dest, src, bytes, up ? cudaMemcpyHostToDevice : cudaMemcpyDeviceToHost),
+                     up ? "cudaMemcpy (to the device)" : "cudaMemcpy (from the device)") ? 0 : 1;
+    }
+    if (!transfer_setup()) return 1;
+    // (the copier is a blocking stream: ordered with the passes on the default stream)
+    size_t nchunks = (bytes + chunk - 1) / chunk;
+    auto size_of = [&](size_t i) { return bytes - i * chunk < chunk ? bytes - i * chunk : chunk; };
+    bool good = true;
+    if (up) {
+        for (size_t i = 0; i < nchunks && good; ++i) {
+            int b = (int)(i % 2);
+            if (i >= 2) good = check(cudaEventSynchronize(done[b]), "cudaEventSynchronize");
+            host_copy(pinned[b], (const char *)src + i * chunk, size_of(i));
+            good = good && check(cudaMemcpyAsync((char *)dest + i * chunk, pinned[b], size_of(i),
+                                                 cudaMemcpyHostToDevice, copier), "cudaMemcpyAsync (to the device)") &&
+                   check(cudaEventRecord(done[b], copier), "cudaEventRecord");
+        }
+    } else {
+        good = check(cudaMemcpyAsync(pinned[0], src, size_of(0), cudaMemcpyDeviceToHost, copier),
+                     "cudaMemcpyAsync (from the device)") && check(cudaEventRecord(done[0], copier), "cudaEventRecord");
+        for (size_t i = 0; i < nchunks && good; ++i) {
+            int b = (int)(i % 2);
+            if (i + 1 < nchunks)   // the next chunk moves while this one is copied out
+                good = check(cudaMemcpyAsync(pinned[1 - b], (const char *)src + (i + 1) * chunk, size_of(i + 1),
+                                             cudaMemcpyDeviceToHost, copier), "cudaMemcpyAsync (from the device)") &&
+                       check(cudaEventRecord(done[1 - b], copier), "cudaEventRecord");
+            good = good && check(cudaEventSynchronize(done[b]), "cudaEventSynchronize");
+            if (good) host_copy((char *)dest + i * chunk, pinned[b], size_of(i));
+        }
+    }
+    good = good && check(cudaStreamSynchronize(copier), "cudaStreamSynchronize");
+    return good ? 0 : 1;
+}
+#endif
+
 }  // namespace vs
 
 extern "C" {
@@ -258,20 +327,20 @@ int veslide_device_free(void *p) {
 int veslide_device_upload(void *dest, const void *src, size_t bytes) {
     if (bytes == 0) return 0;
 #ifdef VESLIDE_EMULATE
-    memcpy(dest, src, bytes);
+    vs::host_copy(dest, src, bytes);
     return 0;
 #else
-    return vs::check(cudaMemcpy(dest, src, bytes, cudaMemcpyHostToDevice), "cudaMemcpy (to the device)") ? 0 : 1;
+    return vs::transfer(dest, src, bytes, true);
 #endif
 }
 
 int veslide_device_download(void *dest, const void *src, size_t bytes) {
     if (bytes == 0) return 0;
 #ifdef VESLIDE_EMULATE
-    memcpy(dest, src, bytes);
+    vs::host_copy(dest, src, bytes);
     return 0;
 #else
-    return vs::check(cudaMemcpy(dest, src, bytes, cudaMemcpyDeviceToHost), "cudaMemcpy (from the device)") ? 0 : 1;
+    return vs::transfer(dest, src, bytes, false);
 #endif
 }
 

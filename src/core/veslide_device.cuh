@@ -47,6 +47,12 @@ bool check(cudaError_t e, const char *what);   // true when e is cudaSuccess; no
 void *alloc(size_t bytes);              // NULL (and the error noted) when it fails
 void release(void *p);
 
+// ---- transfers between the host and the device (veslide_device.cu) --------------------------
+void host_copy(void *dest, const void *src, size_t bytes);   // all the host's threads
+#ifndef VESLIDE_EMULATE
+int transfer(void *dest, const void *src, size_t bytes, bool up);
+#endif
+
 // ---- per-row partials: a device buffer, and pinned host memory they are copied through -----
 double *row_buffer(size_t n);           // device, at least n doubles (kept, grown when needed)
 double *host_buffer(size_t n);          // host staging (pinned on a GPU), at least n doubles

@@ -9,13 +9,18 @@
 !> caller's array must outlive the handle, and is neither copied nor freed). On the device it
 !> always owns its memory; `upload` and `download` move the contents between the two.
 module veslide_arrays
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_long
     use, intrinsic :: iso_fortran_env, only: int8, real32
     use veslide_kinds, only: dp, i8
     use veslide_device, only: device_alloc, device_free, device_upload, device_download, device_copy
     implicit none
     private
-    public :: rarray_t, carray_t, iarray_t, sarray_t
+    public :: rarray_t, carray_t, iarray_t, sarray_t, elements
+
+    !> The number of elements of an array of a solve (as C's long: a kernel's count)
+    interface elements
+        module procedure r_elements, c_elements, i_elements
+    end interface elements
 
     !> A real(dp) array (n1, n2)
     type :: rarray_t
@@ -80,6 +85,21 @@ contains
         integer, intent(in) :: n1, n2, size
         nbytes = int(n1, i8)*int(n2, i8)*size
     end function nbytes
+
+    pure integer(c_long) function r_elements(a) result(n)
+        type(rarray_t), intent(in) :: a
+        n = int(a%n1, c_long)*int(a%n2, c_long)
+    end function r_elements
+
+    pure integer(c_long) function c_elements(a) result(n)
+        type(carray_t), intent(in) :: a
+        n = int(a%n1, c_long)*int(a%n2, c_long)
+    end function c_elements
+
+    pure integer(c_long) function i_elements(a) result(n)
+        type(iarray_t), intent(in) :: a
+        n = int(a%n1, c_long)*int(a%n2, c_long)
+    end function i_elements
 
     ! ---- rarray_t ------------------------------------------------------------------------
 

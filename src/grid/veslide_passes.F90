@@ -9,7 +9,7 @@ module veslide_passes
     use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_long
     use, intrinsic :: iso_fortran_env, only: i8 => int64
     use veslide_kinds, only: dp
-    use veslide_arrays, only: rarray_t, carray_t
+    use veslide_arrays, only: rarray_t, carray_t, elements
     use veslide_device, only: device_zero
     implicit none
     private
@@ -75,15 +75,7 @@ module veslide_passes
 
 contains
 
-    pure integer(c_long) function cells(a)
-        type(rarray_t), intent(in) :: a
-        cells = int(a%n1, c_long)*int(a%n2, c_long)
-    end function cells
 
-    pure integer(c_long) function entries(a)
-        type(carray_t), intent(in) :: a
-        entries = int(a%n1, c_long)*int(a%n2, c_long)
-    end function entries
 
     ! ---- dispatchers --------------------------------------------------------------------
 
@@ -93,7 +85,7 @@ contains
         real(dp), intent(in) :: v
 #ifdef VESLIDE_CUDA
         if (a%device) then
-            call fill_gpu(cells(a), a%d, v); return
+            call fill_gpu(elements(a), a%d, v); return
         end if
 #endif
         call fill_cpu(a%h, v)
@@ -103,37 +95,34 @@ contains
     subroutine scale(a, s)
         type(rarray_t), intent(inout) :: a
         real(dp), intent(in) :: s
-#ifdef VESLIDE_CUDA
-        if (a%device) then
-            call scale_gpu(cells(a), a%d, s, SCALE_MUL); return
-        end if
-#endif
-        call scale_cpu(a%h, s, SCALE_MUL)
+        call scale_by(a, s, SCALE_MUL)
     end subroutine scale
 
     !> a = a/s
     subroutine divide(a, s)
         type(rarray_t), intent(inout) :: a
         real(dp), intent(in) :: s
-#ifdef VESLIDE_CUDA
-        if (a%device) then
-            call scale_gpu(cells(a), a%d, s, SCALE_DIV); return
-        end if
-#endif
-        call scale_cpu(a%h, s, SCALE_DIV)
+        call scale_by(a, s, SCALE_DIV)
     end subroutine divide
 
     !> a = a - s
     subroutine subtract(a, s)
         type(rarray_t), intent(inout) :: a
         real(dp), intent(in) :: s
+        call scale_by(a, s, SCALE_SUB)
+    end subroutine subtract
+
+    subroutine scale_by(a, s, mode)
+        type(rarray_t), intent(inout) :: a
+        real(dp), intent(in) :: s
+        integer(c_int), intent(in) :: mode
 #ifdef VESLIDE_CUDA
         if (a%device) then
-            call scale_gpu(cells(a), a%d, s, SCALE_SUB); return
+            call scale_gpu(elements(a), a%d, s, mode); return
         end if
 #endif
-        call scale_cpu(a%h, s, SCALE_SUB)
-    end subroutine subtract
+        call scale_cpu(a%h, s, mode)
+    end subroutine scale_by
 
     !> dst = s src
     subroutine scaled_copy(dst, src, s)
@@ -174,7 +163,7 @@ contains
         integer(c_int), intent(in) :: mode
 #ifdef VESLIDE_CUDA
         if (dst%device) then
-            call copy_gpu(cells(dst), dst%d, src%d, c, s, mode); return
+            call copy_gpu(elements(dst), dst%d, src%d, c, s, mode); return
         end if
 #endif
         call copy_cpu(dst%h, src%h, c, s, mode)
@@ -227,7 +216,7 @@ contains
         real(dp), intent(in) :: s
 #ifdef VESLIDE_CUDA
         if (c%device) then
-            call complex_gpu(entries(c), c%d, c%d, s, CX_MUL); return
+            call complex_gpu(elements(c), c%d, c%d, s, CX_MUL); return
         end if
 #endif
         call complex_scale_cpu(c%h, s)
@@ -239,7 +228,7 @@ contains
         real(dp), intent(in) :: s
 #ifdef VESLIDE_CUDA
         if (c%device) then
-            call complex_gpu(entries(c), c%d, c%d, s, CX_DIV); return
+            call complex_gpu(elements(c), c%d, c%d, s, CX_DIV); return
         end if
 #endif
         call complex_divide_cpu(c%h, s)
@@ -251,7 +240,7 @@ contains
         type(carray_t), intent(in) :: d
 #ifdef VESLIDE_CUDA
         if (c%device) then
-            call complex_gpu(entries(c), c%d, d%d, 0.0_dp, CX_ADD); return
+            call complex_gpu(elements(c), c%d, d%d, 0.0_dp, CX_ADD); return
         end if
 #endif
         call complex_add_cpu(c%h, d%h)
@@ -274,7 +263,7 @@ contains
         real(dp), intent(in) :: c
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call multiply_gpu(entries(k), k%d, m%d, c); return
+            call multiply_gpu(elements(k), k%d, m%d, c); return
         end if
 #endif
         call multiply_cpu(k%h, m%h, c)

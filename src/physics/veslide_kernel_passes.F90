@@ -5,7 +5,7 @@
 module veslide_kernel_passes
     use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_long
     use veslide_kinds, only: dp
-    use veslide_arrays, only: carray_t
+    use veslide_arrays, only: carray_t, elements
     implicit none
     private
     public :: resolvent_multiplier, resolvent_apply
@@ -37,7 +37,7 @@ contains
         real(dp), intent(in) :: gamma, s, cells
 #ifdef VESLIDE_CUDA
         if (mult%device) then
-            call resolvent_multiplier_gpu(int(mult%n1, c_long)*mult%n2, mult%d, kd%d, gamma, s, cells); return
+            call resolvent_multiplier_gpu(elements(mult), mult%d, kd%d, gamma, s, cells); return
         end if
 #endif
         call resolvent_multiplier_cpu(mult%h, kd%h, gamma, s, cells)
@@ -51,7 +51,7 @@ contains
         logical, intent(in) :: owns_mean
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call resolvent_apply_gpu(int(k%n1, c_long)*k%n2, k%d, mult%d, rk%d, gamma, &
+            call resolvent_apply_gpu(elements(k), k%d, mult%d, rk%d, gamma, &
                                      merge(1_c_int, 0_c_int, owns_mean), mean_x)
             return
         end if
