@@ -67,7 +67,7 @@ contains
     !> mode and Nyquist lines are zero. Any share of the coefficients is drawn independently of the
     !> others. Also returns the expected variance and slope-tensor trace of this process's share,
     !> summed column by column of the storage (`cols`, for an ordered sum over processes).
-    pure subroutine random_coefficients(grid, psd, seed, ak, var_sum, slope_sum, cols)
+    subroutine random_coefficients(grid, psd, seed, ak, var_sum, slope_sum, cols)
         type(grid_t), intent(in) :: grid
         type(psd_t), intent(in) :: psd
         integer(i8), intent(in) :: seed
@@ -78,8 +78,11 @@ contains
         real(dp), intent(out), optional :: cols(:, :)
         integer :: a, b, i, j, ki, kj, k(2), ij(2)
         real(dp) :: qx, qy, c, sig, z1, z2, wt, col(2)
+        real(dp) :: per_col(2, size(ak, 2))
         logical :: nyq
-        var_sum = 0.0_dp; slope_sum = 0.0_dp
+        ! columns in parallel (each coefficient is drawn from its own counter, and each column's
+        ! sums are summed in the column: the same bits on any number of threads)
+        !$omp parallel do schedule(dynamic, 16) private(a, i, j, ki, kj, k, ij, qx, qy, c, sig, z1, z2, wt, col, nyq)
         do b = 1, size(ak, 2)
             col = 0.0_dp
             do a = 1, size(ak, 1)
@@ -104,9 +107,14 @@ contains
                 wt = merge(1.0_dp, 2.0_dp, ki == 0)*2.0_dp*sig**2
                 col = col + [wt, wt*(qx*qx + qy*qy)]
             end do
-            var_sum = var_sum + col(1); slope_sum = slope_sum + col(2)
-            if (present(cols)) cols(:, b) = col
+            per_col(:, b) = col
         end do
+        !$omp end parallel do
+        var_sum = 0.0_dp; slope_sum = 0.0_dp
+        do b = 1, size(ak, 2)
+            var_sum = var_sum + per_col(1, b); slope_sum = slope_sum + per_col(2, b)
+        end do
+        if (present(cols)) cols = per_col
     end subroutine random_coefficients
 
     !> Random surface with spectrum `psd`, scaled to rms slope (sqrt of the slope-tensor trace)
