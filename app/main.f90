@@ -1,5 +1,5 @@
-!> veslide FILE.nml [--output PATH] [--overwrite] [--quiet]
-!> veslide --memory FILE.nml [--processes R]
+!> veslide FILE.nml [--output PATH] [--overwrite] [--quiet] [--device auto|cpu|gpu]
+!> veslide --memory FILE.nml [--processes R] [--device auto|cpu|gpu]
 !> Runs the case or the study a namelist describes and writes its HDF5 result; see README.md.
 program veslide_main
     use, intrinsic :: iso_fortran_env, only: stderr => error_unit, stdout => output_unit
@@ -8,25 +8,28 @@ program veslide_main
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_quantities, only: results_t
     use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, case_memory
-    use veslide_memory, only: format_gib
+    use veslide_memory, only: format_gib, device_estimate_bytes
     use veslide_system, only: available_memory_bytes
-    use veslide_kinds, only: i8
+    use veslide_kinds, only: i8, dp
     use veslide_study, only: run_study, study_progress_t
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_version, only: version_string
     use veslide_system, only: ignore_file_size_signal, exit_now, prefer_passive_wait
+    use veslide_solver_options, only: device_choice_id
+    use veslide_solver, only: gpu_visible
+    use veslide_device, only: device_enabled, device_info_t, device_info, device_memory
     implicit none
     type(config_t) :: cfg
     type(case_t) :: c
     type(error_t), allocatable :: error
-    character(len=:), allocatable :: input, output, tmp, arg
+    character(len=:), allocatable :: input, output, tmp, arg, device
     logical :: overwrite, quiet, output_given, memory_only
     integer :: i, n, lock, processes
 
     call prefer_passive_wait()            ! threads that wait sleep (docs/solver-scaling.md)
     overwrite = .false.; quiet = .false.; lock = -1; memory_only = .false.; processes = 1
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
-    output = ''
+    output = ''; device = ''
     allocate (character(len=0) :: input)
     output_given = .false.
     i = 1
@@ -53,6 +56,12 @@ program veslide_main
             read (arg, *, iostat=n) processes
             if (n /= 0 .or. processes < 1) call die("veslide: --processes needs a whole number >= 1, got '"// &
                                                    arg//"'")
+        case ('--device')
+            i = i + 1
+            if (i > command_argument_count()) call die("veslide: --device needs one of 'auto', 'cpu', 'gpu'")
+            device = argument(i)
+            if (device_choice_id(device) == 0) call die("veslide: --device '"//device//"' is not one of 'auto',"// &
+                                                        " 'cpu', 'gpu'")
         case ('-q', '--quiet')
             quiet = .true.
         case default
@@ -68,12 +77,16 @@ program veslide_main
 
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
+    if (len(device) > 0) cfg%solver%device = device     ! --device overrides &solver device
     if (memory_only) call print_memory()
     if (output_given) cfg%output%file = output
     if (.not. quiet) then
         do i = 1, size(cfg%warnings)
             write (stderr, '(a)') cfg%warnings(i)%text
         end do
+        ! a GPU build where no GPU is visible runs on the CPU, and says so once
+        if (device_enabled .and. cfg%solver%device == 'auto' .and. .not. gpu_visible()) &
+            write (stderr, '(a)') "veslide: this build has GPU support but no GPU is visible here: solving on the CPU"
     end if
     if (overwrite) cfg%output%overwrite = .true.
     call prepare_output(cfg%output%file, cfg%output%overwrite, tmp, lock, error)
@@ -154,8 +167,10 @@ contains
     !> --memory: the estimate of the run's peak memory, per process on `processes` processes (the
     !> memory a job must request; refused runs are refused on this estimate), then stop
     subroutine print_memory()
-        integer(i8) :: estimate, available
-        call case_memory(cfg, estimate, error, processes)
+        integer(i8) :: estimate, available, on_device
+        type(device_info_t) :: info
+        real(dp) :: free_b, total_b
+        call case_memory(cfg, estimate, error, processes, on_device)
         if (allocated(error)) call die(error%message)
         available = available_memory_bytes()
         if (processes > 1) then
@@ -166,12 +181,32 @@ contains
                 ": about "//format_gib(estimate)//" in one process"
         end if
         if (available >= 0) write (stdout, '(a)') "available to this process here and now: "//format_gib(available)
+        if (on_device > 0) then
+            write (stdout, '(a)') "on the device (&solver device = '"//cfg%solver%device//"'): about "// &
+                format_gib(on_device)//" of device memory"
+            call device_info(info, error)
+            if (.not. allocated(error)) call device_memory(free_b, total_b, error)
+            if (.not. allocated(error) .and. free_b >= 0) write (stdout, '(a)') "free on the "//info%name// &
+                " here and now: "//format_gib(int(free_b, i8))//" of "//format_gib(int(total_b, i8))
+        else if (cfg%solver%method /= 'pk' .and. processes == 1) then
+            block
+                character(len=:), allocatable :: keep
+                keep = cfg%solver%device
+                cfg%solver%device = 'gpu'
+                write (stdout, '(a)') "solved on a GPU (&solver device = 'gpu', gpu/build.sh) it would need about "// &
+                    format_gib(device_estimate_bytes(cfg))//" of device memory"
+                cfg%solver%device = keep
+            end block
+        end if
         stop
     end subroutine print_memory
 
     subroutine usage()
-        write (stdout, '(a)') "usage: veslide FILE.nml [--output PATH] [--overwrite] [--quiet]", &
-            "       veslide --memory FILE.nml [--processes R]   (the memory a run needs, per process)", &
+        write (stdout, '(a)') "usage: veslide FILE.nml [--output PATH] [--overwrite] [--quiet] [--device auto|cpu|gpu]", &
+            "       veslide --memory FILE.nml [--processes R] [--device D]   (the memory a run needs, per process,", &
+            "                                                             and on the device)", &
+            "  --device: where the solve runs (overrides &solver device): 'auto' a GPU when this build has", &
+            "  GPU support and one is visible, 'cpu', or 'gpu' (refused when there is none).", &
             "  Solves the steady sliding contact (or the &sweep study) the namelist describes and writes", &
             "  an HDF5 file (default &output file). Exit status: 0 converged, 1 bad input or I/O error,", &
             "  2 solved but not converged (the file is written, /scalars/converged = 0)."

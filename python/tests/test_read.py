@@ -21,8 +21,11 @@ def test_scalars_are_the_files_with_units_and_python_types(case):
             assert case.scalars.units[name] == ds.attrs["units"], name
             want = int if ds.dtype.kind == "i" else float
             assert type(case.scalars[name]) is want, name
-        assert case.scalars.attrs == {"solver_method": g.attrs["solver_method"],
-                                      "kernel_variant": g.attrs["kernel_variant"]}
+        want = {"solver_method": g.attrs["solver_method"], "kernel_variant": g.attrs["kernel_variant"],
+                "device": g.attrs["device"]}
+        if "device_transfer_seconds" in g.attrs:       # a solve on a GPU
+            want["device_transfer_seconds"] = float(g.attrs["device_transfer_seconds"])
+        assert case.scalars.attrs == want and want["device"] in ("cpu", "gpu")
     assert case.scalars["nx"] == 32 and case.scalars["ny"] == 16
     assert case.scalars.units["friction_force_pa"] == "Pa"
     assert case.residual == case.scalars["residual"] < case.scalars["tolerance"]

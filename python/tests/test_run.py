@@ -110,3 +110,19 @@ def test_non_convergence_is_reported_not_hidden(tmp_path, exe):
     assert "NOT CONVERGED" in repr(r) and "NOT CONVERGED" in r.stderr
     with h5py.File(r.path, "r") as f:
         assert f["/scalars/converged"][()] == 0
+
+
+def test_device_choice(tmp_path, exe):
+    """device= is passed as --device; the case records where it was solved and the file the
+    build's device support; 'gpu' without a GPU is refused naming the choice; a bad name is a
+    ValueError before anything runs."""
+    p = params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8}, output={"fields": False})
+    r = veslide.run(p, output=tmp_path / "cpu.h5", exe=exe, progress=None, device="cpu")
+    assert r.scalars.attrs["device"] == "cpu"
+    assert r.provenance["device_support"] in ("none", "cuda", "cuda-emulated")
+    if r.provenance["device_support"] == "none" or "device_name" not in r.provenance:
+        with pytest.raises(veslide.InputError, match="device = 'gpu'"):
+            veslide.run(p, output=tmp_path / "gpu.h5", exe=exe, progress=None, device="gpu")
+        assert not (tmp_path / "gpu.h5").exists()
+    with pytest.raises(ValueError, match="device must be one of auto, cpu, gpu"):
+        veslide.run(p, output=tmp_path / "x.h5", exe=exe, progress=None, device="cuda")

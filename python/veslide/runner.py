@@ -129,7 +129,10 @@ def _output_of(nml):
     return out.get("file") if hasattr(out, "get") else None
 
 
-def run(params, output=None, threads=None, exe=None, *, overwrite=False, quiet=False, progress=print):
+DEVICES = ("auto", "cpu", "gpu")
+
+
+def run(params, output=None, threads=None, exe=None, *, overwrite=False, quiet=False, progress=print, device=None):
     """Run one case or study and return its `Result`.
 
     params    a dict of namelist groups ({"grid": {"nx": 64, "ny": 64}, "material": {...}}) or the
@@ -141,11 +144,17 @@ def run(params, output=None, threads=None, exe=None, *, overwrite=False, quiet=F
     overwrite replace an existing result file (--overwrite).
     quiet     pass --quiet (no summary, no progress lines).
     progress  called with each line the program prints (default: print); None to keep silent.
+    device    where the solve runs: 'auto' (a GPU when the program was built with GPU support and
+              one is visible), 'cpu' or 'gpu' (--device; default: the namelist's &solver device).
+              Which one a case used: `result.scalars.attrs['device']`; the GPU itself is in
+              `result.provenance` (device_name, device_memory_bytes, cuda_*_version).
 
     Exit status 1 raises `InputError` with the program's one-line message; exit status 2 (not
     converged) returns the result with `result.converged` False, `result.residual`, and issues a
     `ConvergenceWarning`. An interrupt (KeyboardInterrupt) stops the program; a study leaves its
     part file OUT.part with the finished cases (`veslide.read_running(OUT)`)."""
+    if device is not None and device not in DEVICES:
+        raise ValueError(f"device must be one of {', '.join(DEVICES)}, got {device!r}")
     program = find_executable(exe)
     scratch = None
     nml, nml_path = load_params(params)
@@ -165,6 +174,8 @@ def run(params, output=None, threads=None, exe=None, *, overwrite=False, quiet=F
             cmd.append("--overwrite")
         if quiet:
             cmd.append("--quiet")
+        if device is not None:
+            cmd += ["--device", device]
         env = dict(os.environ)
         if threads is not None:
             env["OMP_NUM_THREADS"] = str(int(threads))

@@ -29,7 +29,8 @@ module veslide_solver
     use veslide_threads, only: restore_threads
     implicit none
     private
-    public :: solve_contact, auto_method, pdr_min_cells, default_anderson_memory, solve_on_device, gpu_visible
+    public :: solve_contact, auto_method, pdr_min_cells, default_anderson_memory, solve_on_device, gpu_visible, &
+              check_device_choice
 
     !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (256^2: there pdr took
     !> 0.56 of dr's time over the 16 hard cases it is chosen for, though more on contacts near
@@ -124,14 +125,7 @@ contains
         case (DEVICE_CPU)
             return
         case (DEVICE_GPU)
-            if (.not. device_enabled) then
-                call fatal_error(error, "veslide:solver: &solver device = 'gpu', but this build of veslide has no GPU"// &
-                    " support (build it with gpu/build.sh); allowed here: 'auto', 'cpu'"); return
-            end if
-            if (device_count() == 0) then
-                call fatal_error(error, "veslide:solver: &solver device = 'gpu', but no GPU is visible to this process"// &
-                    " (CUDA_VISIBLE_DEVICES, the driver); use 'auto' or 'cpu'"); return
-            end if
+            call check_device_choice(choice, error); if (allocated(error)) return
             if (problem%kernel%grid%is_distributed()) then
                 call fatal_error(error, "veslide:solver: &solver device = 'gpu' on a grid distributed over processes"// &
                     " is not available (an MPI study gives each rank its own GPU); use 'cpu'"); return
@@ -149,6 +143,21 @@ contains
             end if
         end select
     end subroutine solve_on_device
+
+    !> The choice `choice` (DEVICE_*) refused where it cannot be had: 'gpu' in a build without GPU
+    !> support, or where no GPU is visible (before anything is built for the case)
+    subroutine check_device_choice(choice, error)
+        integer, intent(in) :: choice
+        type(error_t), allocatable, intent(out) :: error
+        if (choice /= DEVICE_GPU) return
+        if (.not. device_enabled) then
+            call fatal_error(error, "veslide:solver: &solver device = 'gpu', but this build of veslide has no GPU"// &
+                " support (build it with gpu/build.sh); allowed here: 'auto', 'cpu'")
+        else if (device_count() == 0) then
+            call fatal_error(error, "veslide:solver: &solver device = 'gpu', but no GPU is visible to this process"// &
+                " (CUDA_VISIBLE_DEVICES, the driver); use 'auto' or 'cpu'")
+        end if
+    end subroutine check_device_choice
 
     !> Does 'auto' find a GPU: this build has one, and a device is visible (the emulated device
     !> is taken only when asked for by name)?

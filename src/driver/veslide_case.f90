@@ -27,7 +27,7 @@ module veslide_case
     use veslide_topography, only: read_topography, topography_shape
     use veslide_memory, only: memory_estimate_bytes, device_estimate_bytes, format_gib
     use veslide_device, only: device_info_t, device_info, device_memory
-    use veslide_solver, only: gpu_visible
+    use veslide_solver, only: gpu_visible, check_device_choice
     use veslide_system, only: available_memory_bytes, peak_memory_bytes, use_threads
     use veslide_hdf5, only: h5file_t
     use veslide_hdf5_parallel, only: create_collective, write_rows
@@ -191,6 +191,9 @@ contains
         ranks_ = 1; if (present(ranks)) ranks_ = max(1, ranks)
         node_ranks_ = 1; if (present(node_ranks)) node_ranks_ = max(1, node_ranks)
         if (present(device_estimate)) device_estimate = 0
+        call check_device_choice(device_choice_id(cfg%solver%device), error)
+        call add_context(error, "veslide: "//cfg%path//": ")
+        if (allocated(error)) return
         what = "&grid nx, ny = "
         if (cfg%surface%kind == 'file') what = "&surface file '"//cfg%surface%file//"' of "
         call case_memory(cfg, estimate, error, ranks_, dev); if (allocated(error)) return
@@ -540,6 +543,18 @@ contains
             " iterations, ", c%state%operator_applications, " FFT pairs, residual ", c%state%residual, &
             ", converged ", c%state%converged
         lines = [lines, b]
+        if (c%state%device == 'gpu') then
+            block
+                type(device_info_t) :: info
+                type(error_t), allocatable :: none
+                call device_info(info, none)
+                if (.not. allocated(none)) then
+                    write (b, '(a,f0.3,a)') "  solved on the GPU "//info%name//" (set-up and transfers ", &
+                        c%state%transfer_seconds, " s)"
+                    lines = [lines, b]
+                end if
+            end block
+        end if
         write (b, '(a,f8.3,a,f8.3,a,f8.3,a)') "  time: surface ", r%get('surface_seconds'), " s, kernel ", &
             r%get('kernel_seconds'), " s, solve ", r%get('solve_seconds'), " s"
         lines = [lines, b]
@@ -616,6 +631,12 @@ contains
         call write_results(f, prefix, r_, error); if (allocated(error)) return
         call f%writeattr(prefix//'/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
         call f%writeattr(prefix//'/scalars', 'kernel_variant', cfg%solver%kernel, error); if (allocated(error)) return
+        ! where it was solved ('cpu' or 'gpu'; the device itself: the root's provenance)
+        call f%writeattr(prefix//'/scalars', 'device', c%state%device, error); if (allocated(error)) return
+        if (c%state%device == 'gpu') then
+            call f%writeattr(prefix//'/scalars', 'device_transfer_seconds', c%state%transfer_seconds, error)
+            if (allocated(error)) return
+        end if
         if (cfg%output%fields .and. c%grid%is_distributed()) then
             ! written already by every process (write_case): their attributes
             call field_attributes(prefix//'/fields/height_m', 'm'); if (allocated(error)) return

@@ -12,6 +12,7 @@ module veslide_output
     use veslide_error, only: error_t, fatal_error
     use veslide_hdf5, only: h5file_t, hdf5_library_version
     use veslide_quantities, only: results_t
+    use veslide_device, only: device_enabled, device_emulated, device_count, device_info_t, device_info
     use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
     use veslide_system, only: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, lock_file, unlock_file, LOCK_BUSY
     implicit none
@@ -165,9 +166,44 @@ contains
         end if
         if (allocated(error)) return
         call f%writeattr('/', 'input_file', input_path, error); if (allocated(error)) return
+        call write_device_provenance(f, error); if (allocated(error)) return
         call f%write('/input/namelist', input_text, error); if (allocated(error)) return
         call f%writeattr('/input/namelist', 'units', '-', error)
     end subroutine write_provenance
+
+    !> The build's device support ('none', 'cuda' or 'cuda-emulated'), and the device this process
+    !> uses when one is visible: name, memory, CUDA driver and runtime versions, compute
+    !> capability (root attributes; which cases ran on it: each /scalars group's `device`)
+    subroutine write_device_provenance(f, error)
+        type(h5file_t), intent(inout) :: f
+        type(error_t), allocatable, intent(out) :: error
+        type(device_info_t) :: info
+        type(error_t), allocatable :: none
+        if (.not. device_enabled) then
+            call f%writeattr('/', 'device_support', 'none', error); return
+        end if
+        call f%writeattr('/', 'device_support', trim(merge('cuda-emulated', 'cuda         ', device_emulated())), error)
+        if (allocated(error)) return
+        if (device_count() == 0) return
+        call device_info(info, none)
+        if (allocated(none)) return
+        call f%writeattr('/', 'device_name', info%name, error); if (allocated(error)) return
+        call f%writeattr('/', 'device_memory_bytes', info%memory_bytes, error); if (allocated(error)) return
+        call f%writeattr('/', 'cuda_driver_version', version_text(info%driver_version), error)
+        if (allocated(error)) return
+        call f%writeattr('/', 'cuda_runtime_version', version_text(info%runtime_version), error)
+        if (allocated(error)) return
+        call f%writeattr('/', 'device_compute_capability', version_text(100*info%compute_capability), error)
+    contains
+        !> 12030 -> '12.3'
+        function version_text(v) result(t)
+            integer, intent(in) :: v
+            character(len=:), allocatable :: t
+            character(len=16) :: b
+            write (b, '(i0,".",i0)') v/1000, modulo(v, 1000)/10
+            t = trim(b)
+        end function version_text
+    end subroutine write_device_provenance
 
     !> The scalars of `r` under PREFIX/scalars/NAME (integers as int64) and its arrays under
     !> PREFIX/PATH, each with its `units` attribute (and `layout` where given)
