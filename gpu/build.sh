@@ -7,6 +7,8 @@
 #                                               veslide-bench or veslide-tests; default veslide)
 #   bash gpu/build.sh [--emulate] test [ARGS]   build and run the Fortran suite (ARGS: suite, test)
 #   bash gpu/build.sh [--emulate] --paths       build; print the three programs' paths
+#   bash gpu/build.sh [--emulate] --flags       only the device library; print the Fortran
+#                                               defines and the link flags (mpi/build.sh --gpu)
 #
 # --emulate compiles the same .cu sources as host C++ (-DVESLIDE_EMULATE): the "emulated device",
 # which runs every device pass on the host in the GPU's order of summation, with FFTW in place of
@@ -57,8 +59,8 @@ else
     fi
     gencode=()
     for a in ${VESLIDE_CUDA_ARCH:-80 90}; do gencode+=(-gencode "arch=compute_$a,code=sm_$a"); done
-    compile() { "$nvcc" -std=c++17 -O3 --fmad=false "${gencode[@]}" -Xcompiler -fPIC -c "$1" -o "$2"; }
-    device_libs="$cufft $cudart -Wl,-rpath,$libdir"
+    compile() { "$nvcc" -std=c++17 -O3 --fmad=false "${gencode[@]}" -Xcompiler -fPIC,-fopenmp -c "$1" -o "$2"; }
+    device_libs="$cufft $cudart -Wl,-rpath,$libdir -fopenmp"
     defines="-DVESLIDE_CUDA"
 fi
 
@@ -83,8 +85,11 @@ if [ "$changed" = 1 ] || [ ! -e "$lib" ]; then
     g++ -shared -o "$lib" "${objects[@]}" $device_libs
 fi
 
-flags=(--profile release --flag "$defines"
-       --link-flag "-L$obj -Wl,--no-as-needed -lveslide_device -Wl,-rpath,$obj -lstdc++")
+link="-L$obj -Wl,--no-as-needed -lveslide_device -Wl,-rpath,$obj -lstdc++"
+if [ "${1:-}" = --flags ]; then
+    echo "$defines"; echo "$link"; exit 0
+fi
+flags=(--profile release --flag "$defines" --link-flag "$link")
 paths() {
     fpm run "${flags[@]}" veslide --runner echo 2>/dev/null | tail -1
     fpm run "${flags[@]}" veslide-bench --runner echo 2>/dev/null | tail -1
@@ -105,6 +110,8 @@ fpm build "${flags[@]}" --tests >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
 case "${1:-veslide}" in
     test)
         shift
+        # the environment ./dev.sh test gives the suite (the figure scripts' Python, no display)
+        export VESLIDE_PYTHON="$root/.venv/bin/python" MPLBACKEND=Agg OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
         exec fpm test "${flags[@]}" -- "$@"
         ;;
     --paths)

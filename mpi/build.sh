@@ -5,12 +5,20 @@
 # fpm test, e.g. --runner "mpirun -n 3").
 # The library is compiled with -DVESLIDE_MPI (its distributed code paths); -I/usr/include lets
 # FFTW's fftw3-mpi.f03 find the fftw3.f03 it includes; pkgconfig/hdf5.pc selects parallel HDF5.
+# `--gpu` (or `--gpu-emulate`) first builds it with the device backend too (gpu/build.sh): each
+# rank of a study then solves on the device rank modulo the number visible.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/.." && pwd)
 export PATH="$root/.venv/bin:$PATH"
 export PKG_CONFIG_PATH="$here/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
 flags=(--profile release --compiler mpif90 --flag "-DVESLIDE_MPI -I/usr/include")
+if [ "${1:-}" = --gpu ] || [ "${1:-}" = --gpu-emulate ]; then
+    mapfile -t device < <(bash "$root/gpu/build.sh" $([ "$1" = --gpu-emulate ] && echo --emulate) --flags)
+    flags=(--profile release --compiler mpif90 --flag "-DVESLIDE_MPI -I/usr/include ${device[0]}"
+           --link-flag "${device[1]}")
+    shift
+fi
 cd "$here"
 if [ "${1:-}" = "test" ]; then
     shift

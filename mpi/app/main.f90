@@ -13,6 +13,7 @@ program veslide_batch
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_study, only: run_study, merge_study_parts, study_progress_t
+    use veslide_device, only: device_enabled, device_count, device_select
     use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines
     use veslide_quantities, only: results_t
     use veslide_solver_options, only: solver_progress_t, progress_line
@@ -56,6 +57,14 @@ program veslide_batch
         write (parts(k), '(a,".rank",i4.4,"-of-",i4.4,".part")') out, k - 1, nranks
     end do
     mine = trim(parts(rank + 1))
+    ! with a device backend, each rank its own GPU: rank modulo the number this process sees
+    if (device_enabled) then
+        if (device_count() > 0) call device_select(modulo(rank, device_count()), error)
+        if (allocated(error)) then
+            write (stderr, '(a,i0,a)') "veslide-batch: rank ", rank, ": "//error%message
+            deallocate (error)
+        end if
+    end if
     if (quiet) then
         call run_study(cfg, mine, nfail, error, part=[rank, nranks])
     else
