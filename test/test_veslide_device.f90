@@ -25,7 +25,8 @@ module test_veslide_device
                                    update_transform, step_transform, gap_multiply, add_points, clipped_points
     use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
                                   full_contact, gap_to_z, sum_of, one_plus, difference_from
-    use veslide_dr_passes, only: dr_map, dr_update, dr_rebalance, dr_project, dr_restore, dr_add_gap
+    use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap
+    use veslide_anderson_passes, only: anderson_columns, anderson_update
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
@@ -70,7 +71,7 @@ contains
             new_unittest("passes-kernel-and-contact", test_passes_contact), &
             new_unittest("passes-bccg", test_passes_bccg), &
             new_unittest("passes-pdr", test_passes_pdr), &
-            new_unittest("passes-dr", test_passes_dr), &
+            new_unittest("passes-dr-and-anderson", test_passes_dr), &
             new_unittest("transform-against-fftw", test_transform), &
             new_unittest("dense-elastic-bccg", test_dense_bccg), &
             new_unittest("dense-visco-pdr", test_dense_pdr), &
@@ -421,17 +422,28 @@ contains
         allocate (hist(nx*ny, m)); call random_number(hist)
         dfh%h = hist; gmh%h = hist
         call upload_single(dfd, hist); call upload_single(gmd, hist)
+        ! Anderson's passes, the residual reflected from x (dr) and given (pdr's mixing: g as f)
         do mk = 0, m
-            call dr_map(xh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, rows_h, rp(1), rg(1))
-            call dr_map(xd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, rows_d, rp(2), rg(2))
+            call anderson_columns(xh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, .true., rows_h, rp(1), rg(1))
+            call anderson_columns(xd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, .true., rows_d, rp(2), rg(2))
             call same_values(error, reshape(rows_d(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), &
-                             reshape(rows_h(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), "dr map")
+                             reshape(rows_h(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), "Anderson columns, reflected")
             if (.not. allocated(error)) call check(error, rp(1) == rp(2) .and. rg(1) == rg(2), "dr map rp, rg")
+            call same_history(dfh, dfd, "dF"); call same_history(gmh, gmd, "G")
+            call anderson_columns(gh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, .false., rows_h, rp(1), rg(1))
+            call anderson_columns(gd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, .false., rows_d, rp(2), rg(2))
+            call same_values(error, reshape(rows_d(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), &
+                             reshape(rows_h(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), "Anderson columns, given")
             call same_history(dfh, dfd, "dF"); call same_history(gmh, gmd, "G")
         end do
         coef = [0.3_dp, -0.2_dp, 0.1_dp]
-        call dr_update(xh, zh, gmh, zph, fph, coef, m); call dr_update(xd, zd, gmd, zpd, fpd, coef, m)
-        call same_real(error, zh, zd, "dr update z"); call same_real(error, fph, fpd, "dr update f")
+        call anderson_update(xh, zh, gmh, zph, fph, coef, m, .true.)
+        call anderson_update(xd, zd, gmd, zpd, fpd, coef, m, .true.)
+        call same_real(error, zh, zd, "Anderson update z"); call same_real(error, fph, fpd, "Anderson update f")
+        call same_real(error, xh, xd, "Anderson update x")
+        call anderson_update(gh, zh, gmh, zph, fph, coef, m, .false.)
+        call anderson_update(gd, zd, gmd, zpd, fpd, coef, m, .false.)
+        call same_real(error, zh, zd, "Anderson update z, given f")
         call dr_rebalance(xh, zh, 3.0_dp); call dr_rebalance(xd, zd, 3.0_dp); call same_real(error, zh, zd, "rebalance")
         call dr_project(ph, xh, zh, 2.0_dp); call dr_project(pd, xd, zd, 2.0_dp); call same_real(error, ph, pd, "project")
         call dr_restore(xh, zh, zph, fph); call dr_restore(xd, zd, zpd, fpd); call same_real(error, xh, xd, "restore")
@@ -564,9 +576,11 @@ contains
     !> within 2 % (the iteration's path depends on round-off only near its decisions)
     subroutine test_against_cpu(error)
         type(error_t), allocatable, intent(out) :: error
-        ! at rest (bccg), near the loss peak (pdr and dr), ratio 1000 at speed, anisotropic at 45 deg
-        integer, parameter :: cases(5) = [1, 4, 4, 17, 27]
-        character(len=4), parameter :: methods(5) = [character(len=4) :: 'auto', 'pdr', 'dr', 'auto', 'pdr']
+        ! at rest (bccg), near the loss peak (pdr, dr, and pdr with Anderson mixing), ratio 1000 at
+        ! speed, anisotropic at 45 deg
+        integer, parameter :: cases(6) = [1, 4, 4, 4, 17, 27]
+        character(len=4), parameter :: methods(6) = [character(len=4) :: 'auto', 'pdr', 'dr', 'pdr', 'auto', 'pdr']
+        integer, parameter :: memories(6) = [-1, -1, -1, 3, -1, -1]
         type(config_t) :: cfg
         type(case_t) :: cc, cg
         character(len=:), allocatable :: name
@@ -575,8 +589,9 @@ contains
         n = merge(32, 128, device_emulated())
         do i = 1, size(cases)
             call hard_case(cases(i), n, cfg, name, error); if (allocated(error)) return
-            name = name//" ("//trim(methods(i))//")"
+            name = name//" ("//trim(methods(i))//trim(merge(", mixing 3", "          ", memories(i) > 0))//")"
             cfg%solver%tolerance = 1.0e-12_dp; cfg%solver%method = trim(methods(i))
+            cfg%solver%anderson_memory = memories(i)
             cfg%solver%device = 'cpu'
             call run_case(cfg, cc, error); if (allocated(error)) return
             cfg%solver%device = 'gpu'

@@ -19,7 +19,7 @@ module veslide_solver
     use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, &
                                       DEVICE_CPU, DEVICE_GPU
     use veslide_contact, only: contact_fields_t
-    use veslide_dr_passes, only: device_max_memory
+    use veslide_anderson_passes, only: device_max_memory
     use veslide_device, only: device_enabled, device_count, device_emulated, device_check
     use veslide_strings, only: str
     use veslide_solver_pk, only: polonsky_keer
@@ -176,13 +176,9 @@ contains
         if (method == SOLVER_PK) then
             call fatal_error(error, "veslide:solver: &solver method = 'pk' does not run on the device; use 'bccg'"// &
                 " or 'auto' (the same problem, fewer FFT pairs), or &solver device = 'cpu'")
-        else if (method == SOLVER_PDR .and. o%anderson_memory > 0) then
+        else if ((method == SOLVER_DR .or. method == SOLVER_PDR) .and. o%anderson_memory > device_max_memory) then
             call fatal_error(error, "veslide:solver: &solver anderson_memory = "//str(o%anderson_memory)// &
-                " with method 'pdr' does not run on the device (its over-relaxed step does: anderson_memory = -1"// &
-                " or 0), or set &solver device = 'cpu'")
-        else if (method == SOLVER_DR .and. o%anderson_memory > device_max_memory) then
-            call fatal_error(error, "veslide:solver: &solver anderson_memory = "//str(o%anderson_memory)// &
-                " with method 'dr' does not run on the device (0.."//str(device_max_memory)//" does),"// &
+                " does not run on the device (0.."//str(device_max_memory)//" does, and -1, each method's own),"// &
                 " or set &solver device = 'cpu'")
         end if
     end subroutine device_limits

@@ -18,11 +18,11 @@ module veslide_solver_dr
     use veslide_kernel, only: resolvent_t
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
-    use veslide_anderson, only: anderson_coefficients
-    use veslide_collective, only: ordered_sum, global_max
-    use veslide_arrays, only: rarray_t, carray_t, sarray_t
+    use veslide_anderson, only: anderson_t
+    use veslide_collective, only: global_max
+    use veslide_arrays, only: rarray_t, carray_t
     use veslide_passes, only: centre_divide, divided_copy
-    use veslide_dr_passes, only: dr_map, dr_update, dr_rebalance, dr_project, dr_restore, dr_add_gap
+    use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap
     use veslide_device, only: device_failed
     implicit none
     private
@@ -30,19 +30,17 @@ module veslide_solver_dr
 
 contains
 
-    !> The iteration is memory-bound outside its FFT pair, so the map and the Anderson mixing
-    !> (type II, as `anderson_t`, memory m) are fused into two passes over the grid
-    !> (veslide_dr_passes):
-    !>   A  the map (y = max(2x - z, 0), f = y - x, the residuals) with the new history columns
-    !>      dF = f - f_prev, G = (z - z_prev) + dF and their inner products with the history;
-    !>   B  z <- z + f - G c (f recomputed from x and z), keeping (z, f), and the next map's input
-    !>      written straight into the FFT buffer.
+    !> The iteration is memory-bound outside its FFT pair, so the map is fused into the two passes
+    !> of the Anderson mixing (`anderson_t`, memory m; the map's residual is the reflection of the
+    !> resolvent's output, computed on the way):
+    !>   A  `columns`: the map (y = max(2x - z, 0), f = y - x, the residuals) with the new history
+    !>      columns dF = f - f_prev, G = (z - z_prev) + dF and their inner products;
+    !>   B  `update`: z <- z + f - G c (f recomputed from x and z), keeping (z, f), and the next
+    !>      map's input written straight into the FFT buffer.
     !> y and f are never stored. A path that skips pass B (the safeguard, balancing) clears the
-    !> history, whose newest column pass A has already written. Pass A sums row by row and then
+    !> history, whose newest column pass A has already written. The sums are row by row and then
     !> over the rows in order (veslide_collective), so the path is the same for any number of
-    !> threads or processes. The history is single precision: it halves the memory traffic of the
-    !> mixing, which is then exact to about 1e-7 of the step, absorbed by the fixed-point
-    !> iteration (the residual itself is double).
+    !> threads or processes.
     subroutine douglas_rachford(problem, f, opts, state, gap0)
         type(contact_problem_t), intent(in) :: problem
         type(contact_fields_t), intent(inout) :: f
@@ -52,20 +50,17 @@ contains
         !> gap of the starting pressure [m] (default: zero gap)
         real(dp), intent(in), optional :: gap0(:, :)
         real(dp), parameter :: aa_growth = 2.0_dp
-        type(rarray_t) :: z, zprev, fprev
-        type(sarray_t) :: df, gm
+        type(rarray_t) :: z
         type(carray_t) :: hkern
-        real(dp), allocatable :: gram(:, :)
+        type(anderson_t) :: aa
         type(resolvent_t) :: res
         real(dp) :: gamma, hs, inner_tol, fnorm, fnorm_prev, rp, rg, rsq, s, scale, p_mean
-        real(dp) :: coef(max(opts%anderson_memory, 1)), dots(max(opts%anderson_memory, 1), 2)
-        real(dp) :: part(1 + 2*max(opts%anderson_memory, 1)), ext(2)
-        real(dp), allocatable :: rows(:, :)
-        integer :: nx, ny, n, since_balance, m, slot, mk, stored, info
-        logical :: accelerated, have_prev
+        real(dp) :: coef(max(opts%anderson_memory, 1)), part(1 + 2*max(opts%anderson_memory, 1)), ext(2)
+        integer :: nx, ny, since_balance, m, mk
+        logical :: accelerated
         type(progress_ticker_t) :: ticker
 
-        nx = f%p%n1; ny = f%p%n2; n = nx*ny
+        nx = f%p%n1; ny = f%p%n2
         hs = problem%height_scale_m
         p_mean = problem%p_mean_pa
         state%method = 'dr'
@@ -80,15 +75,13 @@ contains
         call res%set(f%kd, gamma, scale, problem%kernel%grid%cells(), problem%kernel%grid%owns_mean_mode())
 
         m = max(0, opts%anderson_memory)
-        call z%create(nx, ny, f%device); call zprev%create(nx, ny, f%device); call fprev%create(nx, ny, f%device)
-        call df%create(n, max(m, 1), f%device); call gm%create(n, max(m, 1), f%device)
-        allocate (gram(max(m, 1), max(m, 1)), rows(1 + 2*max(m, 1), ny))
+        call z%create(nx, ny, f%device)
+        call aa%init(nx, ny, m, f%device, problem%kernel%grid)
         call divided_copy(z, f%p, p_mean)       ! z = p + gamma g
         if (present(gap0)) then
             call f%t%x%upload(gap0)
             call dr_add_gap(z, f%t%x, gamma, hs)
         end if
-        have_prev = .false.; stored = 0; slot = 0
         accelerated = .false.
         fnorm_prev = huge(1.0_dp); since_balance = 0
         inner_tol = opts%tolerance
@@ -100,16 +93,11 @@ contains
             state%operator_applications = state%operator_applications + 1
 
             ! pass A: y, f = y - x and the residuals; the new history column and its products
-            mk = 0
-            if (m > 0 .and. have_prev) then
-                slot = modulo(slot, m) + 1; mk = min(stored + 1, m)
-            end if
-            call dr_map(f%t%x, z, df, gm, zprev, fprev, slot, mk, rows, rp, rg)
-            call ordered_sum(problem%kernel%grid, rows(1:1 + 2*mk, :), part(1:1 + 2*mk))
+            mk = aa%begin()
+            call aa%columns(f%t%x, z, mk, .true., part, rp, rg)
             ext = [rp, rg]
             call global_max(problem%kernel%grid, ext)
             rsq = part(1); rp = ext(1); rg = ext(2)/gamma
-            dots(1:mk, 1) = part(2:1 + mk); dots(1:mk, 2) = part(2 + mk:1 + 2*mk)
             fnorm = sqrt(rsq)
             if (f%device) then
                 if (device_failed()) exit
@@ -118,7 +106,7 @@ contains
             ! safeguard: an accelerated step that made |f| grow is replaced by the plain step
             if (accelerated) then          ! (nested: fnorm_prev may still be huge() otherwise)
                 if (fnorm > aa_growth*fnorm_prev) then
-                    call dr_restore(f%t%x, z, zprev, fprev)
+                    call dr_restore(f%t%x, z, aa%zprev, aa%fprev)
                     call clear_history()
                     cycle
                 end if
@@ -131,7 +119,7 @@ contains
                 inner_tol = inner_tol/10.0_dp
                 if (inner_tol < 1.0e-15_dp) exit
                 ! evaluate the map again at z (the same point: pass A rewrites the same column)
-                if (mk > 0) slot = modulo(slot - 2, m) + 1
+                call aa%again(mk)
                 call f%t%x%assign(z)
                 cycle
             end if
@@ -162,32 +150,20 @@ contains
                 end if
             end if
 
-            ! the mixing coefficients from the updated Gram matrix
-            info = 1
-            if (mk > 0) then
-                gram(1:mk, slot) = dots(1:mk, 1); gram(slot, 1:mk) = dots(1:mk, 1)
-                call anderson_coefficients(gram, mk, dots(1:mk, 2), coef, info)
-            end if
-            if (info /= 0) then
-                mk = 0; stored = 0
-            else
-                stored = mk
-            end if
+            ! the mixing coefficients, then pass B: z <- z + f - G c, keeping (z, f); the next
+            ! map's input into the buffer
+            mk = aa%mix(part, mk, coef)
             accelerated = mk > 0
-
-            ! pass B: z <- z + f - G c, keeping (z, f); the next map's input into the buffer
-            call dr_update(f%t%x, z, gm, zprev, fprev, coef, mk)
-            have_prev = .true.
+            call aa%update(f%t%x, z, coef, mk, .true.)
             fnorm_prev = fnorm
         end do
-        call z%destroy(); call zprev%destroy(); call fprev%destroy(); call df%destroy(); call gm%destroy()
-        call hkern%destroy(); call res%destroy()
+        call z%destroy(); call aa%destroy(); call hkern%destroy(); call res%destroy()
 
     contains
 
         !> Forget the mixing history (after a change of the map, or a rejected step)
         subroutine clear_history()
-            have_prev = .false.; stored = 0; slot = 0; accelerated = .false.
+            call aa%reset(); accelerated = .false.
         end subroutine clear_history
 
     end subroutine douglas_rachford

@@ -15,7 +15,7 @@
 !>       heights M (2x - z), solved by BCCG warm-started from the previous y
 !>   z <- z + lambda (y - x), over-relaxed (lambda = 1.5; Eckstein & Bertsekas, Math. Program.
 !>       55 (1992) 293: convergent for 0 < lambda < 2), or with `anderson_memory` > 0 the plain
-!>       step accelerated by Anderson mixing (`anderson_t`; 12 + 8 m bytes per cell more).
+!>       step accelerated by Anderson mixing (`anderson_t`; 16 + 8 m bytes per cell more).
 !> At the fixed point x = y = p. The solver works on the kernel's multiplier where the solve
 !> runs (a view on the host: no copy of it). The inner problems are solved to a tolerance that follows the
 !> outer residual (0.3 of it, and never below a third of the target); every outer
@@ -42,7 +42,7 @@ module veslide_solver_pdr
 
 contains
 
-    !> The splitting on the fields `f` (host or device; Anderson mixing on the host only)
+    !> The splitting on the fields `f` (host or device)
     subroutine preconditioned_douglas_rachford(problem, f, opts, state, gap0, cold)
         type(contact_problem_t), intent(in) :: problem
         type(contact_fields_t), intent(inout), target :: f
@@ -61,9 +61,8 @@ contains
         type(anderson_t) :: aa
         !> the resolvent's constant part
         type(carray_t) :: cm
-        !> z and f (which holds x until y is known) live in the state's g and u (f%g, f%u), which
-        !> the solve needs only to confirm a result; y is the state's p (f%p) in units of p_mean
-        real(dp), pointer :: z(:), ff(:)
+        ! z and f (which holds x until y is known) live in the state's g and u (f%g, f%u), which
+        ! the solve needs only to confirm a result; y is the state's p (f%p) in units of p_mean
         real(dp) :: hs, p_mean, gamma, n, s, gs, itol, res_prev, d, s1, gmin, spg, sp, t2(2)
         real(dp), allocatable :: rows(:, :)
         integer :: its, sh(2)
@@ -106,11 +105,7 @@ contains
             end if
             call f%g%assign(f%p)
         end if
-        if (mixing) then
-            z(1:size(f%g%h)) => f%g%h
-            ff(1:size(f%u%h)) => f%u%h
-            call aa%init(size(f%p%h), opts%anderson_memory, problem%kernel%grid)
-        end if
+        if (mixing) call aa%init(f%p%n1, f%p%n2, opts%anderson_memory, f%device, problem%kernel%grid)
         its = 0
         res_prev = 1.0_dp
         do
@@ -167,14 +162,14 @@ contains
 
             if (mixing) then
                 call difference_from(f%u, f%p)            ! f = y - x
-                accelerated = aa%step(z, ff)
+                accelerated = aa%step(f%g, f%u)
             else
                 call relax(f%g, f%p, f%u, relaxation)
             end if
         end do
         state%iterations = its
         state%operator_applications = ceiling(b%pairs)
-        call b%destroy(); call cm%destroy()
+        call b%destroy(); call cm%destroy(); call aa%destroy()
 
     contains
 

@@ -11,7 +11,7 @@
 !> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
 !> history of memory m, 5 by default); pdr 41 (bccg's fields with M = |K|, the resolvent's
 !> constant part; y, z and f live in the state's p, g and u, K is the kernel's own, borrowed),
-!> and 12 + 8 m more when Anderson mixes its steps (m > 0; by default it does not); Polonsky-Keer
+!> and 16 + 8 m more when Anderson mixes its steps (m > 0; by default it does not); Polonsky-Keer
 !> 16 (t and one influence column). `auto` is taken as bccg for a symmetric kernel and as pdr
 !> from 256^2 cells up (dr below). Surface generation is transient (16 for its
 !> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
@@ -23,7 +23,8 @@
 !> host keeps the case (heights, kernel, FFT buffers for the analyses, p, u, g) and the device
 !> holds, per cell, the heights (8), the kernel's multiplier (8), the transform's buffers (16), p,
 !> u, g (24), and per solver: bccg 29 (M 4, the transforms of the heights and of the pressure 16,
-!> the direction 8, the contact set 1), pdr bccg's and the resolvent's constant part (37), dr
+!> the direction 8, the contact set 1), pdr bccg's and the resolvent's constant part (37; with
+!> Anderson mixing 16 + 8 m more), dr
 !> 40 + 8 m (z, the previous z and f, the transform of h, the resolvent's multiplier, the history
 !> in single precision); plus cuFFT's work area (at most 8, one for both plans, `cufft_work`).
 module veslide_memory
@@ -105,7 +106,7 @@ contains
             integer :: m
             m = default_anderson_memory(SOLVER_PDR, cfg%solver%anderson_memory)
             pdr_bytes = 41
-            if (m > 0) pdr_bytes = pdr_bytes + 12 + 8*m
+            if (m > 0) pdr_bytes = pdr_bytes + 16 + 8*m
         end function pdr_bytes
 
     end function memory_estimate_bytes
@@ -125,12 +126,12 @@ contains
         case ('dr')
             solver = dr_device()
         case ('pdr')
-            solver = 37
+            solver = pdr_device()
         case default
             if (symmetric) then
                 solver = 29
             else if (n >= real(pdr_min_cells, dp)) then
-                solver = 37
+                solver = pdr_device()
             else
                 solver = dr_device()
             end if
@@ -141,6 +142,12 @@ contains
         pure real(dp) function dr_device()
             dr_device = 40 + 8*default_anderson_memory(SOLVER_DR, cfg%solver%anderson_memory)
         end function dr_device
+        pure real(dp) function pdr_device()
+            integer :: m
+            m = default_anderson_memory(SOLVER_PDR, cfg%solver%anderson_memory)
+            pdr_device = 37
+            if (m > 0) pdr_device = pdr_device + 16 + 8*m
+        end function pdr_device
     end function device_estimate_bytes
 
     !> "12.34 GiB"
