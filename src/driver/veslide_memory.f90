@@ -54,29 +54,10 @@ contains
         integer, intent(in), optional :: ranks
         logical, intent(in), optional :: device
         real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
-        logical :: symmetric
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
         solve = 8 + 8 + 16 + 24
-        symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
-                                                          size(cfg%sweep%speeds) == 0)
-        select case (cfg%solver%method)
-        case ('pk')
-            solver = 16
-        case ('bccg')
-            solver = 36
-        case ('dr')
-            solver = dr_bytes()
-        case ('pdr')
-            solver = pdr_bytes()
-        case default                              ! auto (veslide_solver's rule)
-            if (symmetric) then
-                solver = 36
-            else if (n >= real(pdr_min_cells, dp)) then
-                solver = pdr_bytes()
-            else
-                solver = dr_bytes()
-            end if
-        end select
+        ! per solver: pk 16, bccg 36, dr 40 + 8 m, pdr 41 (+ 16 + 8 m with mixing)
+        solver = solver_bytes(cfg, [16.0_dp, 36.0_dp, 40.0_dp, 41.0_dp])
         if (present(device)) then
             if (device) solver = 0
         end if
@@ -96,59 +77,58 @@ contains
         end if
         bytes = fixed_bytes + int(per_cell*n, i8)
 
-    contains
-
-        pure real(dp) function dr_bytes()
-            dr_bytes = 40 + 8*default_anderson_memory(SOLVER_DR, cfg%solver%anderson_memory)
-        end function dr_bytes
-
-        pure real(dp) function pdr_bytes()
-            integer :: m
-            m = default_anderson_memory(SOLVER_PDR, cfg%solver%anderson_memory)
-            pdr_bytes = 41
-            if (m > 0) pdr_bytes = pdr_bytes + 16 + 8*m
-        end function pdr_bytes
-
     end function memory_estimate_bytes
 
     !> Device memory a solve of the case of `cfg` holds at its peak [bytes] (veslide_device: what
     !> the heading lists), the method 'auto' takes as veslide_solver does
     pure integer(i8) function device_estimate_bytes(cfg) result(bytes)
         type(config_t), intent(in) :: cfg
-        real(dp) :: n, per_cell, solver
-        logical :: symmetric
+        real(dp) :: n, per_cell
         n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
+        ! per solver: bccg 29 (pk does not run there: bccg's), dr 40 + 8 m, pdr 37 (+ 16 + 8 m)
+        per_cell = 8 + 8 + 16 + 24 + solver_bytes(cfg, [29.0_dp, 29.0_dp, 40.0_dp, 37.0_dp]) + cufft_work
+        bytes = device_fixed_bytes + int(per_cell*n, i8)
+    end function device_estimate_bytes
+
+    !> The bytes per cell of the solver the case of `cfg` runs, 'auto' taken as veslide_solver takes
+    !> it (bccg for a symmetric kernel, pdr from pdr_min_cells cells, dr below), from the fixed
+    !> parts `base` = [pk, bccg, dr, pdr]: dr adds 8 m for its Anderson history, pdr 16 + 8 m when
+    !> it mixes (m > 0)
+    pure real(dp) function solver_bytes(cfg, base) result(b)
+        type(config_t), intent(in) :: cfg
+        real(dp), intent(in) :: base(4)
+        logical :: symmetric
         symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
                                                           size(cfg%sweep%speeds) == 0)
         select case (cfg%solver%method)
-        case ('bccg', 'pk')
-            solver = 29
+        case ('pk')
+            b = base(1)
+        case ('bccg')
+            b = base(2)
         case ('dr')
-            solver = dr_device()
+            b = dr()
         case ('pdr')
-            solver = pdr_device()
+            b = pdr()
         case default
             if (symmetric) then
-                solver = 29
-            else if (n >= real(pdr_min_cells, dp)) then
-                solver = pdr_device()
+                b = base(2)
+            else if (real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp) >= real(pdr_min_cells, dp)) then
+                b = pdr()
             else
-                solver = dr_device()
+                b = dr()
             end if
         end select
-        per_cell = 8 + 8 + 16 + 24 + solver + cufft_work
-        bytes = device_fixed_bytes + int(per_cell*n, i8)
     contains
-        pure real(dp) function dr_device()
-            dr_device = 40 + 8*default_anderson_memory(SOLVER_DR, cfg%solver%anderson_memory)
-        end function dr_device
-        pure real(dp) function pdr_device()
+        pure real(dp) function dr()
+            dr = base(3) + 8*default_anderson_memory(SOLVER_DR, cfg%solver%anderson_memory)
+        end function dr
+        pure real(dp) function pdr()
             integer :: m
             m = default_anderson_memory(SOLVER_PDR, cfg%solver%anderson_memory)
-            pdr_device = 37
-            if (m > 0) pdr_device = pdr_device + 16 + 8*m
-        end function pdr_device
-    end function device_estimate_bytes
+            pdr = base(4)
+            if (m > 0) pdr = pdr + 16 + 8*m
+        end function pdr
+    end function solver_bytes
 
     !> "12.34 GiB"
     pure function format_gib(bytes) result(s)
