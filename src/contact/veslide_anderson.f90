@@ -36,6 +36,7 @@ module veslide_anderson
         type(sarray_t) :: df, gm         !! the history's columns (n, max(m, 1))
         type(rarray_t) :: zprev, fprev   !! the previous point and its residual
         real(dp), allocatable :: gram(:, :)
+        real(dp), allocatable :: rows(:, :)  !! per-row partial sums (1 + 2 m, rows)
         type(grid_t) :: grid             !! the grid whose rows the unknowns are (or one row)
     contains
         procedure :: init => anderson_init
@@ -71,7 +72,7 @@ contains
         call self%gm%create(n1*n2, max(self%memory, 1), device)
         call self%zprev%create(n1, n2, device)
         call self%fprev%create(n1, n2, device)
-        allocate (self%gram(max(self%memory, 1), max(self%memory, 1)))
+        allocate (self%gram(max(self%memory, 1), max(self%memory, 1)), self%rows(1 + 2*max(self%memory, 1), n2))
         call self%reset()
     end subroutine anderson_init
 
@@ -84,7 +85,7 @@ contains
     subroutine anderson_destroy(self)
         class(anderson_t), intent(inout) :: self
         call self%df%destroy(); call self%gm%destroy(); call self%zprev%destroy(); call self%fprev%destroy()
-        if (allocated(self%gram)) deallocate (self%gram)
+        if (allocated(self%gram)) deallocate (self%gram, self%rows)
     end subroutine anderson_destroy
 
     !> A new point: the columns its step will use (mk), the slot advanced to the one it writes
@@ -113,10 +114,9 @@ contains
         integer, intent(in) :: mk
         logical, intent(in) :: reflect
         real(dp), intent(out) :: part(:), rp, rg
-        real(dp), allocatable :: rows(:, :)
-        allocate (rows(1 + 2*max(mk, 1), z%n2))
-        call anderson_columns(src, z, self%df, self%gm, self%zprev, self%fprev, self%slot, mk, reflect, rows, rp, rg)
-        call ordered_sum(self%grid, rows(1:1 + 2*mk, :), part(1:1 + 2*mk))
+        call anderson_columns(src, z, self%df, self%gm, self%zprev, self%fprev, self%slot, mk, reflect, self%rows, &
+                              rp, rg)
+        call ordered_sum(self%grid, self%rows(1:1 + 2*mk, :), part(1:1 + 2*mk))
     end subroutine anderson_columns_step
 
     !> The mixing coefficients from the products `part` of the columns pass: the Gram matrix's new

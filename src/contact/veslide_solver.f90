@@ -10,15 +10,16 @@
 !>  - 'auto': bccg when the kernel is symmetric; else pdr on grids of at least `pdr_min_cells`
 !>    cells whose operator is not too anisotropic (`modulus_spread` at most `pdr_max_spread`),
 !>    and dr otherwise (docs/solver-scaling.md: the measurements behind the two thresholds).
+!> Where: on the CPU, or on the device (a GPU: `&solver device`, `solve_on_device`), the same
+!> control flow on arrays held there (`contact_fields_t`); pk runs on the CPU only.
 !> A new solver is one module with the signature of the ones above and one `case` here.
 module veslide_solver
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
     use veslide_fftw, only: fft2d_t
-    use veslide_contact, only: contact_problem_t, contact_state_t
+    use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, &
                                       DEVICE_CPU, DEVICE_GPU
-    use veslide_contact, only: contact_fields_t
     use veslide_anderson_passes, only: device_max_memory
     use veslide_device, only: device_enabled, device_count, device_emulated, device_check
     use veslide_strings, only: str
