@@ -190,37 +190,34 @@ contains
     subroutine sum_of(a, b, c)
         type(rarray_t), intent(inout) :: a
         type(rarray_t), intent(in) :: b, c
-#ifdef VESLIDE_CUDA
-        if (a%device) then
-            call combine_gpu(elements(a), a%d, b%d, c%d, COMBINE_SUM); return
-        end if
-#endif
-        call combine_cpu(a%h, b%h, c%h, COMBINE_SUM)
+        call combine(a, b, c, COMBINE_SUM)
     end subroutine sum_of
 
     !> a = 1 + b
     subroutine one_plus(a, b)
         type(rarray_t), intent(inout) :: a
         type(rarray_t), intent(in) :: b
-#ifdef VESLIDE_CUDA
-        if (a%device) then
-            call combine_gpu(elements(a), a%d, b%d, b%d, COMBINE_ONE_PLUS); return
-        end if
-#endif
-        call combine_cpu(a%h, b%h, b%h, COMBINE_ONE_PLUS)
+        call combine(a, b, b, COMBINE_ONE_PLUS)
     end subroutine one_plus
 
     !> a = b - a
     subroutine difference_from(a, b)
         type(rarray_t), intent(inout) :: a
         type(rarray_t), intent(in) :: b
+        call combine(a, b, b, COMBINE_DIFFERENCE)
+    end subroutine difference_from
+
+    subroutine combine(a, b, c, mode)
+        type(rarray_t), intent(inout) :: a
+        type(rarray_t), intent(in) :: b, c
+        integer(c_int), intent(in) :: mode
 #ifdef VESLIDE_CUDA
         if (a%device) then
-            call combine_gpu(elements(a), a%d, b%d, b%d, COMBINE_DIFFERENCE); return
+            call combine_gpu(elements(a), a%d, b%d, c%d, mode); return
         end if
 #endif
-        call combine_cpu(a%h, b%h, b%h, COMBINE_DIFFERENCE)
-    end subroutine difference_from
+        call combine_cpu(a%h, b%h, c%h, mode)
+    end subroutine combine
 
     ! ---- CPU twins ----------------------------------------------------------------------
 

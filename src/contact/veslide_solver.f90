@@ -31,7 +31,7 @@ module veslide_solver
     implicit none
     private
     public :: solve_contact, auto_method, pdr_min_cells, default_anderson_memory, solve_on_device, gpu_visible, &
-              check_device_choice
+              check_device_choice, auto_takes_device
 
     !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (256^2: there pdr took
     !> 0.56 of dr's time over the 16 hard cases it is chosen for, though more on contacts near
@@ -136,14 +136,23 @@ contains
             end if
             device = .true.
         case default
-            device = gpu_visible() .and. .not. problem%kernel%grid%is_distributed()
-            if (device .and. present(method) .and. present(o)) then
-                call device_limits(method, o, error)
-                device = .not. allocated(error)
-                if (allocated(error)) deallocate (error)
+            if (present(method) .and. present(o)) then
+                device = auto_takes_device(method, o%anderson_memory, problem%kernel%grid%is_distributed())
+            else
+                device = auto_takes_device(SOLVER_AUTO, -1, problem%kernel%grid%is_distributed())
             end if
         end select
     end subroutine solve_on_device
+
+    !> Does 'auto' solve on the device: a GPU is visible, the grid is not shared by processes, and
+    !> the device runs `method` (SOLVER_*; SOLVER_AUTO: one the rule picks, all of which it runs)
+    !> with Anderson memory `memory` (negative: the method's own). The one rule, also for the
+    !> memory a case is sized for before it is built (veslide_case).
+    logical function auto_takes_device(method, memory, distributed) result(yes)
+        integer, intent(in) :: method, memory
+        logical, intent(in) :: distributed
+        yes = gpu_visible() .and. .not. distributed .and. method /= SOLVER_PK .and. memory <= device_max_memory
+    end function auto_takes_device
 
     !> The choice `choice` (DEVICE_*) refused where it cannot be had: 'gpu' in a build without GPU
     !> support, or where no GPU is visible (before anything is built for the case)

@@ -27,7 +27,7 @@ module veslide_case
     use veslide_topography, only: read_topography, topography_shape
     use veslide_memory, only: memory_estimate_bytes, device_estimate_bytes, format_gib
     use veslide_device, only: device_info_t, device_info, device_memory
-    use veslide_solver, only: gpu_visible, check_device_choice
+    use veslide_solver, only: auto_takes_device, check_device_choice
     use veslide_system, only: available_memory_bytes, peak_memory_bytes, use_threads
     use veslide_hdf5, only: h5file_t
     use veslide_hdf5_parallel, only: create_collective, write_rows
@@ -243,9 +243,9 @@ contains
         end if
         select case (cfg%solver%device)
         case ('gpu')
-            yes = cfg%solver%method /= 'pk'
+            yes = cfg%solver%method /= 'pk'          ! (what it does not run is refused at the solve)
         case ('auto')
-            yes = cfg%solver%method /= 'pk' .and. gpu_visible()
+            yes = auto_takes_device(solver_method_id(cfg%solver%method), cfg%solver%anderson_memory, .false.)
         end select
     end function case_on_device
 
