@@ -10,7 +10,7 @@ module veslide_case
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t, distribute_grid
     use veslide_collective, only: share_error, global_max
-    use veslide_fields, only: field_rms, field_max
+    use veslide_fields, only: field_rms, field_max, field_mean
     use veslide_spectrum, only: slope_tensor
     use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
     use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
@@ -424,7 +424,9 @@ contains
         call r%add('rms_height_m', field_rms(c%grid, c%h), 'm')
         call r%add('max_pressure_pa', field_max(c%grid, c%state%p), 'Pa')
         call r%add('mean_pressure_pa', cfg%load%mean_pressure_pa, 'Pa')
-        call r%add('approach_m', c%state%approach_m, 'm')
+        ! the rigid-body approach since first contact: g = w - h + D with mean w = 0 gives
+        ! D = h_max at first touch and D = h_mean + d under load (d: the solver's mean gap)
+        call r%add('approach_m', field_max(c%grid, c%h) - field_mean(c%grid, c%h) - c%state%approach_m, 'm')
         call add_solver_quantities(r, c%state, cfg%solver%tolerance)
         call r%add('length_x_m', c%grid%lx_m, 'm')
         call r%add('length_y_m', c%grid%ly_m, 'm')
