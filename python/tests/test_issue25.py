@@ -83,12 +83,16 @@ def test_runs_without_an_output_leave_nothing_behind(tmp_path, monkeypatch, exe)
 
 def test_a_cell_run_twice_reads_its_own_output(tmp_path, monkeypatch, exe):
     monkeypatch.chdir(tmp_path)
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(scratch))
     first = veslide.run(SMALL, output="a.h5", exe=exe, progress=None)
     version = subprocess.run([str(exe), "--version"], capture_output=True, text=True).stdout.strip()
     fails = fake_exe(tmp_path / "fails", 'if [ "$1" = --version ]; then echo "%s"; exit 0; fi; exit 3' % version)
     lines = []
     again = veslide.run(SMALL, output="a.h5", exe=fails, progress=lines.append)     # not run
     assert again.scalars == first.scalars and again.path == tmp_path / "a.h5" and again.reused
+    assert list(scratch.iterdir()) == []                # not even the namelist's directory
     assert lines == ["veslide: a.h5 exists from the same input and program version: read, not run again "
                      "(overwrite=True runs it again)"]
     # another input's file is refused, naming overwrite=True; nothing replaced

@@ -309,17 +309,20 @@ def start(params, output=None, threads=None, exe=None, *, overwrite=False, reuse
     if output is None:
         output = _output_of(nml)
     memory = output is None
-    shown = None if memory else str(output)
-    scratch = Path(tempfile.mkdtemp(prefix="veslide-")) if memory or nml_path is None else None
-    try:
-        output = scratch / "veslide.h5" if memory else Path(output).expanduser()
+    if not memory:
+        shown = str(output)
+        output = Path(output).expanduser()
         if not output.is_absolute():
             output = Path.cwd() / output
-        if not memory and not overwrite and not _asks_overwrite(nml) and output.exists():
+        if not overwrite and not _asks_overwrite(nml) and output.exists():
             result = reuse_existing(output, nml, program, reuse)
             result.log = ["veslide: %s exists from the same input and program version: read, not run again "
                           "(overwrite=True runs it again)" % shown]
             return Run._finished_with(result, progress)
+    scratch = Path(tempfile.mkdtemp(prefix="veslide-")) if memory or nml_path is None else None
+    try:
+        if memory:
+            output = scratch / "veslide.h5"
         source = None if nml_path is None else Path(nml_path).resolve()
         if nml_path is None:
             nml_path = write_namelist(nml, scratch / "input.nml")
@@ -471,6 +474,8 @@ class Run:
         try:
             for line in self._proc.stdout:
                 line = line.rstrip("\n")
+                if self._source is None:            # the header names the namelist: a temporary file
+                    line = line.replace(self.command[1], "params dict")
                 with self._mutex:
                     self._lines.append(line)
                     self._progress.update(line)
