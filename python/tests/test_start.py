@@ -86,3 +86,29 @@ def test_run_is_start_then_wait(tmp_path, exe):
     lines = []
     r = veslide.run(long_study(n_speeds=2, n_seeds=1), output=tmp_path / "s.h5", exe=exe, progress=lines.append)
     assert lines == r.log and lines[-1].startswith("veslide: study written to") and len(r.summary) == 2
+
+
+def test_python_exiting_stops_its_runs(tmp_path, exe):
+    """A run still going when Python exits is stopped, its temporary directory removed; a study
+    with an output keeps its part file (the same call resumes it)."""
+    import os
+    import subprocess
+    import sys
+    script = """
+import time, veslide
+from test_start import long_study
+a = veslide.start(long_study(), output="kept.h5", exe=%r)
+b = veslide.start(long_study(), exe=%r)
+while a.progress.cases_done < 2 or b.progress.cases_done < 2:
+    time.sleep(0.02)
+""" % (str(exe), str(exe))
+    scratch = tmp_path / "tmp"
+    scratch.mkdir()
+    env = dict(os.environ, TMPDIR=str(scratch), PYTHONPATH=os.pathsep.join(sys.path))
+    done = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, env=env, timeout=120, capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    assert list(scratch.iterdir()) == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["kept.h5.part", "kept.h5.part.resume", "tmp"]
+    r = veslide.read_running(tmp_path / "kept.h5")
+    assert r.partial and not r.running and len(r.summary) >= 2

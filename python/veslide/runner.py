@@ -1,4 +1,5 @@
 """Running the veslide executable from Python."""
+import atexit
 import dataclasses
 import math
 import os
@@ -9,6 +10,7 @@ import sys
 import tempfile
 import threading
 import warnings
+import weakref
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -397,6 +399,16 @@ class Progress:
             self.fft_pairs, self.solve_s = int(m.group(5)), float(m.group(6))
 
 
+# the runs started and not ended: stopped when Python exits (a study with an output keeps its part file)
+_RUNNING = weakref.WeakSet()
+
+
+@atexit.register
+def _stop_running():
+    for handle in list(_RUNNING):
+        handle.cancel(keep_part=True)
+
+
 # 'case 3/8: seed 1, ... ; elapsed      0.4 s, left ~     0.6 s'
 _CASE_LINE = re.compile(r"^case (\d+)/(\d+):.*?(?:elapsed\s+([0-9.]+) s, left ~\s*([0-9.]+) s)?\s*$")
 # 'solver pdr: iteration 212, residual  3.10E-06 (target  1.0E-08), 180 FFT pairs, 15.0 s'
@@ -444,6 +456,7 @@ class Run:
         self._stderr_reader.start()
         self._monitor = threading.Thread(target=self._follow, daemon=True)
         self._monitor.start()
+        _RUNNING.add(self)
 
     @classmethod
     def _finished_with(cls, result, progress):
@@ -495,6 +508,7 @@ class Run:
                 self._proc.stdout.close()
                 self._proc.stderr.close()
                 self._finished.set()
+                _RUNNING.discard(self)
 
     def _finish(self):
         rc = self._proc.returncode
