@@ -45,8 +45,8 @@ def test_input_error_names_the_users_file_or_the_dict_and_its_variable(tmp_path,
 def test_input_error_on_two_lines_keeps_the_variable(tmp_path, printed):
     """The program's message may come as a line and its continuation (starting with a space)."""
     (tmp_path / "in.nml").write_text("&grid ny = abc /\n")
-    two = fake_exe(tmp_path / "two-lines", 'echo "veslide: warning first" >&2; printf "%s\\n" "%s" | sed "s|X|$1|" >&2; exit 1'
-                   % ("%b", printed))
+    two = fake_exe(tmp_path / "two-lines", 'echo "veslide: warning first" >&2; '
+                   'printf "%%b\\n" "%s" | sed "s|X|$1|" >&2; exit 1' % printed)
     with pytest.raises(veslide.InputError) as info:
         veslide.run(tmp_path / "in.nml", output=tmp_path / "x.h5", exe=two, progress=None)
     err = info.value

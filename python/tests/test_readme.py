@@ -18,7 +18,6 @@ import tempfile
 from pathlib import Path
 
 import matplotlib.pyplot as plt
-import pytest
 
 README = Path(__file__).resolve().parents[2] / "README.md"
 
