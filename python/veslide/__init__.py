@@ -16,7 +16,7 @@ from .runner import (Cancelled, ConvergenceWarning, InputError, OutputExistsErro
                      find_executable, git_revision, namelist, run, start, write_namelist)
 from .topography import major_axis_deg, psd_2d, psd_radial, read_topography, slope_tensor, write_topography
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 __all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revision", "write_topography", "read_topography", "find_executable",
            "namelist", "write_namelist", "refine", "convergence", "Refinement", "StudyRefinement",
