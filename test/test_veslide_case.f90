@@ -7,7 +7,7 @@ module test_veslide_case
     use veslide_hdf5, only: h5file_t
     use veslide_output, only: prepare_output, release_output, commit_output
     use veslide_quantities, only: results_t
-    use veslide_case, only: case_t, run_case, write_case, case_results
+    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, summary_width
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name
     use test_veslide_config, only: read_text
@@ -24,7 +24,8 @@ contains
             new_unittest("results-named-once-with-units", test_results_list), &
             new_unittest("friction-sign-and-lateral-direction", test_friction_sign), &
             new_unittest("persson-equals-the-solve-in-full-contact", test_persson_full_contact), &
-            new_unittest("approach-is-hertz-plus-the-lattice-term", test_approach_hertz) &
+            new_unittest("approach-is-hertz-plus-the-lattice-term", test_approach_hertz), &
+            new_unittest("summary-names-long-paths-whole", test_summary_long_paths) &
             ]
     end subroutine collect_case
 
@@ -175,5 +176,25 @@ contains
         end do
         call check(error, approach(2) > approach(1), "the approach grows with the load")
     end subroutine test_approach_hertz
+
+    !> The summary's first line names the input and the output whole, however long (it was cut
+    !> at 120 characters)
+    subroutine test_summary_long_paths(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        character(len=summary_width), allocatable :: lines(:)
+        character(len=:), allocatable :: out
+        out = '/tmp/'//repeat('o', 250)//'/'//repeat('p', 250)//'.h5'
+        call read_text('summary', "&grid nx = 16, ny = 16 / &surface k_cut = 4 / &solver fft_planner='estimate' /"// &
+                       " &output file = '"//out//"' /", cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call case_results(cfg, c, r)
+        lines = summary_lines(cfg, c, r)
+        call check(error, index(lines(1), cfg%path) > 0 .and. index(lines(1), out) > 0, &
+                   "the header lacks a path: "//trim(lines(1)))
+    end subroutine test_summary_long_paths
 
 end module test_veslide_case

@@ -35,8 +35,12 @@ module veslide_case
     implicit none
     private
     public :: case_t, build_surface, build_material, build_kernel, case_grid, run_case, solve_prepared, &
-              case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines, &
+              case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines, summary_width, &
               case_memory, case_on_device
+
+    !> The length of a line of the run summary: two texts of the input (up to 1023 characters
+    !> each, the input's and the output's paths) and the words around them, never cut
+    integer, parameter :: summary_width = 2200
 
     !> Everything one solve produced
     type :: case_t
@@ -502,8 +506,8 @@ contains
         type(config_t), intent(in) :: cfg
         type(case_t), intent(in) :: c
         type(results_t), intent(in) :: r
-        character(len=120), allocatable :: lines(:)
-        character(len=120) :: b
+        character(len=summary_width), allocatable :: lines(:)
+        character(len=summary_width) :: b
         real(dp) :: hrms
         hrms = r%get('rms_height_m')
         allocate (lines(0))
@@ -563,7 +567,7 @@ contains
     contains
         function b_(t) result(l)
             character(len=*), intent(in) :: t
-            character(len=120) :: l
+            character(len=summary_width) :: l
             l = t
         end function b_
     end function summary_lines
