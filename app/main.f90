@@ -215,12 +215,18 @@ contains
     !> One line per finished case of a study, with the time left at the mean pace so far
     subroutine print_progress(info)
         type(study_progress_t), intent(in) :: info
+        if (info%case_number == 0) then
+            write (stdout, '("study resumed from its part file: ",i0," of ",i0," cases kept, ",i0," to run")') &
+                info%resumed, info%total, info%total - info%resumed
+            flush (stdout)
+            return
+        end if
         write (stdout, '("case ",i0,"/",i0,": seed ",i0,", eps ",f5.3,", alpha ",f6.1," deg, p ",es9.3, &
             &" Pa, v ",es9.3," m/s: area ",f8.5,", f ",es10.3,", ",i0," FFT pairs",a,", ",f7.2," s; elapsed ",f8.1, &
             &" s, left ~",f8.1," s")') info%done, info%total, info%seed, info%eccentricity, info%alpha_deg, &
             info%pressure_pa, info%speed_m_s, info%contact_area_fraction, info%friction_coefficient, &
             info%operator_applications, trim(merge('               ', ', NOT CONVERGED', info%converged)), &
-            info%case_s, info%elapsed_s, info%elapsed_s/info%done*(info%total - info%done)
+            info%case_s, info%elapsed_s, info%elapsed_s/(info%done - info%resumed)*(info%total - info%done)
         flush (stdout)
     end subroutine print_progress
 

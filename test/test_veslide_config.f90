@@ -110,8 +110,29 @@ contains
     subroutine collect_config_output(tests)
         type(unittest_t), allocatable, intent(out) :: tests(:)
         tests = [new_unittest("file-not-empty", test_output_file), &
-                 new_unittest("file-name-too-long", test_output_long)]
+                 new_unittest("file-name-too-long", test_output_long), &
+                 new_unittest("fields-by-default-for-a-case-not-a-study", test_output_fields)]
     end subroutine collect_config_output
+
+    !> Fields are written for a single case unless refused, and for a study only when asked
+    subroutine test_output_fields(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=*), parameter :: study = " &material model = 'one_term' / &sweep speeds_m_s = 0.1, 1 /"
+        call read_text('f1', "&grid nx = 32 / &surface k_cut = 8 /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%output%fields, "a case writes its fields"); if (allocated(error)) return
+        call read_text('f2', "&grid nx = 32 / &surface k_cut = 8 / &output fields = .false. /", cfg, error)
+        if (allocated(error)) return
+        call check(error, .not. cfg%output%fields, "a case told not to"); if (allocated(error)) return
+        call read_text('f3', "&grid nx = 32 / &surface k_cut = 8 /"//study, cfg, error); if (allocated(error)) return
+        call check(error, .not. cfg%output%fields, "a study writes no fields by default"); if (allocated(error)) return
+        call read_text('f4', "&grid nx = 32 / &surface k_cut = 8 / &output fields = .true. /"//study, cfg, error)
+        if (allocated(error)) return
+        call check(error, cfg%output%fields, "a study asked for its fields"); if (allocated(error)) return
+        call read_text('f5', "&grid nx = 32 / &surface k_cut = 8 / &output file = 'x.h5' /"//study, cfg, error)
+        if (allocated(error)) return
+        call check(error, .not. cfg%output%fields, "&output without fields in a study")
+    end subroutine test_output_fields
 
     !> Read `text` as a namelist file; return the error (if any) in `error`
     subroutine read_text(tag, text, cfg, error)

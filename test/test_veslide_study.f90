@@ -6,13 +6,18 @@ module test_veslide_study
     use veslide_hdf5, only: h5file_t
     use veslide_quantities, only: AXIAL_NONE, AXIAL_HALF_TURN, AXIAL_SYMMETRIC
     use veslide_case, only: case_t, run_case
-    use veslide_study, only: study_plan_t, plan_study, run_study, merge_study_parts, seed_statistics
+    use veslide_study, only: study_plan_t, plan_study, run_study, merge_study_parts, seed_statistics, &
+                             study_progress_t
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: unique_name
     use test_veslide_config, only: read_text
     use test_veslide_topography, only: write_heights
     implicit none
     private
+
+    !> The progress calls of a run (record_progress): the first and the last, and their count
+    type(study_progress_t) :: first_call, last_call
+    integer :: calls = 0
     public :: collect_study
 
     character(len=*), parameter :: base = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5 /"// &
@@ -221,7 +226,13 @@ contains
         call check(error, size(rb, 2) == 3 .and. .not. f%exists('/ensemble'), "stopped after 3 cases")
         if (allocated(error)) return
         call read_text('resume', study, cfg, error); if (allocated(error)) return
-        call run_study(cfg, part, nfail, error); if (allocated(error)) return
+        calls = 0
+        call run_study(cfg, part, nfail, error, progress=record_progress); if (allocated(error)) return
+        ! the resumed run says so before its first case and counts on from the kept cases
+        call check(error, calls == 6 .and. first_call%case_number == 0 .and. first_call%resumed == 3 .and. &
+                   first_call%done == 3 .and. first_call%total == 8 .and. last_call%done == 8 .and. &
+                   last_call%case_number > 0, "progress of the resumed run")
+        if (allocated(error)) return
         inquire (file=part//'.resume', exist=exists)
         call check(error, .not. exists, "resume file left behind"); if (allocated(error)) return
         do j = 1, 2
@@ -243,6 +254,13 @@ contains
                    "iterations: warm starts not restored", rel=0.02_dp)
         call remove(whole); call remove(part)
     end subroutine test_resume
+
+    subroutine record_progress(info)
+        type(study_progress_t), intent(in) :: info
+        calls = calls + 1
+        if (calls == 1) first_call = info
+        last_call = info
+    end subroutine record_progress
 
     !> A part file left by another input is not resumed, nor replaced: refused, naming it
     subroutine test_resume_other(error)

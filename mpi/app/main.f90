@@ -186,12 +186,18 @@ contains
 
     subroutine print_progress(info)
         type(study_progress_t), intent(in) :: info
+        if (info%case_number == 0) then
+            write (stdout, '("rank ",i0,"/",i0,": resumed from its part file: ",i0," of ",i0, &
+                &" cases kept, ",i0," to run")') rank, nranks, info%resumed, info%total, info%total - info%resumed
+            flush (stdout)
+            return
+        end if
         write (stdout, '("rank ",i0,"/",i0,": case ",i0," (",i0,"/",i0," of this rank): v ",es9.3," m/s, area ",f8.5, &
             &", f ",es10.3,", ",i0," FFT pairs",a,", ",f7.2," s; rank done in ~",f8.1," s")') rank, nranks, &
             info%case_number, info%done, info%total, info%speed_m_s, info%contact_area_fraction, &
             info%friction_coefficient, info%operator_applications, &
             trim(merge('               ', ', NOT CONVERGED', info%converged)), info%case_s, &
-            info%elapsed_s/info%done*(info%total - info%done)
+            info%elapsed_s/(info%done - info%resumed)*(info%total - info%done)
         flush (stdout)
     end subroutine print_progress
 

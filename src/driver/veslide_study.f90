@@ -53,9 +53,13 @@ module veslide_study
 
     !> What a progress callback is told after each case
     type :: study_progress_t
-        integer :: done = 0, total = 0              !! cases finished by this process, and its share
+        !> cases of this process's share finished (those kept from the part file of a resumed
+        !> study included), and its share
+        integer :: done = 0, total = 0
+        integer :: resumed = 0                      !! of them, kept from the part file
+        !> the case reported; 0 for the one call before any case, made when a study resumes
         real(dp) :: elapsed_s = 0.0_dp, case_s = 0.0_dp
-        integer :: case_number = 0                  !! global case number
+        integer :: case_number = 0
         integer(i8) :: seed = 0_i8
         real(dp) :: eccentricity = 0.0_dp, alpha_deg = 0.0_dp, pressure_pa = 0.0_dp, speed_m_s = 0.0_dp
         real(dp) :: contact_area_fraction = 0.0_dp, friction_coefficient = 0.0_dp
@@ -181,7 +185,8 @@ contains
         if (allocated(error)) return
 
         t_start = wall_seconds()
-        info%total = nmine - count(done)
+        info%total = nmine; info%resumed = count(done); info%done = info%resumed
+        if (info%resumed > 0 .and. present(progress)) call progress(info)
         surface_seed = -huge(1_i8); surface_ecc = -1.0_dp; surface_alpha = -huge(1.0_dp)
         do ic = 1, size(plan%chains)
             if (modulo(ic - 1, nranks) /= rank) cycle
@@ -198,7 +203,7 @@ contains
                     k = chain%first_case + iv - 1
                     if (done(k)) cycle
                     if (present(stop_after)) then
-                        if (info%done >= stop_after) then
+                        if (info%done - info%resumed >= stop_after) then
                             call f%close(error); return
                         end if
                     end if

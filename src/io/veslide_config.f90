@@ -155,6 +155,7 @@ contains
                      "only with &surface kind = 'self_affine'")
         if (allocated(error)) return
         if (cfg%sweep%n_seeds > 0) cfg%sweep%seeds = [(cfg%surface%seed + k, k = 0, cfg%sweep%n_seeds - 1)]
+        if (cfg%sweep%is_study() .and. .not. cfg%output%fields_given) cfg%output%fields = .false.
         call collect_warnings(cfg)
     end subroutine complete_config
 
