@@ -719,7 +719,8 @@ def refinement(ref, scalar="contact_area_fraction", ax=None, *, cells=True, **kw
         ax.axhline(e["extrapolated"], ls="--", color="0.4", lw=1)
     ax.set_xscale("log")
     if cells:                                   # every grid labelled by its nx
-        ax.set_xticks(x, [str(int(v)) for v in x], rotation=45 if len(x) > 5 else 0)
+        crowded = len(x) > 5 or (len(x) > 1 and np.min(np.diff(np.log(np.sort(x)))) < np.log(1.5))
+        ax.set_xticks(x, [str(int(v)) for v in x], rotation=45 if crowded else 0)   # 768, 1024 apart
         ax.minorticks_off()
     ax.set_xlabel("$n_x$ (cells along $x$)" if cells else label("cell_m", "m"))
     ax.set_ylabel(label(scalar, e["units"]))
