@@ -387,35 +387,42 @@ def _polar_points(ax, steps=24):
 
 
 def place_radial_labels(ax, candidates=None, pad_pt=1.5):
-    """Put the radial tick labels of a polar axes along the ray where they lie clear of the curves:
-    for each candidate angle [deg] (default: midway between the 45-degree grid lines) the figure is
-    laid out, and the points of the lines and error bars (with their markers) inside the labels'
-    boxes (grown by pad_pt) are counted; the angle with fewest, then the widest clearance, wins (the
-    first candidate on a tie). Call it after the last curve. Returns the angle chosen [deg]."""
+    """Put the radial tick labels of a polar axes along the ray where they lie clear of the curves.
+    For each candidate angle [deg] (default: midway between the 45-degree grid lines first, then
+    every 7.5 degrees) the labels are placed and the points of the lines and error bars (with their
+    markers) inside their boxes (grown by pad_pt) are counted: the angle with fewest wins, then the
+    one with the widest clearance (up to 3 pt; beyond that the earlier candidate). The figure is laid
+    out once, so call it after the last curve, legend and title. Returns the angle chosen [deg]."""
     fig = ax.figure
-    cands = [22.5 + 45 * k for k in range(8)] if candidates is None else list(candidates)
+    if candidates is None:
+        first = [22.5 + 45 * k for k in range(8)]
+        cands = first + [a for a in np.arange(0.0, 360.0, 7.5) if not np.any(np.isclose(a, first))]
+    else:
+        cands = list(candidates)
     pts, marker = _polar_points(ax)
     px = fig.dpi / 72.0
-    grow = (pad_pt + marker) * px
+    grow, enough = (pad_pt + marker) * px, 3.0 * px
+    fig.draw_without_rendering()                      # the layout, once
+    renderer = fig.canvas.get_renderer()
+    xy = ax.transData.transform(pts) if len(pts) else np.zeros((0, 2))
     best = None
     for k, angle in enumerate(cands):
         ax.set_rlabel_position(angle)
-        fig.draw_without_rendering()
-        renderer = fig.canvas.get_renderer()
+        ax.yaxis.get_tightbbox(renderer)              # places the tick labels at the new angle
         lo, hi = sorted(ax.get_ylim())
-        boxes = [t.get_window_extent(renderer) for tick, t in
-                 ((tick, tick.label1) for tick in ax.yaxis.get_major_ticks())
-                 if t.get_visible() and t.get_text() and lo <= tick.get_loc() <= hi]
-        xy = ax.transData.transform(pts) if len(pts) else np.zeros((0, 2))
         hits, clear = 0, np.inf
-        for b in boxes:
+        for tick in ax.yaxis.get_major_ticks():
+            t = tick.label1
+            if not (t.get_visible() and t.get_text() and lo <= tick.get_loc() <= hi):
+                continue
+            b = t.get_window_extent(renderer)
             dx = np.maximum(np.maximum(b.x0 - xy[:, 0], xy[:, 0] - b.x1), 0.0)
             dy = np.maximum(np.maximum(b.y0 - xy[:, 1], xy[:, 1] - b.y1), 0.0)
             d = np.hypot(dx, dy)
             hits += int(np.sum(d <= grow))
             if d.size:
                 clear = min(clear, float(d.min()))
-        score = (hits, -clear, k)
+        score = (hits, -min(clear, enough), k)
         if best is None or score < best[0]:
             best = (score, angle)
     ax.set_rlabel_position(best[1])
