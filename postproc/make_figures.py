@@ -10,7 +10,9 @@ fig1 .. fig7 (the paper's), fig8_stretch_rotation (sigma1, sigma2, phi against s
 alpha), fig9_pressure_gap (pressure and gap over the whole cell of the fig1 case),
 fig10_surface_psd (the PSD of the fig1 surface, radial and 2-D) and fig11_friction_direction
 (friction against the direction of sliding, from the fig4_5_7 study). NAMEs (e.g. fig2
-fig9_pressure_gap) draw only those.
+fig9_pressure_gap) draw only those. Titles are short or absent: what a figure shows (the scene,
+the pressure, the seeds behind each point, what colours and symbols mean) is its caption in
+docs/reproduction.md.
 """
 import os
 import sys
@@ -75,19 +77,6 @@ def _members(r, **match):
     return [r.cases[int(c)] for c in s["case"][sel]]
 
 
-def _note(r, fixed):
-    """Subtitle: the fixed parameters, the pressure and the number of seeds behind each point."""
-    s = r.summary
-    n = s["seed"].nunique()
-    return r"%s, $p_0$ = %.0f kPa; %s" % (fixed, s["pressure_pa"].iloc[0] / 1e3,
-                                          r"mean $\pm$ standard error over %d seeds" % n if n > 1 else "one surface")
-
-
-def _band_text(r):
-    z = _members(r)[0].anisotropy["band_zeta"]
-    return r"tensor band %g$q_0$ .. %g$q_0$" % (z[0], z[1])
-
-
 # -- figure 1 and the maps of its case -----------------------------------------------------------
 
 def fig1(r):
@@ -109,32 +98,18 @@ def fig1(r):
     a.set_xlim((-dx / 2) * 1e3, (lx - dx / 2) * 1e3)
     a.set_ylim((-dy / 2) * 1e3, (ly - dy / 2) * 1e3)
     vp.pressure_map(r, b, unit="MPa", window=window, arrow=False, zero_color="white")
-    b.set_title("zoom (red box) on the patch of highest pressure")
-    fig.suptitle(_case_text(r))
+    b.set_title("red box: the patch of highest pressure")
     return fig
-
-
-def _case_text(r):
-    s, inp = r.scalars, r.input
-    ecc = inp["surface"].get("eccentricity", 1.0)
-    what = "isotropic surface" if ecc == 1.0 else EPS % ecc
-    return r"%s (seed %d), $v\tau/L_0$ = %.2g, $p_0$ = %.0f kPa, %d$^2$ cells" % (
-        what, inp["surface"].get("seed", 1), s["speed_m_s"] * _speed_scale(r), s["mean_pressure_pa"] / 1e3, s["nx"])
 
 
 def fig9_pressure_gap(r):
     """Pressure (white out of contact) and gap over the whole cell of the fig1 case."""
     fig, (a, b) = plt.subplots(1, 2, figsize=(PAGE, 3.5))
     vp.pressure_map(r, a, unit="MPa", zero_color="white")
-    a.set_title(r"pressure $p$, $p_\mathrm{max}$ = %.2f MPa" "\n" "(white: no contact)" % (r.scalars["max_pressure_pa"] / 1e6))
+    a.set_title(r"pressure $p$ (white: no contact)")
     vp.gap_map(r, b, unit="um", contact_color="deepskyblue")
-    b.set_title(r"gap $g$, mean separation $s$ = %.2f $\mu$m" "\n" "(blue: contact)" % (r.scalars["mean_separation_m"] * 1e6))
-    fig.suptitle(_case_text(r))
+    b.set_title(r"gap $g$ (blue: contact)")
     return fig
-
-
-def _q(k):
-    return "$q_0$" if k == 1 else "%g$q_0$" % k
 
 
 def fig10_surface_psd(r):
@@ -145,32 +120,28 @@ def fig10_surface_psd(r):
     vp.psd(r, a, relative=True, hurst=surf.get("hurst", 0.8), q_max=surf.get("k_cut", 64.0) - 0.5, ms=2, lw=0.8,
            color="C0", label="realised")     # the shell at k_cut lies half outside the spectrum
     a.legend(loc="lower left")
-    a.set_title("shell average over $|\\mathbf{q}|$")
+    a.set_title(r"shell average over $|\mathbf{q}|$")
     a.set_xlabel(r"$|\mathbf{q}|/q_0$")
     vp.psd_2d(r, b, q_max=1.15 * surf.get("k_cut", 64.0))
-    b.set_title(r"over the plane ($q_0 = 2\pi/L$, $C = 0$ blank)")
-    ecc = surf.get("eccentricity", 1.0)
-    fig.suptitle(r"surface of figure 1: %s, $H$ = %g, spectrum %s .. %s (roll-off at %s), rms slope %g, %d$^2$ cells" % (
-        "isotropic" if ecc == 1.0 else EPS % ecc, surf.get("hurst", 0.8), _q(surf.get("k_low", 1.0)), _q(surf.get("k_cut", 64.0)),
-        _q(surf.get("k_roll", 1.0)), surf.get("rms_slope", 0.025), r.scalars["nx"]))
+    b.set_title(r"over the $(q_x, q_y)$ plane ($C$ = 0 blank)")
     return fig
 
 
 # -- figures 2 and 3: polar plots of m2 and mu2 --------------------------------------------------
 
-def _polar_axes(ax, title, zero=r"0° ($\mathbf{v}$)", angle=22.5, nbins=4):
-    """Angles every 45° (0: `zero`); radial ticks labelled along `angle` on a white ground,
-    above the curves."""
+def _polar_axes(ax, title, zero=r"0° ($\mathbf{v}$)", nbins=4):
+    """Angles every 45° (0: `zero`); radial ticks labelled along the ray where the labels lie
+    clear of the curves (veslide.plot.place_radial_labels). Call it after the last curve."""
     ax.set_title(title, pad=10)
     ax.figure.get_layout_engine().set(h_pad=0.1)     # room the layout misses above polar titles
     ax.set_thetagrids(range(0, 360, 45), [zero] + ["%d°" % t for t in range(45, 360, 45)])
     ax.tick_params(axis="x", pad=1)
     rmax = ax.get_rmax()
     ticks = [t for t in MaxNLocator(nbins, steps=[1, 2, 2.5, 5, 10]).tick_values(0, rmax) if 0 < t <= rmax]
-    ax.set_rgrids(ticks, [""] * len(ticks))
-    for t in ticks:
-        ax.text(np.radians(angle), t, "%g" % t, fontsize=6, ha="center", va="center", zorder=10,
-                bbox=dict(fc="white", ec="none", alpha=0.85, pad=0.4))
+    ax.set_rgrids(ticks, ["%g" % t for t in ticks])
+    vp.place_radial_labels(ax)
+    for label in ax.yaxis.get_ticklabels():         # legible where curves cross everywhere (fig3)
+        label.set_bbox(dict(fc="white", ec="none", alpha=0.7, pad=0.3))
 
 
 def _decade(values):
@@ -206,12 +177,6 @@ def fig2(r):
     _polar_axes(axs[0], r"rigid surface $m_2(\theta)\,/\,10^{%d}$" % em + "\n" + r"$\gamma_s$ = " + pm("gamma_s"))
     _polar_axes(axs[1], r"deformed solid $\mu_2(\theta)\,/\,10^{%d}$" % ed + "\n" + r"$\gamma_d$ = " + pm("gamma_d") +
                 r", $\theta_d$ = " + pm("theta_d_rad", 180 / np.pi, 1) + "° (dashed)")
-    ecc = members[0].input["surface"].get("eccentricity", 1.0)
-    fig.suptitle(r"%s, $v\tau/L_0$ = %.2f, $p_0$ = %.0f kPa; %s; %s" % (
-        "isotropic surface" if ecc == 1.0 else EPS % ecc, st["speed_m_s"][0] * _speed_scale(r),
-        st["mean_pressure_pa"][0] / 1e3, _band_text(r),
-        "red: mean of %d surfaces, grey: each surface" % n if n > 1 else "one surface") +
-        ("\n" + r"$\gamma$, $\theta$: mean $\pm$ standard error of the single surfaces' values" if n > 1 else ""))
     return fig
 
 
@@ -221,7 +186,7 @@ def fig3(r):
     per = [(al, *_curves(_members(r, alpha_deg=al) if r.is_study else [r])) for al in alphas]
     em = _decade(np.concatenate([c[2].ravel() for c in per]))
     ed = _decade(np.concatenate([c[3].ravel() for c in per]))
-    fig, axs = plt.subplots(1, 2, subplot_kw=dict(projection="polar"), figsize=(PAGE, 4.35))
+    fig, axs = plt.subplots(1, 2, subplot_kw=dict(projection="polar"), figsize=(PAGE, 4.1))
     n = 1
     for k, (al, theta, m2, mu2) in enumerate(per):
         st = _stats(r, alpha_deg=al) if r.is_study else _stats(r)
@@ -237,12 +202,7 @@ def fig3(r):
     _polar_axes(axs[0], r"rigid surface $m_2(\theta)\,/\,10^{%d}$" % em)
     _polar_axes(axs[1], r"deformed solid $\mu_2(\theta)\,/\,10^{%d}$" % ed)
     h, l = axs[1].get_legend_handles_labels()
-    fig.legend(h, l, loc="outside lower center", ncol=2, title=("curves: means over %d seeds" % n) if n > 1 else None)
-    ecc = _members(r)[0].input["surface"].get("eccentricity", 0.6)
-    st0 = _stats(r, alpha_deg=alphas[0]) if r.is_study else _stats(r)
-    fig.suptitle(r"$\varepsilon$ = %.2g, $v\tau/L_0$ = %.2f, $p_0$ = %.0f kPa; %s; $\alpha$: angle of the PSD's major "
-                 r"axis from $\mathbf{v}$" % (ecc, st0["speed_m_s"][0] * _speed_scale(r),
-                                              st0["mean_pressure_pa"][0] / 1e3, _band_text(r)))
+    fig.legend(h, l, loc="outside lower center", ncol=2)
     return fig
 
 
@@ -260,24 +220,15 @@ def cell_artefact_speed(r):
 
 
 def _speed_axes(ax, r):
-    """Grid, and the range of the cell artefact shaded grey and named in the widest vertical
-    gap the curves and their error bars leave in it."""
+    """Grid, and the range of the cell artefact shaded grey and named just above the axes at its
+    right end (outside the data, so never over a curve)."""
     ax.grid(True, which="major", lw=0.3, color="0.88")
     v = cell_artefact_speed(r)
     lo, hi = ax.get_xlim()
     if v is not None and v < hi:
-        ax.axvspan(v, hi, color="0.92", zorder=0, lw=0)
         y0, y1 = ax.get_ylim()
-        pts = [xy for line in ax.get_lines() for xy in zip(*line.get_data())]
-        pts += [xy for c in ax.collections for seg in c.get_segments() for xy in seg]
-        inside = sorted((y - y0) / (y1 - y0) for x, y in pts if np.isfinite(y) and x >= v)
-        edges = [0.0] + [min(max(y, 0.0), 1.0) for y in inside] + [1.0]
-        gaps = [(b - a, a, b) for a, b in zip(edges[:-1], edges[1:])]
-        top_gap = 1.0 - edges[-2]
-        _, a, b = max(gaps)
-        at, va = ((0.98, "top") if top_gap > 0.15 else ((a + b) / 2, "center") if b < 1.0 else (0.98, "top"))
-        ax.text(np.sqrt(v * hi), at, "cell\nartefact", transform=ax.get_xaxis_transform(),
-                ha="center", va=va, fontsize=6, color="0.45")
+        ax.axvspan(v, hi, color="0.92", zorder=0, lw=0)
+        ax.text(1.0, 1.0, "cell artefact", transform=ax.transAxes, ha="right", va="bottom", color="0.4")
         ax.set_xlim(lo, hi)
         ax.set_ylim(y0, y1)
 
@@ -316,10 +267,6 @@ def _legend(ax, reverse=False, where=None, **kw):
     return ax.legend(h, l, **kw)
 
 
-def _ecc_text(r):
-    return EPS % r.summary["eccentricity"].iloc[0]
-
-
 def fig4(r):
     fig, (a, b) = plt.subplots(1, 2, figsize=(PAGE, 2.9))
     drawn = _against_speed(r, "contact_area_fraction", a, "alpha_deg", r"contact area $A/A_0$",
@@ -329,7 +276,6 @@ def fig4(r):
     _speed_axes(a, r)
     _speed_axes(b, r)
     _legend(a, where="below")
-    fig.suptitle(_note(r, _ecc_text(r)) + ("; dashed: " + PERSSON if drawn else ""))
     return fig, drawn
 
 
@@ -344,7 +290,6 @@ def fig5(r):
     fig, ax, drawn = _single(r, "friction_coefficient", "alpha_deg", r"friction $f = F_x/F_n$",
                              "persson_friction_coefficient")
     _legend(ax, where="right")
-    fig.suptitle(_note(r, _ecc_text(r)))
     return fig, drawn
 
 
@@ -352,7 +297,6 @@ def fig6(r):
     fig, ax, drawn = _single(r, "friction_coefficient", "eccentricity", r"friction $f = F_x/F_n$",
                              "persson_friction_coefficient")
     _legend(ax, reverse=True, where="right")           # eps descending, as the curves stack
-    fig.suptitle(_note(r, r"$\alpha$ = %.0f°" % r.summary["alpha_deg"].iloc[0]))
     return fig, drawn
 
 
@@ -361,7 +305,6 @@ def fig7(r):
                              "persson_lateral_force_ratio")
     ax.axhline(0, color="k", lw=0.5)
     _legend(ax, where="right")
-    fig.suptitle(_note(r, _ecc_text(r)) + "\n" + r"$F_y$: along +y, 90° counter-clockwise from $\mathbf{v}$")
     return fig, drawn
 
 
@@ -375,7 +318,6 @@ def fig8(r):
         _speed_axes(ax, r)
     axs[2].axhline(0, color="k", lw=0.5)
     _legend(axs[0], where="below")
-    fig.suptitle(_note(r, _ecc_text(r)) + "; eq. (16) of the deformed slope tensor, " + _band_text(r))
     return fig, False
 
 
@@ -392,13 +334,9 @@ def fig11_friction_direction(r, targets=(0.01, 0.1, 1.0)):
     vp.friction_polar(r, ax, speeds=pick, mirror=True, legend=False, ms=3, capsize=1.5, lw=1.0,
                       formats={"speed_m_s": lambda v: r"$v\tau/L_0$ = %.2g" % (v * scale)})
     ax.set_rmax(1.12 * max(np.max(line.get_ydata()) for line in ax.get_lines() if len(line.get_ydata())))
-    _polar_axes(ax, r"friction $f$ against the direction $\theta$ of $\mathbf{v}$" "\n"
-                r"from the PSD's major axis ($\theta$ = 0: along it)", zero="0°", angle=202.5)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), ncol=len(pick), handletextpad=0.3, columnspacing=1.0)
-    alphas = np.unique(r.summary["alpha_deg"])
-    fig.suptitle((r"%s" "\n" r"filled: computed ($\mathbf{v}$ along $x$, surface turned by $\alpha$ = %g° .. %g°: "
-                  r"$\theta = -\alpha$)" "\n" r"open: their images under $C(\mathbf{q}) = C(-\mathbf{q})$ and the mirror "
-                  r"about the PSD's axes") % (_note(r, _ecc_text(r)), alphas[0], alphas[-1]), fontsize=7)
+    _polar_axes(ax, r"friction $f$ against the direction $\theta$ of $\mathbf{v}$" "\n"
+                r"from the PSD's major axis", zero="0°")
     return fig
 
 

@@ -7,13 +7,17 @@ docs/figures/refinement.png). Each table is a `Refinement.table` written with `t
 default scene (inputs/default.nml, viscoelastic) refined from 256^2 to 2048^2, and the
 bisinusoid of docs/validation.md from 32^2 to 8192^2 (drawn on the doubling grids from 128^2). Left: its contact
 area, sub-cell and cell count; middle: its friction coefficient; right: the bisinusoid's area.
-Error bars: the band of the finest grid; dashed: the extrapolated value.
+Error bars: the band of the finest grid; dashed: the extrapolated value. Drawn in the paper style
+(veslide.plot.paper_style: 7 in across, 8 pt text), PNG at 300 dpi; the tables are measurements,
+this script only draws them.
 """
+import os
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
@@ -24,6 +28,9 @@ UNITS = {"contact_area_fraction": "-", "contact_area_fraction_cells": "-", "mean
          "friction_coefficient": "-", "lateral_force_ratio": "-"}
 
 
+PAGE = 7.0                          # width [in] across a journal page, as postproc/make_figures.py
+
+
 def main(default="docs/figures/refinement-default.csv", bisinusoid="docs/figures/refinement-bisinusoid.csv",
          out="docs/figures/refinement.png"):
     ref = Refinement.from_table(pd.read_csv(default, index_col="nx"), units=UNITS)
@@ -31,18 +38,21 @@ def main(default="docs/figures/refinement-default.csv", bisinusoid="docs/figures
     doubling = [n for n in bis_table.index if n >= 128 and n & (n - 1) == 0]      # 128, 256, ... 8192
     bis = Refinement.from_table(bis_table.loc[doubling], units=UNITS)
     with vp.paper_style():
-        fig, axs = plt.subplots(1, 3, figsize=(11, 3.5), constrained_layout=True)
-        for ax, r, title in ((axs[0], ref, "inputs/default.nml (viscoelastic)"),
-                             (axs[2], bis, "bisinusoid, p/p* = 0.1 (elastic)")):
-            vp.refinement(r, "contact_area_fraction", ax, label="sub-cell")
-            vp.refinement(r, "contact_area_fraction_cells", ax, label="cell count", marker="s")
-            ax.set_ylabel("contact area fraction")
-            ax.set_title(title, fontsize="small")
-            ax.legend(fontsize="small")
-        vp.refinement(ref, "friction_coefficient", axs[1])
-        band = ref.estimate.loc["friction_coefficient", "error"]
-        axs[1].set_title("inputs/default.nml: friction, band %.1e" % band, fontsize="small")
-        fig.savefig(out, dpi=120)
+        fig, axs = plt.subplots(1, 3, figsize=(PAGE, 2.5))
+        for ax, r, title in ((axs[0], ref, "default scene: contact area"),
+                             (axs[2], bis, "bisinusoid: contact area")):
+            vp.refinement(r, "contact_area_fraction", ax, label="sub-cell", ms=3)
+            vp.refinement(r, "contact_area_fraction_cells", ax, label="cell count", marker="s", ms=3)
+            ax.set_ylabel(r"$A/A_0$")
+            ax.set_title(title)
+            ax.legend(loc="upper right")
+        vp.refinement(ref, "friction_coefficient", axs[1], ms=3)
+        axs[1].set_ylabel(r"friction $\mu$")
+        axs[1].set_title("default scene: friction")
+        for ax in axs:
+            ax.ticklabel_format(axis="y", useOffset=False)
+        vp.save(fig, out, formats=("png",))
+        plt.close(fig)
     print("wrote", out)
 
 

@@ -15,6 +15,8 @@ usage: python postproc/study_tables.py band|cells RESULTS_DIR OUT_DIR
          contact area and lateral force against speed per alpha (or eps), ratios BEM/theory taken
          seed by seed, and the solve times; writes OUT_DIR/<RESULTS_DIR's name>_persson.png.
 Tables are markdown, printed to stdout and written to RESULTS_DIR/table.md (persson: persson.md).
+Figures are drawn in the paper style (7 in across, 8 pt text) as PNG at 300 dpi, with short titles:
+what they show is said in docs/reproduction.md.
 """
 import glob
 import os
@@ -28,8 +30,12 @@ import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [os.path.join(os.path.dirname(HERE), "python"), HERE]   # this checkout's package first
+import veslide.plot as vp  # noqa: E402
 import veslide_results as vr  # noqa: E402
+
+PAGE = 7.0       # figures drawn at their printed size (7 in across, 8 pt text: vp.paper_style), PNG 300 dpi
 
 def stats(x, name=""):
     """mean, standard error, min, max over seeds (veslide_results.seed_stats)."""
@@ -116,36 +122,43 @@ def band(results, outdir):
         fh.write(table + "\n")
 
     zz = np.array([r["zeta1"] for r in rows])
-    fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+    with vp.paper_style():
+        _band_figure(rows, per_seed, zz, outdir)
+
+
+def _band_figure(rows, per_seed, zz, outdir):
+    fig, (a, b) = plt.subplots(1, 2, figsize=(PAGE, 2.9))
     for k, r in enumerate(rows):
         s = per_seed[r["zeta1"]]
         jitter = 0.12 * (np.arange(len(s["seed"])) / max(1, len(s["seed"]) - 1) - 0.5)
-        a.plot(r["zeta1"] + jitter, s["gamma_d"], ".", color="0.7", ms=4,
-               label=None)
+        a.plot(r["zeta1"] + jitter, s["gamma_d"], ".", color="0.7", ms=3,
+               label="single surfaces" if k == 0 else None)
         td = np.degrees(r["theta_d_rad"][0] + (s["theta_d_rad"] - r["theta_d_rad"][0]
                                                 - np.pi * np.round((s["theta_d_rad"] - r["theta_d_rad"][0]) / np.pi)))
-        b.plot(r["zeta1"] + jitter, td, ".", color="0.7", ms=4)
+        b.plot(r["zeta1"] + jitter, td, ".", color="0.7", ms=3)
     g = np.array([r["gamma_d"][:2] for r in rows])
     gs = np.array([r["gamma_s"][:2] for r in rows])
     t = np.array([r["theta_d_rad"][:2] for r in rows])
     n = rows[0]["n"]
-    a.errorbar(zz, g[:, 0], yerr=g[:, 1], fmt="o-", capsize=3, color="C0",
-               label=r"$\gamma_d$, mean $\pm$ SE (%d seeds)" % n)
-    a.errorbar(zz, gs[:, 0], yerr=gs[:, 1], fmt="s--", capsize=3, color="C2", ms=4,
+    a.errorbar(zz, g[:, 0], yerr=g[:, 1], fmt="o-", ms=3, color="C0",
+               label=r"mean $\pm$ SE over %d seeds" % n)
+    a.errorbar(zz, gs[:, 0], yerr=gs[:, 1], fmt="s--", color="C2", ms=3,
                label=r"$\gamma_s$ (rigid surface), mean $\pm$ SE")
-    a.axhline(0.37, color="C3", lw=1, ls=":", label=r"paper: $\gamma_d$ = 0.37")
-    a.set_xlabel(r"lower band edge $\zeta_1$ (band $\zeta_1 q_0 \leq |q| \leq 64 q_0$)")
+    a.axhline(0.37, color="C3", lw=1, ls=":", label=r"paper ($\gamma_d$ = 0.37, $\theta_d$ = 90°)")
+    b.errorbar(zz, np.degrees(t[:, 0]), yerr=np.degrees(t[:, 1]), fmt="o-", ms=3, color="C0")
+    b.axhline(90, color="C3", lw=1, ls=":")
+    for ax in (a, b):
+        ax.set_xlabel(r"lower band edge $\zeta_1$ (band $\zeta_1 q_0$ .. $64 q_0$)")
+        ax.grid(True, lw=0.3, color="0.88")
     a.set_ylabel(r"$\gamma = \lambda_\min / \lambda_\max$")
-    a.set_ylim(0, 1.05); a.legend(fontsize=8, loc="center right")
-    b.errorbar(zz, np.degrees(t[:, 0]), yerr=np.degrees(t[:, 1]), fmt="o-", capsize=3, color="C0",
-               label=r"$\theta_d$, mean $\pm$ SE")
-    b.axhline(90, color="C3", lw=1, ls=":", label=r"paper: $\theta_d \approx$ 90°")
-    b.set_xlabel(r"lower band edge $\zeta_1$ (band $\zeta_1 q_0 \leq |q| \leq 64 q_0$)")
-    b.set_ylabel(r"$\theta_d$ [deg] (0 = along $\mathbf{v}$)")
-    b.legend(fontsize=8)
-    fig.suptitle(r"figure-2 scene: isotropic surface, $v\tau/L_0$ = 0.13, p = 32 kPa, 512$^2$; grey: single surfaces", fontsize=10)
-    fig.tight_layout(); out = os.path.join(outdir, "band_zeta1.png")
-    fig.savefig(out, dpi=110); plt.close(fig)
+    a.set_ylim(0, 1.05)
+    a.set_title(r"degree of anisotropy $\gamma_d$ (deformed)")
+    b.set_ylabel(r"$\theta_d$ [°] (0: along $\mathbf{v}$)")
+    b.set_title(r"major axis $\theta_d$ (deformed)")
+    h, lab = a.get_legend_handles_labels()
+    fig.legend(h, lab, loc="outside lower center", ncol=2)
+    out = os.path.join(outdir, "band_zeta1.png")
+    vp.save(fig, out, formats=("png",)); plt.close(fig)
     print("wrote", out)
 
 
@@ -240,8 +253,15 @@ def cells(results, outdir):
     with open(os.path.join(results, "table.md"), "w") as fh:
         fh.write(table + "\n")
 
-    # figure: top row the fast limit, bottom row the slow control
-    fig, axs = plt.subplots(len(speeds), 3, figsize=(14, 4 * len(speeds)), squeeze=False)
+    with vp.paper_style():
+        _cells_figure(data, res, speeds, results, outdir)
+
+
+def _cells_figure(data, res, speeds, results, outdir):
+    """Top row the fastest speed, the others below: A(alpha)/A(0), A/A(E = Einf) (or friction),
+    sigma1/sigma2 against alpha, one colour per cell."""
+    fig, axs = plt.subplots(len(speeds), 3, figsize=(PAGE, 2.3 * len(speeds) + 0.5), squeeze=False)
+    dotted = False
     ticks = [0, 22.5, 45, 67.5, 90]
     for row, speed in enumerate(sorted(speeds, reverse=True)):
         has_einf = any("a_over_einf" in r for (m, n, v, a), r in res.items() if v == speed)
@@ -255,41 +275,46 @@ def cells(results, outdir):
             c = "C%d" % k
             ls = "-" if len(keys) > 2 else "--"     # two angles only: the line is no interpolation
             g = get("a_over_a0")
-            axs[row, 0].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=4, capsize=3, color=c, ls=ls, label=lab)
+            axs[row, 0].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=3, color=c, ls=ls, label=lab)
             if has_einf:
                 if "a_over_einf" in res[(d["m"], d["n"], speed, keys[0])]:
                     g = get("a_over_einf")
-                    axs[row, 1].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=4, capsize=3, color=c, ls=ls, label=lab)
+                    axs[row, 1].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=3, color=c, ls=ls, label=lab)
             else:
                 g = get("f")
-                axs[row, 1].errorbar(al, g[:, 0] * 1e3, yerr=g[:, 1] * 1e3, marker="o", ms=4, capsize=3,
+                axs[row, 1].errorbar(al, g[:, 0] * 1e3, yerr=g[:, 1] * 1e3, marker="o", ms=3,
                                      color=c, ls=ls, label=lab)
             g = get("sigma_ratio")
-            axs[row, 2].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=4, capsize=3, color=c, ls=ls, label=lab)
+            axs[row, 2].errorbar(al, g[:, 0], yerr=g[:, 1], marker="o", ms=3, color=c, ls=ls, label=lab)
             if has_einf and "sigma_ratio_einf" in res[(d["m"], d["n"], speed, keys[0])]:
                 g = get("sigma_ratio_einf")
-                axs[row, 2].plot(al, g[:, 0], ls=":", marker="x", color=c)
+                axs[row, 2].plot(al, g[:, 0], ls=":", marker="x", ms=3, color=c)
+                dotted = True
         title = r"$v\tau/L_0$ = %g" % speed
         axs[row, 0].set_ylabel(r"$A(\alpha)/A(0)$, same seed")
         axs[row, 0].axhline(1.0, color="k", lw=0.5)
         if has_einf:
-            axs[row, 1].set_ylabel(r"$A / A(E = E_\infty)$, same surface")
+            axs[row, 1].set_ylabel(r"$A / A(E = E_\infty)$")
             axs[row, 1].axhline(1.0, color="k", lw=0.5)
-            axs[row, 2].set_title(title + r"; dotted: $E = E_\infty$ (continuum fast limit)", fontsize=9)
         else:
             axs[row, 1].set_ylabel(r"friction $f$ [$10^{-3}$]")
-            axs[row, 2].set_title(title, fontsize=9)
         axs[row, 2].set_ylabel(r"$\sigma_1/\sigma_2$")
         axs[row, 2].axhline(1.0, color="k", lw=0.5)
         for ax in axs[row]:
-            ax.set_xlabel(r"$\alpha$ [deg]"); ax.set_xticks(ticks)
-            ax.grid(True, lw=0.3, color="0.85")
-        for ax in axs[row, :2]:
-            ax.set_title(title, fontsize=9)
-        axs[row, 0].legend(fontsize=8)
-    fig.suptitle(r"$\varepsilon$ = 0.6, p = 32 kPa: periodic cells of side L, mean $\pm$ SE over seeds", fontsize=10)
-    fig.tight_layout(); out = os.path.join(outdir, os.path.basename(os.path.normpath(results)) + "_alpha.png")
-    fig.savefig(out, dpi=110); plt.close(fig)
+            ax.set_xlabel(r"$\alpha$ [°]"); ax.set_xticks(ticks, ["0", "22.5", "45", "67.5", "90"])
+            ax.grid(True, lw=0.3, color="0.88")
+            ax.set_title(title)
+    h, lab = [], []
+    for ax in axs.ravel():                                 # every cell once, in the order drawn
+        for hh, ll in zip(*ax.get_legend_handles_labels()):
+            if ll not in lab:
+                h.append(hh); lab.append(ll)
+    if dotted:
+        h.append(plt.Line2D([], [], ls=":", marker="x", ms=3, color="0.3"))
+        lab.append(r"$\sigma_1/\sigma_2$ on $E = E_\infty$ (continuum fast limit)")
+    fig.legend(h, lab, loc="outside lower center", ncol=min(len(lab), 3))
+    out = os.path.join(outdir, os.path.basename(os.path.normpath(results)) + "_alpha.png")
+    vp.save(fig, out, formats=("png",)); plt.close(fig)
     print("wrote", out)
 
 
@@ -362,32 +387,36 @@ def persson(results, outdir):
     with open(os.path.join(results, "persson.md"), "w") as fh:
         fh.write(table + "\n")
 
-    fig, axs = plt.subplots(len(studies), 2, figsize=(11, 4.2 * len(studies)), squeeze=False)
+    with vp.paper_style():
+        _persson_figure(studies, data, results, outdir)
+
+
+def _persson_figure(studies, data, results, outdir):
+    """Per study a row: the ratios BEM/theory of friction and contact area against speed, one
+    colour per member, the cell artefact's speeds grey."""
+    fig, axs = plt.subplots(len(studies), 2, figsize=(PAGE, 2.5 * len(studies)), squeeze=False)
     for row, (name, p, key, sym) in enumerate(studies):
         for k, (m, rows) in enumerate(data[name].items()):
             x = np.array([r[0] for r in rows])
             lab = (r"$\alpha$ = %.1f°" % m) if sym == "alpha" else (r"$\varepsilon$ = %.1f" % m)
             for col, (q, qlab) in enumerate(PERSSON_Q):
                 g = np.array([r[1][q][4:] for r in rows])
-                axs[row, col].errorbar(x, g[:, 0], yerr=g[:, 1], marker="o", ms=3, capsize=2, color="C%d" % k, label=lab)
+                axs[row, col].errorbar(x, g[:, 0], yerr=g[:, 1], marker="o", ms=2.5, lw=1.0, color="C%d" % k, label=lab)
         ratio = vr.namelist_value(p, "ratio", None)
         theory = r"$S = 1/2 + P^2/2$" if _s_correction(p) else r"$S = 1$"
         for col, (q, qlab) in enumerate(PERSSON_Q):
             ax = axs[row, col]
             ax.set_xscale("log"); ax.axhline(1.0, color="k", lw=0.5)
             ax.set_xlabel(r"$v\tau/L_0$"); ax.set_ylabel(r"%s: BEM / Persson" % qlab)
-            ax.grid(True, which="major", lw=0.3, color="0.85")
+            ax.grid(True, which="major", lw=0.3, color="0.88")
             if ratio is not None:             # the cell artefact's speeds (make_figures.cell_artefact_speed)
                 lo, hi = ax.get_xlim()
                 ax.axvspan(ratio * vr.namelist_value(p, "k_roll", 1.0) / (2 * np.pi), hi, color="0.9", zorder=0, lw=0)
                 ax.set_xlim(lo, hi)
-            ax.set_title("%s, theory with %s: %s, mean $\\pm$ SE of the ratio over seeds" % (name, theory, qlab),
-                         fontsize=9)
-        axs[row, 0].legend(fontsize=8)
-    fig.suptitle("Boundary elements against Persson's theory on the same realised surfaces; grey: cell artefact",
-                 fontsize=10)
-    fig.tight_layout(); out = os.path.join(outdir, os.path.basename(os.path.normpath(results)) + "_persson.png")
-    fig.savefig(out, dpi=110); plt.close(fig)
+            ax.set_title("%s, %s: %s" % (name, theory, qlab))
+        axs[row, 1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
+    out = os.path.join(outdir, os.path.basename(os.path.normpath(results)) + "_persson.png")
+    vp.save(fig, out, formats=("png",)); plt.close(fig)
     print("wrote", out)
 
 

@@ -176,3 +176,69 @@ def test_save_writes_png_pdf_and_svg(tmp_path):
         assert im.info["dpi"] == pytest.approx((300, 300), abs=0.01)
         assert 900 < im.size[0] <= 1020 and 650 < im.size[1] <= 750     # 3.4 x 2.5 in, trimmed to the ink
     assert b"CreationDate" not in open(paths[1], "rb").read()
+
+
+def _overlaps(boxes):
+    """Pairs of display boxes that overlap (each a matplotlib Bbox)."""
+    return [(i, j) for i in range(len(boxes)) for j in range(i + 1, len(boxes))
+            if boxes[i].overlaps(boxes[j])]
+
+
+def _angle_labels(axes):
+    """(texts, boxes) of the drawn angle tick labels of polar axes, all together."""
+    fig = axes[0].figure
+    fig.draw_without_rendering()
+    r = fig.canvas.get_renderer()
+    texts, boxes = [], []
+    for ax in axes:
+        for tick in ax.xaxis.get_major_ticks():
+            if tick.label1.get_visible() and tick.label1.get_text():
+                texts.append(tick.label1.get_text())
+                boxes.append(tick.label1.get_window_extent(r))
+    return texts, boxes
+
+
+def test_default_polar_plots_have_clear_angle_labels_and_one_stated_radial_scale(case, study):
+    pair = vp.anisotropy_polar(case)                         # returns the pair of axes it made
+    assert len(pair) == 2 and pair[0].figure is pair[1].figure
+    texts, boxes = _angle_labels(list(pair))
+    assert len(texts) == 16 and len(set(texts[:8])) == 8      # 8 distinct angles per axes
+    assert _overlaps(boxes) == []                             # no "0°180°" between the two axes
+    for ax, base in zip(pair, ("m2_surface", "mu2_deformed")):
+        e = int(np.floor(np.log10(case.anisotropy[base].max())))
+        assert r"10^{%d}" % e in ax.get_title()              # the one factor, stated in the title
+        assert not ax.yaxis.offsetText.get_visible()
+        ticks = [t for t in ax.yaxis.get_major_ticks() if t.label1.get_text()]
+        assert ticks
+        for t in ticks:                                      # plain numbers: the radius / 10^e
+            text = t.label1.get_text().replace(r"\mathdefault{", "").strip("${}").replace("\u2212", "-")
+            assert float(text) == pytest.approx(t.get_loc() / 10.0 ** e)
+        assert len(ax.get_title().split("\n")) <= 2 and max(len(t) for t in ax.get_title().split("\n")) < 60
+    ax = vp.friction_polar(study, mirror=True)
+    texts, boxes = _angle_labels([ax])
+    assert len(set(texts)) == 8 and _overlaps(boxes) == []
+    assert "\n" not in ax.get_title() and len(ax.get_title()) < 60
+
+
+def test_radial_labels_are_put_clear_of_the_curves():
+    fig, ax = plt.subplots(subplot_kw=dict(projection="polar"))
+    theta = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(theta, 1.0 + 0.5 * np.cos(2 * theta))             # a peanut: long along 0 and 180 deg
+    ax.set_rmax(1.6)
+    ax.set_rgrids([0.5, 1.0, 1.5])
+    angle = vp.place_radial_labels(ax)
+    fig.draw_without_rendering()
+    r = fig.canvas.get_renderer()
+    xy = ax.transData.transform(np.column_stack([theta, 1.0 + 0.5 * np.cos(2 * theta)]))
+    for tick in ax.yaxis.get_major_ticks():
+        b = tick.label1.get_window_extent(r)
+        inside = (xy[:, 0] >= b.x0) & (xy[:, 0] <= b.x1) & (xy[:, 1] >= b.y0) & (xy[:, 1] <= b.y1)
+        assert not inside.any(), (angle, tick.get_loc())
+    assert vp.radial_scale(ax) == 0                            # radii near 1: labelled as they are
+
+
+def test_contact_map_names_its_area():
+    p = np.zeros((8, 8))
+    p[:2, :2] = 1.0
+    ax = vp.contact_map(p, length_m=0.01)
+    assert "0.0625 (fraction of cells)" in ax.get_title()

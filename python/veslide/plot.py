@@ -14,7 +14,7 @@ import os
 import matplotlib as mpl
 import numpy as np
 import matplotlib.pyplot as plt
-from matplotlib.ticker import MaxNLocator
+from matplotlib.ticker import MaxNLocator, ScalarFormatter
 import pandas as pd
 
 from . import topography as _topo
@@ -116,7 +116,7 @@ def label(name, units=None):
 
 def _new_axes(ax, polar=False):
     if ax is None:
-        _, ax = plt.subplots(subplot_kw=dict(projection="polar") if polar else None)
+        _, ax = plt.subplots(subplot_kw=dict(projection="polar") if polar else None, layout="constrained")
     elif polar and getattr(ax, "name", "") != "polar":
         raise ValueError("this plot needs a polar axes (subplot_kw=dict(projection='polar'))")
     if polar:
@@ -192,16 +192,21 @@ def _velocity_arrow(ax, source):
 
 
 def contact_map(source, ax=None, *, length_m=None, window=None, arrow=True):
-    """Contact cells (p > 0) in black; the title gives A/A0 (the file's sub-cell estimate for a
-    Result, else the fraction of cells); an arrow shows v (of the rigid surface) when the source
-    is a Result of a sliding case (arrow=False: none). window = (x0, y0, width, height) [m]
-    draws that part of the periodic cell only."""
+    """Contact cells (p > 0) in black; the title gives A/A0, named for what it is: for a Result
+    the file's primary `contact_area_fraction` (the sub-cell estimate; the black cells are its
+    `contact_area_fraction_cells`), else the fraction of cells. An arrow shows v (of the rigid
+    surface) when the source is a Result of a sliding case (arrow=False: none). window = (x0, y0,
+    width, height) [m] draws that part of the periodic cell only."""
     ax = _new_axes(ax)
     p, lx, ly, _ = _field(source, "pressure_pa", length_m)
     contact = p > 0
     _map(ax, contact.astype(float), lx, ly, window, cmap="gray_r", vmin=0, vmax=1)
-    area = (getattr(source, "scalars", None) or {}).get("contact_area_fraction", contact.mean())
-    ax.set_title(r"contact (black), $A/A_0$ = %.4f" % area)
+    scalars = getattr(source, "scalars", None) or {}
+    if "contact_area_fraction" in scalars:          # the file's primary area: the sub-cell estimate
+        area, what = scalars["contact_area_fraction"], "sub-cell estimate"
+    else:
+        area, what = contact.mean(), "fraction of cells"
+    ax.set_title(r"contact (black), $A/A_0$ = %.4f (%s)" % (area, what))
     if arrow:
         _velocity_arrow(ax, source)
     return ax
@@ -317,6 +322,113 @@ def psd_2d(source, ax=None, *, length_m=None, cmap="viridis", colorbar=True, q_m
     return ax
 
 
+# radii whose largest value lies in these decades are labelled as they are (0.01 .. 999); others as
+# multiples of a power of ten, one factor per polar axes, stated by the caller (title) or the offset text
+_PLAIN_DECADES = (-2, 2)
+
+
+def _drawn_radii(ax):
+    """The radii of every line drawn on a polar axes."""
+    out = [np.asarray(line.get_ydata(), dtype=float) for line in ax.lines]
+    out = [r[np.isfinite(r)] for r in out if np.size(r)]
+    return np.concatenate(out) if out else np.array([])
+
+
+def radial_scale(ax, exponent=None):
+    """One radial scale for a polar axes: its tick labels as they are when the largest radius drawn
+    lies between 0.01 and 1000, else as multiples of 10^e, e the decade of the largest radius
+    (or `exponent`). The factor is shown as the axis' offset text ('x10^e'); a caller that states it
+    elsewhere (a title '/ 10^e') hides that with ax.yaxis.offsetText.set_visible(False). Returns e
+    (0: no factor)."""
+    if exponent is None:
+        r = np.abs(_drawn_radii(ax))
+        top = r.max() if r.size and r.max() > 0 else 1.0
+        exponent = int(np.floor(np.log10(top)))
+        if _PLAIN_DECADES[0] <= exponent <= _PLAIN_DECADES[1]:
+            exponent = 0
+    fmt = ScalarFormatter(useMathText=True, useOffset=False)
+    fmt.set_powerlimits((exponent, exponent) if exponent else (-1000, 1000))
+    ax.yaxis.set_major_formatter(fmt)
+    return exponent
+
+
+def _scale_text(exponent):
+    return r" / $10^{%d}$" % exponent if exponent else ""
+
+
+def _polar_points(ax, steps=24):
+    """(theta, r) points along every line and error bar of a polar axes, each segment divided in
+    `steps` (polar lines are drawn straight in (theta, r)), and the largest marker radius [pt]."""
+    pieces, marker = [], 0.0
+    for line in ax.lines:
+        t, r = (np.asarray(v, dtype=float) for v in line.get_data())
+        if t.size == 0:
+            continue
+        if line.get_marker() not in (None, "None", "none", "", " "):
+            marker = max(marker, line.get_markersize() / 2)
+        pieces.append((t, r))
+    for c in ax.collections:
+        for seg in getattr(c, "get_segments", lambda: [])():
+            seg = np.asarray(seg, dtype=float)
+            if seg.ndim == 2 and len(seg):
+                pieces.append((seg[:, 0], seg[:, 1]))
+    pts = []
+    for t, r in pieces:
+        ok = np.isfinite(t) & np.isfinite(r)
+        t, r = t[ok], r[ok]
+        if t.size == 1:
+            pts.append(np.column_stack([t, r]))
+        elif t.size > 1:
+            f = np.linspace(0.0, 1.0, steps, endpoint=False)
+            tt = (t[:-1, None] + f * np.diff(t)[:, None]).ravel()
+            rr = (r[:-1, None] + f * np.diff(r)[:, None]).ravel()
+            pts.append(np.column_stack([np.append(tt, t[-1]), np.append(rr, r[-1])]))
+    return (np.concatenate(pts) if pts else np.zeros((0, 2))), marker
+
+
+def place_radial_labels(ax, candidates=None, pad_pt=1.5):
+    """Put the radial tick labels of a polar axes along the ray where they lie clear of the curves.
+    For each candidate angle [deg] (default: midway between the 45-degree grid lines first, then
+    every 7.5 degrees) the labels are placed and the points of the lines and error bars (with their
+    markers) inside their boxes (grown by pad_pt) are counted: the angle with fewest wins, then the
+    one with the widest clearance (up to 3 pt; beyond that the earlier candidate). The figure is laid
+    out once, so call it after the last curve, legend and title. Returns the angle chosen [deg]."""
+    fig = ax.figure
+    if candidates is None:
+        first = [22.5 + 45 * k for k in range(8)]
+        cands = first + [a for a in np.arange(0.0, 360.0, 7.5) if not np.any(np.isclose(a, first))]
+    else:
+        cands = list(candidates)
+    pts, marker = _polar_points(ax)
+    px = fig.dpi / 72.0
+    grow, enough = (pad_pt + marker) * px, 3.0 * px
+    fig.draw_without_rendering()                      # the layout, once
+    renderer = fig.canvas.get_renderer()
+    xy = ax.transData.transform(pts) if len(pts) else np.zeros((0, 2))
+    best = None
+    for k, angle in enumerate(cands):
+        ax.set_rlabel_position(angle)
+        ax.yaxis.get_tightbbox(renderer)              # places the tick labels at the new angle
+        lo, hi = sorted(ax.get_ylim())
+        hits, clear = 0, np.inf
+        for tick in ax.yaxis.get_major_ticks():
+            t = tick.label1
+            if not (t.get_visible() and t.get_text() and lo <= tick.get_loc() <= hi):
+                continue
+            b = t.get_window_extent(renderer)
+            dx = np.maximum(np.maximum(b.x0 - xy[:, 0], xy[:, 0] - b.x1), 0.0)
+            dy = np.maximum(np.maximum(b.y0 - xy[:, 1], xy[:, 1] - b.y1), 0.0)
+            d = np.hypot(dx, dy)
+            hits += int(np.sum(d <= grow))
+            if d.size:
+                clear = min(clear, float(d.min()))
+        score = (hits, -min(clear, enough), k)
+        if best is None or score < best[0]:
+            best = (score, angle)
+    ax.set_rlabel_position(best[1])
+    return best[1]
+
+
 def _around(theta, r):
     """Axial data on [0, pi) drawn around the circle (r(theta + pi) = r(theta)), closed."""
     return np.concatenate([theta, theta + np.pi, theta[:1] + 2 * np.pi]), np.concatenate([r, r, r[:1]])
@@ -325,14 +437,22 @@ def _around(theta, r):
 def anisotropy_polar(source, ax=None, *, normalise=False, titles=True, marks=None, **kw):
     """m2(theta) of the rigid surface and mu2(theta) of the deformed solid (polar), with their
     major axes theta_s, theta_d dashed. source: a Result with &analysis anisotropy, or a tuple
-    (theta_rad, m2, mu2). ax: a pair of polar axes (m2 left, mu2 right; made when None) or one
-    polar axes holding both curves. normalise divides each curve by its mean (compare shapes).
-    titles=False leaves the axes' titles alone (to draw several curves on the same axes);
-    marks: {theta_s_rad, theta_d_rad, gamma_s, gamma_d} to mark (a Result's scalars by default);
-    other keywords (color, lw, label, ...) go to the curves. Returns the axes (a pair when drawn
-    in two)."""
+    (theta_rad, m2, mu2). ax: a pair of polar axes (m2 left, mu2 right; a new figure when None)
+    or one polar axes holding both curves. normalise divides each curve by its mean (compare
+    shapes). marks: {theta_s_rad, theta_d_rad, gamma_s, gamma_d} to mark (a Result's scalars by
+    default); other keywords (color, lw, label, ...) go to the curves.
+
+    Each polar axes gets one radial scale (`radial_scale`): the radii as they are, or as
+    multiples of 10^e for all of its curves, the factor stated in the title ('/ 10^e'). With
+    titles (the default) the function also titles the axes and puts the radial labels clear of
+    the curves (`place_radial_labels`). titles=False leaves titles and the labels' place alone,
+    to draw several curves on the same axes: the factor, if any, is then the axis' offset text,
+    and the caller titles the axes and calls place_radial_labels after the last curve.
+
+    Returns what it drew into: the pair of axes (the `ax` given, or a numpy array of the two new
+    polar Axes) when drawn in two, else the one polar Axes."""
     if ax is None:
-        _, ax = plt.subplots(1, 2, figsize=(9, 4.5), subplot_kw=dict(projection="polar"))
+        _, ax = plt.subplots(1, 2, figsize=(9, 4.5), subplot_kw=dict(projection="polar"), layout="constrained")
     pair = np.ndim(ax) == 1
     axes_list = list(ax) if pair else [ax, ax]
     for a in axes_list:
@@ -348,9 +468,9 @@ def anisotropy_polar(source, ax=None, *, normalise=False, titles=True, marks=Non
     else:
         theta, m2, mu2 = (np.asarray(v, dtype=float) for v in source)
     marks = found if marks is None else marks
-    for a, r, lab, key, g, title in (
-            (axes_list[0], m2, r"$m_2(\theta)$", "theta_s_rad", "gamma_s", "rigid surface"),
-            (axes_list[1], mu2, r"$\mu_2(\theta)$", "theta_d_rad", "gamma_d", "deformed solid")):
+    for a, r, lab, key, title in (
+            (axes_list[0], m2, r"$m_2(\theta)$", "theta_s_rad", "rigid surface"),
+            (axes_list[1], mu2, r"$\mu_2(\theta)$", "theta_d_rad", "deformed solid")):
         r = r / r.mean() if normalise else r
         t, rr = _around(theta, r)
         line_kw = dict(kw)
@@ -359,14 +479,24 @@ def anisotropy_polar(source, ax=None, *, normalise=False, titles=True, marks=Non
         if key in marks:
             for t0 in (marks[key], marks[key] + np.pi):
                 a.plot([t0, t0], [0, rr.max()], ls="--", lw=0.8, color=line.get_color())
-        if pair and titles:
+    for k, a in enumerate(axes_list[:2] if pair else axes_list[:1]):
+        e = radial_scale(a)
+        if not titles:
+            continue
+        a.yaxis.offsetText.set_visible(False)
+        if pair:
+            lab, key, g, title = ((r"$m_2(\theta)$", "theta_s_rad", "gamma_s", "rigid surface") if k == 0 else
+                                  (r"$\mu_2(\theta)$", "theta_d_rad", "gamma_d", "deformed solid"))
             extra = ""
             if key in marks and g in marks:
-                extra = "\n" + r"$\gamma$ = %.3f, $\theta$ = %.1f$^\circ$" % (marks[g], np.degrees(marks[key]))
-            a.set_title("%s%s of the %s%s" % (lab, " / mean" if normalise else "", title, extra), fontsize="medium")
-    if not pair and titles:
-        ax.set_title(r"slope variance along $\theta$", fontsize="medium")
-        ax.legend(loc="lower left", bbox_to_anchor=(0.75, -0.05), fontsize="small")
+                extra = "\n" + r"$\gamma$ = %.3f, $\theta$ = %.1f°" % (marks[g], np.degrees(marks[key]))
+            a.set_title("%s, %s%s%s" % (title, lab, " / mean" if normalise else _scale_text(e), extra),
+                        fontsize="medium")
+        else:
+            a.set_title(r"slope variance along $\theta$%s" % ("" if normalise else _scale_text(e)),
+                        fontsize="medium")
+            a.legend(loc="upper left", bbox_to_anchor=(1.05, 1.0), fontsize="small")
+        place_radial_labels(a)
     return ax
 
 
@@ -544,7 +674,10 @@ def friction_polar(source, ax=None, *, quantity="friction_coefficient", speeds=N
     measured ones by the symmetries of an elliptic spectrum, C(q) = C(-q) and its mirror images
     about its axes (ensemble statements: exact for the mean over many surfaces); e.g. alpha
     0..90 deg gives the full circle. formats: legend labels as in `force_vs_speed`. Other
-    keywords (ms, capsize, ...) go to `errorbar`."""
+    keywords (ms, capsize, ...) go to `errorbar`. The angle theta_v - alpha is in the title, the
+    radial scale is one (`radial_scale`, a factor 10^e stated in the title) and its labels are put
+    clear of the curves (`place_radial_labels`; call it again after changing rmax). Returns the
+    axes."""
     ax = _new_axes(ax, polar=True)
     table, ens = _direction_table(source)
     if speeds is not None:
@@ -568,10 +701,13 @@ def friction_polar(source, ax=None, *, quantity="friction_coefficient", speeds=N
             at, ay = at[order], ay[order]
             ax.plot(np.radians(np.append(at, at[0] + 360.0)), np.append(ay, ay[0]), color=color,
                     lw=kw.get("lw", mpl.rcParams["lines.linewidth"]))
-    ax.set_title(SHORT.get(quantity, label(quantity)) + " against the direction of sliding\n"
-                 r"from the surface's major axis ($\theta_v - \alpha$)", fontsize="medium")
+    e = radial_scale(ax)
+    ax.yaxis.offsetText.set_visible(False)
+    ax.set_title(SHORT.get(quantity, label(quantity)) + _scale_text(e) + r" against $\theta_v - \alpha$",
+                 fontsize="medium")
     if legend and len(ax.get_legend_handles_labels()[0]) > 1:
-        ax.legend(loc="lower left", bbox_to_anchor=(0.8, -0.1), fontsize="small")
+        ax.legend(loc="upper left", bbox_to_anchor=(1.05, 1.0), fontsize="small")
+    place_radial_labels(ax)
     return ax
 
 
@@ -590,7 +726,8 @@ def refinement(ref, scalar="contact_area_fraction", ax=None, *, cells=True, **kw
         ax.axhline(e["extrapolated"], ls="--", color="0.4", lw=1)
     ax.set_xscale("log")
     if cells:                                   # every grid labelled by its nx
-        ax.set_xticks(x, [str(int(v)) for v in x], rotation=45 if len(x) > 5 else 0)
+        crowded = len(x) > 5 or (len(x) > 1 and np.min(np.diff(np.log(np.sort(x)))) < np.log(1.5))
+        ax.set_xticks(x, [str(int(v)) for v in x], rotation=45 if crowded else 0)   # 768, 1024 apart
         ax.minorticks_off()
     ax.set_xlabel("$n_x$ (cells along $x$)" if cells else label("cell_m", "m"))
     ax.set_ylabel(label(scalar, e["units"]))
