@@ -5,7 +5,7 @@ module test_veslide_topography
     use veslide_kinds, only: dp
     use veslide_config, only: config_t
     use veslide_hdf5, only: h5file_t
-    use veslide_case, only: build_surface
+    use veslide_case, only: build_surface, case_t, run_case, write_case
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name
     use test_veslide_config, only: read_text, expect_words
@@ -19,22 +19,35 @@ contains
         type(unittest_t), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest("height-file-read", test_height_file), &
-            new_unittest("height-file-not-square", test_height_not_square), &
+            new_unittest("height-file-rectangular", test_height_rectangular), &
+            new_unittest("rectangular-file-solves-as-the-generated-surface", test_file_equals_generated), &
+            new_unittest("grid-disagreeing-with-the-file-refused", test_grid_disagrees), &
+            new_unittest("edge-jump-warned-once-with-its-size", test_edge_jump), &
+            new_unittest("preparation-record-kept", test_preparation), &
             new_unittest("height-file-nan", test_height_nan), &
             new_unittest("height-file-without-length", test_height_length), &
             new_unittest("height-file-missing-dataset", test_height_missing) &
             ]
     end subroutine collect_topography
 
-    !> Write a height dataset; `lx` > 0 adds the length_m attribute
-    subroutine write_heights(path, h, lx, error)
+    !> Write a height dataset; `lx` > 0 adds the length_m attribute (or, with `ly`, length_x_m and
+    !> length_y_m), `preparation` the text attribute of that name
+    subroutine write_heights(path, h, lx, error, ly, preparation)
         character(len=*), intent(in) :: path
         real(dp), intent(in) :: h(:, :), lx
         type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: ly
+        character(len=*), intent(in), optional :: preparation
         type(h5file_t) :: f
         call f%open(path, 'w', error); if (allocated(error)) return
         call f%write('/height_m', h, error); if (allocated(error)) return
-        if (lx > 0.0_dp) call f%writeattr('/height_m', 'length_m', lx, error)
+        if (present(ly)) then
+            call f%writeattr('/height_m', 'length_x_m', lx, error); if (allocated(error)) return
+            call f%writeattr('/height_m', 'length_y_m', ly, error); if (allocated(error)) return
+        else if (lx > 0.0_dp) then
+            call f%writeattr('/height_m', 'length_m', lx, error); if (allocated(error)) return
+        end if
+        if (present(preparation)) call f%writeattr('/height_m', 'preparation', preparation, error)
         call f%close()
     end subroutine write_heights
 
@@ -81,12 +94,121 @@ contains
         call expect_words(e, words, error)
     end subroutine expect_surface_error
 
-    subroutine test_height_not_square(error)
+    !> A rectangle (nx /= ny, lx /= ly from length_x_m, length_y_m) read as written
+    subroutine test_height_rectangular(error)
         type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
         real(dp) :: h(8, 6)
-        h = 0
-        call expect_surface_error('hsq', h, 1.0_dp, [character(len=16) :: "&surface file", "square"], error)
-    end subroutine test_height_not_square
+        real(dp), allocatable :: hout(:, :)
+        character(len=:), allocatable :: h5
+        integer :: u
+        call random_number(h)
+        h5 = unique_name('hrect.h5')
+        call write_heights(h5, h, 2.0e-3_dp, error, ly=1.0e-3_dp); if (allocated(error)) return
+        call read_text('hrect', "&surface kind='file', file='"//h5//"' /", cfg, error); if (allocated(error)) return
+        call build_surface(cfg, hout, error)
+        open (newunit=u, file=h5); close (u, status='delete')
+        if (allocated(error)) return
+        call check(error, all(shape(hout) == [8, 6]) .and. all(hout == h), "heights changed on the way")
+        if (allocated(error)) return
+        call check(error, cfg%grid%nx == 8 .and. cfg%grid%ny == 6 .and. cfg%grid%lx_m == 2.0e-3_dp .and. &
+                   cfg%grid%ly_m == 1.0e-3_dp, "grid from the file")
+    end subroutine test_height_rectangular
+
+    !> A generated wave on a rectangle (64 x 32 points, 10 x 4 mm), written to a file and solved
+    !> from it, gives bitwise the solve of the generated surface
+    subroutine test_file_equals_generated(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: a, b
+        character(len=:), allocatable :: h5
+        character(len=*), parameter :: rest = " &material model = 'one_term' / &motion speed_m_s = 0.1 /"// &
+            " &load mean_pressure_pa = 2e4 / &solver fft_planner = 'estimate' / &output fields = .false. /"
+        integer :: u
+        call read_text('gen', "&grid nx = 64, ny = 32, lx_m = 0.01, ly_m = 0.004 / &surface kind = 'cosine',"// &
+                       " amplitude_m = 2e-5, wavelength_m = 0.005, direction_deg = 0 /"//rest, cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, a, error); if (allocated(error)) return
+        h5 = unique_name('hgen.h5')
+        call write_heights(h5, a%h, 0.01_dp, error, ly=0.004_dp); if (allocated(error)) return
+        call read_text('fromfile', "&surface kind = 'file', file = '"//h5//"' /"//rest, cfg, error)
+        if (.not. allocated(error)) call run_case(cfg, b, error)
+        open (newunit=u, file=h5); close (u, status='delete')
+        if (allocated(error)) return
+        call check(error, all(b%state%p == a%state%p) .and. all(b%force_pa == a%force_pa), &
+                   "the file's solve differs from the generated surface's")
+    end subroutine test_file_equals_generated
+
+    !> &grid may repeat the file's grid but not contradict it: refused, naming both
+    subroutine test_grid_disagrees(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(error_t), allocatable :: e
+        real(dp) :: h(8, 8)
+        real(dp), allocatable :: hout(:, :)
+        call random_number(h)
+        call surface_from('hsame', h, 2.0e-3_dp, cfg, hout, error, extra="/ &grid nx = 8, lx_m = 2e-3")
+        if (allocated(error)) return
+        call surface_from('hnx', h, 2.0e-3_dp, cfg, hout, e, extra="/ &grid nx = 16")
+        call expect_words(e, [character(len=40) :: "&grid nx = 16 disagrees", "8 x 8", "--nx"], error)
+        if (allocated(error)) return
+        call surface_from('hlx', h, 2.0e-3_dp, cfg, hout, e, extra="/ &grid lx_m = 0.01")
+        call expect_words(e, [character(len=40) :: "&grid lx_m = ", "disagrees"], error)
+    end subroutine test_grid_disagrees
+
+    !> A cropped, non-periodic scan (a ramp along x: its edges jump by sqrt(12) h_rms) gets one
+    !> warning with the number; a periodic wave none
+    subroutine test_edge_jump(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        real(dp) :: h(32, 16)
+        real(dp), allocatable :: hout(:, :)
+        integer :: i, j
+        do j = 1, 16
+            do i = 1, 32
+                h(i, j) = real(i, dp)*1.0e-6_dp
+            end do
+        end do
+        call surface_from('hramp', h, 2.0e-3_dp, cfg, hout, error); if (allocated(error)) return
+        call check(error, size(cfg%warnings) == 1, "one warning for the ramp"); if (allocated(error)) return
+        call check(error, index(cfg%warnings(1)%text, "jump by 3.36 h_rms") > 0 .and. &
+                   index(cfg%warnings(1)%text, "along x") > 0, cfg%warnings(1)%text)
+        if (allocated(error)) return
+        do j = 1, 16
+            do i = 1, 32
+                h(i, j) = cos(6.283185307179586_dp*(i - 1)/32)*1.0e-6_dp
+            end do
+        end do
+        call surface_from('hwave', h, 2.0e-3_dp, cfg, hout, error); if (allocated(error)) return
+        call check(error, size(cfg%warnings) == 0, "a periodic wave warned")
+    end subroutine test_edge_jump
+
+    !> The file's record of its preparation is kept, and written to the output
+    subroutine test_preparation(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(h5file_t) :: f
+        real(dp) :: h(8, 8)
+        character(len=:), allocatable :: h5, out, text
+        integer :: u
+        call random_number(h)
+        h5 = unique_name('hprep.h5')
+        call write_heights(h5, h, 2.0e-3_dp, error, preparation='{"detrend": "plane"}'); if (allocated(error)) return
+        out = unique_name('hprep-out.h5')
+        call read_text('hprep', "&surface kind='file', file='"//h5//"' / &solver fft_planner = 'estimate' /", cfg, error)
+        if (.not. allocated(error)) call run_case(cfg, c, error)
+        if (.not. allocated(error)) call write_case(out, cfg, c, error)
+        open (newunit=u, file=h5); close (u, status='delete')
+        if (allocated(error)) return
+        call check(error, cfg%surface%preparation == '{"detrend": "plane"}', "preparation: "//cfg%surface%preparation)
+        if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        call f%read_text('/input/surface_preparation', text, error); if (allocated(error)) return
+        call f%close()
+        open (newunit=u, file=out); close (u, status='delete')
+        call check(error, text == '{"detrend": "plane"}', "the output's /input/surface_preparation: "//text)
+    end subroutine test_preparation
 
     subroutine test_height_nan(error)
         type(error_t), allocatable, intent(out) :: error
@@ -99,7 +221,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         real(dp) :: h(8, 8)
         h = 0
-        call expect_surface_error('hlen', h, 0.0_dp, [character(len=16) :: "length_m", "lx_m"], error)
+        call expect_surface_error('hlen', h, 0.0_dp, [character(len=16) :: "length_x_m", "lx_m"], error)
     end subroutine test_height_length
 
     subroutine test_height_missing(error)

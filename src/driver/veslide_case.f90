@@ -24,7 +24,7 @@ module veslide_case
     use veslide_anisotropy, only: tensor_axes, decompose, m2_of_theta
     use veslide_patches, only: patch_stats_t, contact_patches, percolates
     use veslide_quantities, only: results_t, add_force_quantities, add_solver_quantities
-    use veslide_topography, only: read_topography, topography_shape
+    use veslide_topography, only: read_topography
     use veslide_memory, only: memory_estimate_bytes, device_estimate_bytes, format_gib
     use veslide_device, only: device_info_t, device_info, device_memory
     use veslide_solver, only: auto_takes_device, check_device_choice
@@ -99,16 +99,17 @@ contains
         type(grid_t) :: grid
         type(psd_t) :: psd
         real(dp) :: q0
-        if (cfg%surface%kind == 'file') then
+        if (cfg%surface%kind == 'file') then       ! its grid is cfg%grid (complete_config)
             if (present(on)) then
-                call read_topography(cfg%surface%file, cfg%surface%dataset, h, cfg%grid%lx_m, error, &
-                                     rows=[on%j0, on%ny_local])
+                call read_topography(cfg%surface%file, cfg%surface%dataset, h, error, rows=[on%j0, on%ny_local])
             else
-                call read_topography(cfg%surface%file, cfg%surface%dataset, h, cfg%grid%lx_m, error)
+                call read_topography(cfg%surface%file, cfg%surface%dataset, h, error)
             end if
             call add_context(error, "veslide: "//cfg%path//": &surface ")
             if (allocated(error)) return
-            cfg%grid%nx = size(h, 1); cfg%grid%ny = size(h, 1); cfg%grid%ly_m = cfg%grid%lx_m
+            if (size(h, 1) /= cfg%grid%nx .or. (.not. present(on) .and. size(h, 2) /= cfg%grid%ny)) &
+                call fatal_error(error, "veslide: "//cfg%path//": &surface file '"//cfg%surface%file// &
+                                 "' changed while the run read it")
             return
         end if
         if (present(on)) then
@@ -254,7 +255,7 @@ contains
     end function case_on_device
 
     !> The memory the case or study of `cfg` will need, per process when `ranks` processes share its
-    !> grid [bytes], before anything is allocated (a measured topography's grid from its file); with
+    !> grid [bytes], before anything is allocated (a measured topography's grid is the file's); with
     !> `device_estimate`, what a solve on the device holds there (0: the case is solved on the CPU)
     subroutine case_memory(cfg, estimate, error, ranks, device_estimate)
         type(config_t), intent(inout) :: cfg
@@ -262,16 +263,9 @@ contains
         type(error_t), allocatable, intent(out) :: error
         integer, intent(in), optional :: ranks
         integer(i8), intent(out), optional :: device_estimate
-        integer :: n
         logical :: device
         estimate = 0
         if (present(device_estimate)) device_estimate = 0
-        if (cfg%surface%kind == 'file') then
-            call topography_shape(cfg%surface%file, cfg%surface%dataset, n, error, cfg%grid%lx_m)
-            call add_context(error, "veslide: "//cfg%path//": &surface ")
-            if (allocated(error)) return
-            cfg%grid%nx = n; cfg%grid%ny = n; cfg%grid%ly_m = cfg%grid%lx_m
-        end if
         device = case_on_device(cfg, ranks)
         estimate = memory_estimate_bytes(cfg, ranks, device)
         if (device .and. present(device_estimate)) device_estimate = device_estimate_bytes(cfg)
@@ -594,7 +588,8 @@ contains
             call share_error(c%grid, error); if (allocated(error)) return
             if (c%grid%is_root()) then
                 call f%open(path, 'rw', error)
-                if (.not. allocated(error)) call write_provenance(f, cfg%path, cfg%text, [cfg%surface%seed], error)
+                if (.not. allocated(error)) call write_provenance(f, cfg%path, cfg%text, [cfg%surface%seed], error, &
+                                  preparation=cfg%surface%preparation)
                 if (.not. allocated(error)) call write_case_group(f, '', cfg, c, error, r)
                 if (allocated(error)) then
                     call f%close()
@@ -606,7 +601,8 @@ contains
             return
         end if
         call f%open(path, 'w', error); if (allocated(error)) return
-        call write_provenance(f, cfg%path, cfg%text, [cfg%surface%seed], error); if (allocated(error)) return
+        call write_provenance(f, cfg%path, cfg%text, [cfg%surface%seed], error, &
+                                  preparation=cfg%surface%preparation); if (allocated(error)) return
         call write_case_group(f, '', cfg, c, error); if (allocated(error)) return
         call f%close(error)
     contains

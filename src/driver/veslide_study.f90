@@ -178,7 +178,8 @@ contains
             call resume_part(error); if (allocated(error)) return
         else
             call f%open(path, 'w', error); if (allocated(error)) return
-            call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true.); if (allocated(error)) return
+            call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true., &
+                                  preparation=cfg%surface%preparation); if (allocated(error)) return
         end if
         call use_threads(cfg%solver%threads)
         call fft%init(grid%nx, grid%ny, error, planner=cfg%solver%fft_planner)
@@ -459,7 +460,8 @@ contains
         call plan_study(cfg, plan)
         allocate (seen(plan%ncase)); seen = .false.
         call f%open(path, 'w', error); if (allocated(error)) return
-        call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true.); if (allocated(error)) return
+        call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true., &
+                                  preparation=cfg%surface%preparation); if (allocated(error)) return
         do k = 1, size(parts)
             call src%open(trim(parts(k)), 'r', error); if (allocated(error)) return
             call src%read_table('/summary', pcols, pint, rows, error)

@@ -6,7 +6,7 @@
 !> `error_t` whose message names the file, the group, the variable and the allowed range.
 module veslide_config
     use veslide_kinds, only: dp, pi
-    use veslide_error, only: error_t, fatal_error
+    use veslide_error, only: error_t, fatal_error, add_context
     use veslide_strings, only: str
     use veslide_system, only: missing_reason
     use veslide_config_common, only: require, group_text_t, scan_namelist, get_group
@@ -19,6 +19,7 @@ module veslide_config
     use veslide_config_analysis, only: analysis_config_t, read_analysis_config
     use veslide_config_sweep, only: sweep_config_t, read_sweep_config
     use veslide_config_output, only: output_config_t, read_output_config
+    use veslide_topography, only: topography_info_t, topography_info, edge_jump_limit
     implicit none
     private
     public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config
@@ -123,7 +124,12 @@ contains
         real(dp) :: nyq
         integer :: k
         p = cfg%path
-        if (cfg%surface%kind /= 'file') call default_lengths(cfg, 0.01_dp)
+        cfg%surface%preparation = ''
+        if (cfg%surface%kind /= 'file') then
+            call default_lengths(cfg, 0.01_dp)
+        else
+            call file_grid(cfg, error); if (allocated(error)) return
+        end if
         select case (cfg%surface%kind)
         case ('self_affine')
             nyq = 0.5_dp*min(real(cfg%grid%nx, dp), cfg%grid%ny*cfg%grid%lx_m/cfg%grid%ly_m)
@@ -159,6 +165,52 @@ contains
         call collect_warnings(cfg)
     end subroutine complete_config
 
+    !> A height file fixes the grid: its points, and its sides from its attributes; &grid may
+    !> repeat them but not contradict them (a file is never resampled silently: the Python
+    !> package's `veslide.topography` resamples). A file whose opposite edges jump gets a warning.
+    subroutine file_grid(cfg, error)
+        type(config_t), intent(inout) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        type(topography_info_t) :: info
+        character(len=:), allocatable :: p, what
+        real(dp), parameter :: same = 1.0e-9_dp
+        p = cfg%path
+        call topography_info(cfg%surface%file, cfg%surface%dataset, info, error)
+        call add_context(error, "veslide: "//p//": &surface ")
+        if (allocated(error)) return
+        what = " disagrees with the height file '"//cfg%surface%file//"' ("//str(info%nx)//" x "//str(info%ny)// &
+               " points"
+        if (info%lx_m > 0.0_dp) what = what//", "//str(info%lx_m)//" m x "//str(info%ly_m)//" m"
+        what = what//"): leave it out, or resample the file (python -m veslide topography FILE --nx N --ny N)"
+        if (cfg%grid%nx_given .and. cfg%grid%nx /= info%nx) then
+            call fatal_error(error, "veslide: "//p//": &grid nx = "//str(cfg%grid%nx)//what); return
+        end if
+        if (cfg%grid%ny_given .and. cfg%grid%ny /= info%ny) then
+            call fatal_error(error, "veslide: "//p//": &grid ny = "//str(cfg%grid%ny)//what); return
+        end if
+        cfg%grid%nx = info%nx; cfg%grid%ny = info%ny
+        if (cfg%grid%lx_m > 0.0_dp .and. info%lx_m > 0.0_dp) then
+            if (abs(cfg%grid%lx_m - info%lx_m) > same*info%lx_m) then
+                call fatal_error(error, "veslide: "//p//": &grid lx_m = "//str(cfg%grid%lx_m)//what); return
+            end if
+        end if
+        if (cfg%grid%ly_m > 0.0_dp .and. info%ly_m > 0.0_dp) then
+            if (abs(cfg%grid%ly_m - info%ly_m) > same*info%ly_m) then
+                call fatal_error(error, "veslide: "//p//": &grid ly_m = "//str(cfg%grid%ly_m)//what); return
+            end if
+        end if
+        if (cfg%grid%lx_m == 0.0_dp) cfg%grid%lx_m = info%lx_m
+        if (cfg%grid%ly_m == 0.0_dp) cfg%grid%ly_m = info%ly_m
+        if (cfg%grid%lx_m == 0.0_dp) then
+            call fatal_error(error, "veslide: "//p//": &surface file '"//cfg%surface%file//"': the cell side is"// &
+                " unknown: set &grid lx_m or the dataset's attribute length_x_m"); return
+        end if
+        if (cfg%grid%ly_m == 0.0_dp) cfg%grid%ly_m = cfg%grid%lx_m*cfg%grid%ny/cfg%grid%nx
+        cfg%surface%preparation = info%preparation
+        cfg%surface%edge_jump = [info%jump_x, info%jump_y]
+        cfg%surface%edge_step = [info%step_x, info%step_y]
+    end subroutine file_grid
+
     !> Inputs that run but change nothing, one line each
     subroutine collect_warnings(cfg)
         type(config_t), intent(inout) :: cfg
@@ -173,7 +225,33 @@ contains
                       " gives the same surface")
         if (size(cfg%sweep%speeds) > 0 .and. cfg%motion%speed_m_s /= 0.0_dp) &
             call warn("&motion speed_m_s = "//str(cfg%motion%speed_m_s)//" is replaced by the &sweep speeds")
+        if (cfg%surface%kind == 'file') then
+            if (jumps(1)) call warn(edge_text('x', 'rows', 1))
+            if (jumps(2)) call warn(edge_text('y', 'columns', 2))
+        end if
     contains
+        !> The opposite edges along axis k jump by more than edge_jump_limit h_rms and three
+        !> times the rms step inside
+        logical function jumps(k)
+            integer, intent(in) :: k
+            jumps = cfg%surface%edge_jump(k) > edge_jump_limit .and. &
+                    cfg%surface%edge_jump(k) > 3.0_dp*cfg%surface%edge_step(k)
+        end function jumps
+
+        function edge_text(axis, lines, k) result(t)
+            character(len=*), intent(in) :: axis, lines
+            integer, intent(in) :: k
+            character(len=:), allocatable :: t
+            character(len=16) :: a, b
+            write (a, '(f0.2)') cfg%surface%edge_jump(k); write (b, '(f0.2)') cfg%surface%edge_step(k)
+            if (a(1:1) == '.') a = '0'//a
+            if (b(1:1) == '.') b = '0'//b
+            t = "the heights of '"//cfg%surface%file//"' jump by "//trim(a)//" h_rms across its edges along "// &
+                axis//" (rms over the "//lines//"; neighbours inside differ by "//trim(b)//" h_rms): it is solved"// &
+                " as periodic, so its images step there; make it periodic first (python -m veslide topography"// &
+                " FILE --periodic tukey)"
+        end function edge_text
+
         subroutine warn(text)
             character(len=*), intent(in) :: text
             cfg%warnings = [cfg%warnings, warning_t("veslide: "//cfg%path//": warning: "//text)]

@@ -12,6 +12,7 @@ module veslide_config_grid
         integer :: nx = 256, ny = 256      !! points along x and y
         real(dp) :: lx_m = 0.0_dp          !! cell side along x [m]; 0: 0.01, or the height file's length_m
         real(dp) :: ly_m = 0.0_dp          !! cell side along y [m]; 0: lx_m*ny/nx
+        logical :: nx_given = .false., ny_given = .false.   !! the input set nx, ny
     end type grid_config_t
 
     character(len=*), parameter :: names(4) = [character(len=4) :: 'nx', 'ny', 'lx_m', 'ly_m']
@@ -45,6 +46,10 @@ contains
                      str(lx_m), "1e-9 to 1e3 [m], or 0 for the default (0.01, or the file's length_m)")
         call require(error, ly_m == 0.0_dp .or. finite_in(ly_m, 1.0e-9_dp, 1.0e3_dp), path, 'grid', 'ly_m', &
                      str(ly_m), "1e-9 to 1e3 [m], or 0 for lx_m*ny/nx")
+        ! given when a read from another default gives the same value
+        nx = -1; ny = -1
+        read (lines, nml=grid, iostat=stat, iomsg=msg)
+        self%nx_given = nx == self%nx; self%ny_given = ny == self%ny
     contains
         subroutine try(lines, stat, msg)
             character(len=*), intent(in) :: lines(:)

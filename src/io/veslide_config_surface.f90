@@ -24,6 +24,9 @@ module veslide_config_surface
         real(dp) :: amplitude_m = 0.0_dp, wavelength_m = 0.0_dp, direction_deg = 0.0_dp, radius_m = 0.0_dp
         character(len=:), allocatable :: file            !! kind = 'file': HDF5 file of heights
         character(len=:), allocatable :: dataset         !! its dataset
+        character(len=:), allocatable :: preparation     !! the file's record of its preparation ('')
+        !> the file's edge jumps along x and y and the rms steps inside [h_rms] (veslide_topography)
+        real(dp) :: edge_jump(2) = 0.0_dp, edge_step(2) = 0.0_dp
     end type surface_config_t
 
     character(len=*), parameter :: names(17) = [character(len=13) :: 'kind', 'seed', 'hurst', 'eccentricity', &

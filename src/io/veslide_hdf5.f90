@@ -39,6 +39,7 @@ module veslide_hdf5
         procedure :: read_i0 => h5_read_i0
         procedure :: read_r2 => h5_read_r2
         procedure :: read_r2_rows => h5_read_r2_rows
+        procedure :: read_r2_block => h5_read_r2_block
         procedure :: read_text => h5_read_text
         procedure :: shape_of => h5_shape_of
         procedure :: attr_exists => h5_attr_exists
@@ -542,6 +543,17 @@ contains
         real(dp), intent(out), target, contiguous :: value(:, :)
         integer, intent(in) :: j0
         type(error_t), allocatable, intent(out) :: error
+        call self%read_r2_block(name, value, 0, j0, error)
+    end subroutine h5_read_r2_rows
+
+    !> The block of the 2-D float64 dataset `name` (Fortran order (n1, n2)) whose first element
+    !> is (i0+1, j0+1), of the shape of `value` (a hyperslab)
+    subroutine h5_read_r2_block(self, name, value, i0, j0, error)
+        class(h5file_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        real(dp), intent(out), target, contiguous :: value(:, :)
+        integer, intent(in) :: i0, j0
+        type(error_t), allocatable, intent(out) :: error
         integer(hid_t) :: did, fspace, mspace
         integer(hsize_t) :: count(2)
         integer :: ierr, ie
@@ -553,13 +565,13 @@ contains
         end if
         count = shape(value, hsize_t)
         call h5dget_space_f(did, fspace, ie)
-        call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, [0_hsize_t, int(j0, hsize_t)], count, ierr)
+        call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, [int(i0, hsize_t), int(j0, hsize_t)], count, ierr)
         call h5screate_simple_f(2, count, mspace, ie)
         buf = c_loc(value)
         if (ierr == 0) call h5dread_f(did, H5T_NATIVE_DOUBLE, buf, ierr, mem_space_id=mspace, file_space_id=fspace)
         call h5sclose_f(mspace, ie); call h5sclose_f(fspace, ie); call h5dclose_f(did, ie)
-        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:read: cannot read rows of "//name//" in "//self%path)
-    end subroutine h5_read_r2_rows
+        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:read: cannot read a block of "//name//" in "//self%path)
+    end subroutine h5_read_r2_block
 
     !> A scalar string dataset (variable-length, as write_text stores it)
     subroutine h5_read_text(self, name, value, error)

@@ -146,12 +146,14 @@ contains
 
     !> Root attributes of provenance, and the input text as /input/namelist. A single case
     !> records its `seed`; a study (`study` present and true) the list of its `seeds`.
-    subroutine write_provenance(f, input_path, input_text, seeds, error, study)
+    subroutine write_provenance(f, input_path, input_text, seeds, error, study, preparation)
         type(h5file_t), intent(inout) :: f
         character(len=*), intent(in) :: input_path, input_text
         integer(i8), intent(in) :: seeds(:)
         type(error_t), allocatable, intent(out) :: error
         logical, intent(in), optional :: study
+        !> a height file's record of its preparation (`/input/surface_preparation` when not '')
+        character(len=*), intent(in), optional :: preparation
         logical :: study_
         study_ = .false.; if (present(study)) study_ = study
         call f%writeattr('/', 'veslide_version', version_string(), error); if (allocated(error)) return
@@ -169,7 +171,13 @@ contains
         call f%writeattr('/', 'input_file', input_path, error); if (allocated(error)) return
         call write_device_provenance(f, error); if (allocated(error)) return
         call f%write('/input/namelist', input_text, error); if (allocated(error)) return
-        call f%writeattr('/input/namelist', 'units', '-', error)
+        call f%writeattr('/input/namelist', 'units', '-', error); if (allocated(error)) return
+        if (present(preparation)) then
+            if (len(preparation) > 0) then
+                call f%write('/input/surface_preparation', preparation, error); if (allocated(error)) return
+                call f%writeattr('/input/surface_preparation', 'units', '-', error)
+            end if
+        end if
     end subroutine write_provenance
 
     !> The build's device support ('none', 'cuda' or 'cuda-emulated'), and the device this process

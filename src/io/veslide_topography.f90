@@ -1,5 +1,8 @@
-!> Measured topographies: a square 2-D float64 dataset of heights [m] in an HDF5 file, with the
-!> cell side from the caller or the dataset's `length_m` attribute.
+!> Measured topographies: a 2-D float64 dataset of heights [m] in an HDF5 file, Fortran order
+!> (nx, ny) (h5py shape (ny, nx), index [iy, ix]; nx and ny may differ), with the cell's sides in
+!> the attributes `length_x_m` and `length_y_m` (or `length_m`, the side along x, with square
+!> cells), and the record of how the scan was prepared in the text attribute `preparation`
+!> (written by the Python package's `veslide.topography`).
 module veslide_topography
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use veslide_kinds, only: dp, i8
@@ -8,56 +11,116 @@ module veslide_topography
     use veslide_system, only: missing_reason
     implicit none
     private
-    public :: read_topography, topography_shape
+    public :: topography_info_t, topography_info, read_topography, edge_jump_limit
+
+    !> What a height file says of itself, before its heights are read
+    type :: topography_info_t
+        integer :: nx = 0, ny = 0                   !! points along x and y
+        real(dp) :: lx_m = 0.0_dp, ly_m = 0.0_dp    !! cell sides from its attributes (0: none)
+        character(len=:), allocatable :: preparation !! how it was prepared ('' when not said)
+        !> rms over the rows (columns) of the jump between the last and the first point along x
+        !> (y), in units of the heights' rms; and the rms step between neighbours inside
+        real(dp) :: jump_x = 0.0_dp, jump_y = 0.0_dp, step_x = 0.0_dp, step_y = 0.0_dp
+        real(dp) :: rms_m = 0.0_dp                  !! rms of the heights about their mean
+    end type topography_info_t
+
+    !> An edge jump above this many h_rms, and above three times the rms step inside, makes a
+    !> file's periodic images step: the run says so (README: measured topographies)
+    real(dp), parameter :: edge_jump_limit = 0.5_dp
+    integer, parameter :: block_rows = 64           !! rows read at a time for the statistics
 
 contains
 
-    !> The grid of dataset `dataset` in `file` (n x n), checked like read_topography but without
-    !> reading the heights: the size is known before any memory is committed to it
-    !> With `length_m` (0 on entry: take the dataset's attribute), the cell side as read_topography
-    !> would use it.
-    subroutine topography_shape(file, dataset, n, error, length_m)
+    !> The shape, sides, preparation record and edge statistics of dataset `dataset` in `file`,
+    !> reading the heights a block of rows at a time (the memory of 64 rows)
+    subroutine topography_info(file, dataset, info, error)
         character(len=*), intent(in) :: file, dataset
-        integer, intent(out) :: n
+        type(topography_info_t), intent(out) :: info
         type(error_t), allocatable, intent(out) :: error
-        real(dp), intent(inout), optional :: length_m
         type(h5file_t) :: f
-        call open_dataset(file, dataset, f, n, error)
-        if (.not. allocated(error) .and. present(length_m)) call cell_side(f, file, dataset, length_m, error)
-        call f%close()
-    end subroutine topography_shape
-
-    !> The cell side: `length_m` if > 0, else the dataset's attribute length_m
-    subroutine cell_side(f, file, dataset, length_m, error)
-        type(h5file_t), intent(inout) :: f
-        character(len=*), intent(in) :: file, dataset
-        real(dp), intent(inout) :: length_m
-        type(error_t), allocatable, intent(out) :: error
         character(len=:), allocatable :: at
-        if (length_m /= 0.0_dp) return
         at = "file '"//file//"': "
-        if (.not. f%attr_exists(dataset, 'length_m')) then
-            call fatal_error(error, at//"the cell side is unknown: set &grid lx_m or a 'length_m' attribute"); return
-        end if
-        call f%read_attr_r0(dataset, 'length_m', length_m, error)
+        call open_dataset(file, dataset, f, info%nx, info%ny, error); if (allocated(error)) return
+        info%preparation = ''
+        call read_side('length_x_m', info%lx_m); if (allocated(error)) return
+        if (info%lx_m == 0.0_dp) call read_side('length_m', info%lx_m)
         if (allocated(error)) return
-        if (.not. (length_m > 0.0_dp .and. ieee_is_finite(length_m))) then
-            call fatal_error(error, at//"attribute length_m must be > 0")
+        call read_side('length_y_m', info%ly_m); if (allocated(error)) return
+        if (info%ly_m == 0.0_dp .and. info%lx_m > 0.0_dp) info%ly_m = info%lx_m*info%ny/info%nx
+        if (f%attr_exists(dataset, 'preparation')) then
+            call f%read_attr_text(dataset, 'preparation', info%preparation, error)
+            if (allocated(error)) then
+                error%message = at//"attribute 'preparation' is not a text"; return
+            end if
         end if
-    end subroutine cell_side
+        call edge_statistics(error)
+        call f%close()
+    contains
+        subroutine read_side(name, length)
+            character(len=*), intent(in) :: name
+            real(dp), intent(out) :: length
+            length = 0.0_dp
+            if (.not. f%attr_exists(dataset, name)) return
+            call f%read_attr_r0(dataset, name, length, error)
+            if (allocated(error)) then
+                error%message = at//"attribute "//name//" is not a number"; return
+            end if
+            if (.not. (length > 0.0_dp .and. ieee_is_finite(length))) &
+                call fatal_error(error, at//"attribute "//name//" must be > 0 [m]")
+        end subroutine read_side
 
-    !> Open `file` and check that `dataset` is a square 2-D float64 array of at least 2 x 2
-    subroutine open_dataset(file, dataset, f, n, error)
+        !> rms of the heights, of the steps inside and of the jumps across the edges, from
+        !> blocks of rows (sums over the whole grid, then normalised by h_rms)
+        subroutine edge_statistics(error)
+            type(error_t), allocatable, intent(inout) :: error
+            real(dp), allocatable :: b(:, :), first(:), last(:)
+            real(dp) :: s1, s2, sx, sy, jx, jy, n
+            integer :: j0, m, nx, ny
+            nx = info%nx; ny = info%ny
+            s1 = 0; s2 = 0; sx = 0; sy = 0; jx = 0
+            allocate (first(nx), last(nx))
+            do j0 = 0, ny - 1, block_rows
+                m = min(block_rows, ny - j0)
+                if (allocated(b)) deallocate (b)
+                allocate (b(nx, m))
+                call f%read_r2_rows(dataset, b, j0, error); if (allocated(error)) return
+                if (.not. all(ieee_is_finite(b))) then
+                    call fatal_error(error, at//"dataset '"//dataset//"' contains NaN or infinite heights"); return
+                end if
+                if (j0 == 0) first = b(:, 1)
+                if (j0 > 0) sy = sy + sum((b(:, 1) - last)**2)
+                s1 = s1 + sum(b); s2 = s2 + sum(b**2)
+                if (nx > 1) sx = sx + sum((b(2:, :) - b(:nx - 1, :))**2)
+                if (m > 1) sy = sy + sum((b(:, 2:) - b(:, :m - 1))**2)
+                if (nx > 1) jx = jx + sum((b(nx, :) - b(1, :))**2)
+                last = b(:, m)
+            end do
+            n = real(nx, dp)*ny
+            info%rms_m = sqrt(max(0.0_dp, s2/n - (s1/n)**2))
+            if (.not. info%rms_m > 0.0_dp) return
+            jy = sum((first - last)**2)
+            if (nx > 1) then
+                info%jump_x = sqrt(jx/ny)/info%rms_m; info%step_x = sqrt(sx/(real(nx - 1, dp)*ny))/info%rms_m
+            end if
+            if (ny > 1) then
+                info%jump_y = sqrt(jy/nx)/info%rms_m; info%step_y = sqrt(sy/(real(ny - 1, dp)*nx))/info%rms_m
+            end if
+        end subroutine edge_statistics
+    end subroutine topography_info
+
+    !> Open `file` and check that `dataset` is a 2-D float64 array of at least 2 points, at most
+    !> 65536 along each side; its Fortran shape (nx, ny)
+    subroutine open_dataset(file, dataset, f, nx, ny, error)
         character(len=*), intent(in) :: file, dataset
         type(h5file_t), intent(inout) :: f
-        integer, intent(out) :: n
+        integer, intent(out) :: nx, ny
         type(error_t), allocatable, intent(out) :: error
         integer(i8) :: dims(7)
         integer :: rank
         logical :: is_double
         character(len=:), allocatable :: at
         at = "file '"//file//"': "
-        n = 0
+        nx = 0; ny = 0
         if (len(missing_reason(file)) > 0) then
             call fatal_error(error, at//missing_reason(file)); return
         end if
@@ -69,44 +132,40 @@ contains
         if (rank < 0) then
             call fatal_error(error, at//"no dataset '"//dataset//"' (set &surface dataset)"); return
         end if
-        if (rank /= 2 .or. .not. is_double .or. dims(1) /= dims(2) .or. dims(1) < 2) then
+        if (rank /= 2 .or. .not. is_double .or. dims(1)*dims(2) < 2) then
             call fatal_error(error, at//"dataset '"//dataset// &
-                "' must be a square 2-D float64 array of heights in metres"); return
+                "' must be a 2-D float64 array of heights in metres (h5py shape (ny, nx))"); return
         end if
-        if (dims(1) > 65536) then
-            call fatal_error(error, at//"dataset '"//dataset//"' is larger than 65536 x 65536"); return
+        if (dims(1) > 65536 .or. dims(2) > 65536) then
+            call fatal_error(error, at//"dataset '"//dataset//"' is larger than 65536 points along a side"); return
         end if
-        n = int(dims(1))
+        nx = int(dims(1)); ny = int(dims(2))
     end subroutine open_dataset
 
-    !> Heights of dataset `dataset` in `file`; `length_m` is the cell side: on entry the caller's
-    !> value (0: take the attribute `length_m` of the dataset), on exit the side used. Messages
-    !> start with the file name; the caller puts the input that named it in front.
-    !> With `rows` = [j0, n_local], only rows j0+1 .. j0+n_local are read (a process's share of
-    !> a distributed grid; the NaN check covers those rows).
-    subroutine read_topography(file, dataset, h, length_m, error, rows)
+    !> Heights of dataset `dataset` in `file`, Fortran order (nx, ny). Messages start with the file
+    !> name; the caller puts the input that named it in front. With `rows` = [j0, n_local], only
+    !> rows j0+1 .. j0+n_local are read (a process's share of a distributed grid).
+    subroutine read_topography(file, dataset, h, error, rows)
         character(len=*), intent(in) :: file, dataset
         real(dp), allocatable, intent(out) :: h(:, :)
-        real(dp), intent(inout) :: length_m
         type(error_t), allocatable, intent(out) :: error
         integer, intent(in), optional :: rows(2)
         type(h5file_t) :: f
-        integer :: n
+        integer :: nx, ny
         character(len=:), allocatable :: at
         at = "file '"//file//"': "
-        call open_dataset(file, dataset, f, n, error); if (allocated(error)) return
+        call open_dataset(file, dataset, f, nx, ny, error); if (allocated(error)) return
         if (present(rows)) then
-            allocate (h(n, rows(2)))
+            allocate (h(nx, rows(2)))
             call f%read_r2_rows(dataset, h, rows(1), error)
         else
-            allocate (h(n, n))
+            allocate (h(nx, ny))
             call f%read_r2(dataset, h, error)
         end if
         if (allocated(error)) return
         if (.not. all(ieee_is_finite(h))) then      ! (a distributed grid: this process's rows)
             call fatal_error(error, at//"dataset '"//dataset//"' contains NaN or infinite heights"); return
         end if
-        call cell_side(f, file, dataset, length_m, error); if (allocated(error)) return
         call f%close()
     end subroutine read_topography
 
