@@ -25,7 +25,8 @@ contains
             new_unittest("friction-sign-and-lateral-direction", test_friction_sign), &
             new_unittest("persson-equals-the-solve-in-full-contact", test_persson_full_contact), &
             new_unittest("approach-is-hertz-plus-the-lattice-term", test_approach_hertz), &
-            new_unittest("summary-names-long-paths-whole", test_summary_long_paths) &
+            new_unittest("summary-names-long-paths-whole", test_summary_long_paths), &
+            new_unittest("temperature-is-a-speed-scale", test_temperature_superposition) &
             ]
     end subroutine collect_case
 
@@ -196,5 +197,49 @@ contains
         call check(error, index(lines(1), cfg%path) > 0 .and. index(lines(1), out) > 0, &
                    "the header lacks a path: "//trim(lines(1)))
     end subroutine test_summary_long_paths
+
+    !> Time-temperature superposition: the material at T slides at v as the master curve at
+    !> T_ref slides at a_T v (E*(w, T) = E*(a_T w, T_ref)); WLF with the universal constants at
+    !> T - T_ref = 10 K: log10 a_T = -17.44*10/61.6, and Arrhenius (E_a = 100 kJ/mol, 20 -> 40 C):
+    !> ln a_T = (E_a/R)(1/313.15 - 1/293.15); the output records T and a_T
+    subroutine test_temperature_superposition(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), parameter :: base = "&grid nx = 32, ny = 32 / &surface k_cut = 8 / &solver fft_planner"// &
+            " = 'estimate', tolerance = 1e-12 / &output fields = .false. / &material model = 'creep', e0_pa = 1e6,"// &
+            " creep_c_per_pa = 4e-7, 4e-7, creep_tau_s = 1e-3, 1e-1, "
+        real(dp), parameter :: r_gas = 8.314462618_dp
+        real(dp) :: a_wlf, a_arr
+        a_wlf = 10.0_dp**(-17.44_dp*10.0_dp/61.6_dp)
+        a_arr = exp(1.0e5_dp/r_gas*(1.0_dp/313.15_dp - 1.0_dp/293.15_dp))
+        call same_as_speed("shift = 'wlf', reference_temperature_c = 20, temperature_c = 30, wlf_c1 = 17.44,"// &
+                           " wlf_c2_k = 51.6 /", a_wlf, error)
+        if (allocated(error)) return
+        call same_as_speed("shift = 'arrhenius', reference_temperature_c = 20, temperature_c = 40,"// &
+                           " activation_energy_j_mol = 1e5 /", a_arr, error)
+    contains
+        subroutine same_as_speed(shift, a, error)
+            character(len=*), intent(in) :: shift
+            real(dp), intent(in) :: a
+            type(error_t), allocatable, intent(out) :: error
+            type(config_t) :: cfg
+            type(case_t) :: c
+            type(results_t) :: r
+            real(dp) :: f_t, area_t, a_out
+            character(len=32) :: v
+            call read_text('tts1', base//shift//" &motion speed_m_s = 0.1 /", cfg, error); if (allocated(error)) return
+            call run_case(cfg, c, error); if (allocated(error)) return
+            call case_results(cfg, c, r)
+            f_t = r%get('friction_coefficient'); area_t = r%get('contact_area_fraction'); a_out = r%get('shift_factor')
+            call check(error, a_out, a, "shift factor recorded", rel=1.0e-14_dp); if (allocated(error)) return
+            write (v, '(es24.17)') 0.1_dp*a
+            call read_text('tts2', base//"/ &motion speed_m_s = "//trim(v)//" /", cfg, error)
+            if (allocated(error)) return
+            call run_case(cfg, c, error); if (allocated(error)) return
+            call case_results(cfg, c, r)
+            call check(error, f_t, r%get('friction_coefficient'), "friction at T against a_T v at T_ref", rel=1.0e-9_dp)
+            if (allocated(error)) return
+            call check(error, area_t, r%get('contact_area_fraction'), "area at T against a_T v at T_ref", rel=1.0e-9_dp)
+        end subroutine same_as_speed
+    end subroutine test_temperature_superposition
 
 end module test_veslide_case

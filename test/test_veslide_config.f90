@@ -62,7 +62,8 @@ contains
             new_unittest("poisson-out-of-range", test_material_poisson), &
             new_unittest("ratio-must-exceed-one", test_material_ratio), &
             new_unittest("prony-lists-without-gaps", test_material_prony), &
-            new_unittest("infinite-prony-time", test_material_infinite) &
+            new_unittest("infinite-prony-time", test_material_infinite), &
+            new_unittest("temperature-shift-needs-its-constants", test_material_shift) &
             ]
     end subroutine collect_config_material
 
@@ -493,6 +494,35 @@ contains
         call expect_message('long8', "&solver method = '"//repeat('p', 1100)//"' /", &
                             [character(len=40) :: "&solver method is longer than 1023"], error)
     end subroutine test_overlong_choices
+
+    !> A shift law needs its constants and a reference; constants of another law, a temperature
+    !> where WLF diverges and an unknown law are refused; without a test temperature the
+    !> reference's is taken
+    subroutine test_material_shift(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=*), parameter :: m = "&material model = 'one_term', "
+        call expect_message('s1', m//"shift = 'wlf', reference_temperature_c = 20 /", &
+                            [character(len=40) :: "&material wlf_c1 is needed with shift = 'wlf'"], error)
+        if (allocated(error)) return
+        call expect_message('s2', m//"shift = 'wlf', reference_temperature_c = 20, wlf_c1 = 17.44, "// &
+                            "wlf_c2_k = 51.6, temperature_c = -40 /", &
+                            [character(len=40) :: "&material temperature_c", "-31.6"], error)
+        if (allocated(error)) return
+        call expect_message('s3', m//"shift = 'arrhenius', reference_temperature_c = 20, wlf_c1 = 17.44, "// &
+                            "activation_energy_j_mol = 1e5 /", &
+                            [character(len=56) :: "&material wlf_c1 has no use with shift = 'arrhenius'"], error)
+        if (allocated(error)) return
+        call expect_message('s4', m//"temperature_c = 30 /", &
+                            [character(len=40) :: "temperature_c has no use with shift = 'none'"], error)
+        if (allocated(error)) return
+        call expect_message('s5', m//"shift = 'vft' /", [character(len=40) :: "&material shift", "arrhenius"], error)
+        if (allocated(error)) return
+        call read_text('s6', m//"shift = 'arrhenius', reference_temperature_c = 20, activation_energy_j_mol = 1e5 /", &
+                       cfg, error)
+        if (allocated(error)) return
+        call check(error, cfg%material%temperature_c == 20.0_dp, "the test temperature defaults to the reference")
+    end subroutine test_material_shift
 
     subroutine test_grid_absurd(error)
         type(error_t), allocatable, intent(out) :: error

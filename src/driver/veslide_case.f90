@@ -12,7 +12,7 @@ module veslide_case
     use veslide_collective, only: share_error, global_max
     use veslide_fields, only: field_rms, field_max, field_mean
     use veslide_spectrum, only: slope_tensor
-    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
+    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation, shift_factor
     use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
                                paraboloid_surface, cylinder_surface, rms_height
     use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id, KERNEL_SPECTRAL
@@ -146,20 +146,31 @@ contains
         type(config_t), intent(in) :: cfg
         type(material_t), intent(out) :: mat
         type(error_t), allocatable, intent(out) :: error
+        real(dp) :: a
         associate (m => cfg%material)
+            a = material_shift(cfg)     ! the master curve's times at the test temperature
             select case (m%model)
             case ('elastic')
                 call new_elastic(mat, m%young_pa, m%poisson, error)
             case ('one_term')
-                call new_one_term(mat, m%einf_pa, m%ratio, m%tau_s, m%poisson, error)
+                call new_one_term(mat, m%einf_pa, m%ratio, a*m%tau_s, m%poisson, error)
             case ('creep')
-                call new_creep(mat, m%e0_pa, m%prony_coef, m%prony_time_s, m%poisson, error)
+                call new_creep(mat, m%e0_pa, m%prony_coef, a*m%prony_time_s, m%poisson, error)
             case ('relaxation')
-                call new_relaxation(mat, m%e0_pa, m%prony_coef, m%prony_time_s, m%poisson, error)
+                call new_relaxation(mat, m%e0_pa, m%prony_coef, a*m%prony_time_s, m%poisson, error)
             end select
         end associate
         call add_context(error, "veslide: "//cfg%path//": &material: ")
     end subroutine build_material
+
+    !> The shift factor a_T of the configuration's material at its temperature (1 without a shift)
+    pure real(dp) function material_shift(cfg) result(a)
+        type(config_t), intent(in) :: cfg
+        associate (m => cfg%material)
+            a = shift_factor(m%shift, m%temperature_c, m%reference_temperature_c, m%wlf_c1, m%wlf_c2_k, &
+                             m%activation_energy_j_mol)
+        end associate
+    end function material_shift
 
     !> The kernel of a grid, material and the configuration's velocity
     subroutine build_kernel(cfg, grid, mat, kernel, seconds, error)
@@ -431,6 +442,10 @@ contains
         call r%add('nx', real(c%grid%nx, dp), '-', is_integer=.true.)
         call r%add('ny', real(c%grid%ny, dp), '-', is_integer=.true.)
         call r%add('contact_modulus_pa', c%mat%e0_pa/(1.0_dp - c%mat%poisson**2), 'Pa')
+        if (cfg%material%shift /= 'none') then
+            call r%add('temperature_c', cfg%material%temperature_c, 'degC')
+            call r%add('shift_factor', material_shift(cfg), '-')
+        end if
         call r%add('speed_m_s', norm2(c%velocity_m_s), 'm/s')
         call r%add('velocity_direction_deg', cfg%motion%direction_deg, 'degree')
         call add_force_quantities(r, c%force_pa, c%slope_force_pa, c%velocity_m_s, cfg%motion%direction_deg, &

@@ -106,7 +106,7 @@ contains
         cfg%path = path; cfg%text = ''
         cfg%surface%kind = 'self_affine'; cfg%surface%scale_to = 'realised'
         cfg%surface%file = ''; cfg%surface%dataset = '/height_m'
-        cfg%material%model = 'elastic'
+        cfg%material%model = 'elastic'; cfg%material%shift = 'none'
         allocate (cfg%material%prony_coef(0), cfg%material%prony_time_s(0))
         cfg%solver%method = 'auto'; cfg%solver%kernel = 'spectral'; cfg%solver%fft_planner = 'measure'
         cfg%solver%device = 'auto'
@@ -223,6 +223,9 @@ contains
             cfg%surface%eccentricity == 1.0_dp) &
             call warn("&sweep alphas_deg with &surface eccentricity = 1: the spectrum is isotropic, every angle"// &
                       " gives the same surface")
+        if (cfg%material%shift /= 'none' .and. cfg%material%model == 'elastic') &
+            call warn("&material shift = '"//cfg%material%shift//"' on an elastic &material: an elastic solid"// &
+                      " has no times to shift, every temperature gives the same solution")
         if (size(cfg%sweep%speeds) > 0 .and. cfg%motion%speed_m_s /= 0.0_dp) &
             call warn("&motion speed_m_s = "//str(cfg%motion%speed_m_s)//" is replaced by the &sweep speeds")
         if (cfg%surface%kind == 'file') then

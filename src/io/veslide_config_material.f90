@@ -5,8 +5,8 @@ module veslide_config_material
     use veslide_strings, only: str
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
                                      finite_in, max_list, unset_real, list_length, check_list, check_text_length, &
-                                     max_text
-    use veslide_material, only: material_model_names
+                                     max_text, is_unset
+    use veslide_material, only: material_model_names, shift_names
     implicit none
     private
     public :: material_config_t, read_material_config
@@ -21,13 +21,22 @@ module veslide_config_material
         real(dp) :: e0_pa = 0.0_dp                       !! creep, relaxation: relaxed modulus [Pa]
         real(dp), allocatable :: prony_coef(:)           !! c_k [1/Pa] (creep) or e_j [Pa] (relaxation)
         real(dp), allocatable :: prony_time_s(:)         !! tau_k or rho_j [s]
+        !> time-temperature superposition: the times above are the master curve's at the
+        !> reference temperature; at `temperature_c` each is multiplied by the shift factor a_T
+        !> (`shift`: 'none', 'wlf' or 'arrhenius'; veslide_material's shift_factor)
+        character(len=:), allocatable :: shift
+        real(dp) :: temperature_c = 0.0_dp, reference_temperature_c = 0.0_dp
+        real(dp) :: wlf_c1 = 0.0_dp, wlf_c2_k = 0.0_dp, activation_energy_j_mol = 0.0_dp
     end type material_config_t
 
-    character(len=*), parameter :: names(11) = [character(len=14) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
-        'ratio', 'tau_s', 'e0_pa', 'creep_c_per_pa', 'creep_tau_s', 'relax_e_pa', 'relax_rho_s']
-    character(len=*), parameter :: kinds(11) = [character(len=40) :: "a quoted text ('one_term')", &
+    character(len=*), parameter :: names(17) = [character(len=23) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
+        'ratio', 'tau_s', 'e0_pa', 'creep_c_per_pa', 'creep_tau_s', 'relax_e_pa', 'relax_rho_s', 'shift', &
+        'temperature_c', 'reference_temperature_c', 'wlf_c1', 'wlf_c2_k', 'activation_energy_j_mol']
+    character(len=*), parameter :: kinds(17) = [character(len=40) :: "a quoted text ('one_term')", &
         'a real number', 'a real number', 'a real number', 'a real number', 'a real number', 'a real number', &
-        'a list of real numbers', 'a list of real numbers', 'a list of real numbers', 'a list of real numbers']
+        'a list of real numbers', 'a list of real numbers', 'a list of real numbers', 'a list of real numbers', &
+        "a quoted text ('wlf')", 'a real number', 'a real number', 'a real number', 'a real number', &
+        'a real number']
     !> Largest modulus and time accepted [Pa], [s]: beyond them double precision loses the physics
     real(dp), parameter :: max_modulus = 1.0e15_dp, max_time = 1.0e15_dp
 
@@ -39,14 +48,18 @@ contains
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        character(len=max_text + 1) :: model
+        character(len=max_text + 1) :: model, shift
         real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
         real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
+        real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol
         integer :: stat
         character(len=512) :: msg
         character(len=:), allocatable :: lines(:)
         namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, creep_tau_s, &
-            relax_e_pa, relax_rho_s
+            relax_e_pa, relax_rho_s, shift, temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, &
+            activation_energy_j_mol
+        shift = 'none'; temperature_c = unset_real(); reference_temperature_c = unset_real()
+        wlf_c1 = unset_real(); wlf_c2_k = unset_real(); activation_energy_j_mol = unset_real()
         model = 'elastic'; young_pa = self%young_pa; poisson = self%poisson; einf_pa = self%einf_pa
         ratio = self%ratio; tau_s = self%tau_s; e0_pa = self%e0_pa
         creep_c_per_pa = unset_real(); creep_tau_s = unset_real(); relax_e_pa = unset_real()
@@ -56,7 +69,9 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'material', g%body, names, kinds, try, error); return
         end if
-        call check_text_length(error, model, path, 'material', 'model'); if (allocated(error)) return
+        call check_text_length(error, model, path, 'material', 'model')
+        call check_text_length(error, shift, path, 'material', 'shift'); if (allocated(error)) return
+        call read_shift(); if (allocated(error)) return
         self%model = trim(model); self%young_pa = young_pa; self%poisson = poisson; self%einf_pa = einf_pa
         self%ratio = ratio; self%tau_s = tau_s; self%e0_pa = e0_pa
         call check_list(error, creep_c_per_pa, path, 'material', 'creep_c_per_pa')
@@ -101,6 +116,65 @@ contains
 
     contains
 
+        !> The temperature shift: its law's constants required and in range, the test temperature
+        !> the reference's when not given
+        subroutine read_shift()
+            self%shift = trim(shift)
+            call require(error, is_one_of(self%shift, shift_names), path, 'material', 'shift', "'"//self%shift//"'", &
+                         choices_text(shift_names))
+            if (allocated(error) .or. self%shift == 'none') then
+                if (.not. allocated(error)) call unused(temperature_c, 'temperature_c')
+                if (.not. allocated(error)) call unused(reference_temperature_c, 'reference_temperature_c')
+                if (.not. allocated(error)) call unused(wlf_c1, 'wlf_c1')
+                if (.not. allocated(error)) call unused(wlf_c2_k, 'wlf_c2_k')
+                if (.not. allocated(error)) call unused(activation_energy_j_mol, 'activation_energy_j_mol')
+                return
+            end if
+            call given(reference_temperature_c, 'reference_temperature_c'); if (allocated(error)) return
+            if (is_unset(temperature_c)) temperature_c = reference_temperature_c
+            call require(error, finite_in(reference_temperature_c, -273.15_dp, 1.0e4_dp, open_low=.true.), path, &
+                         'material', 'reference_temperature_c', str(reference_temperature_c), "> -273.15 [C]")
+            call require(error, finite_in(temperature_c, -273.15_dp, 1.0e4_dp, open_low=.true.), path, &
+                         'material', 'temperature_c', str(temperature_c), "> -273.15 [C]")
+            if (allocated(error)) return
+            self%temperature_c = temperature_c; self%reference_temperature_c = reference_temperature_c
+            select case (self%shift)
+            case ('wlf')
+                call given(wlf_c1, 'wlf_c1'); call given(wlf_c2_k, 'wlf_c2_k'); if (allocated(error)) return
+                call unused(activation_energy_j_mol, 'activation_energy_j_mol'); if (allocated(error)) return
+                call require(error, finite_in(wlf_c1, 0.0_dp, 1.0e3_dp, open_low=.true.), path, 'material', &
+                             'wlf_c1', str(wlf_c1), "> 0 and <= 1e3")
+                call require(error, finite_in(wlf_c2_k, 0.0_dp, 1.0e4_dp, open_low=.true.), path, 'material', &
+                             'wlf_c2_k', str(wlf_c2_k), "> 0 and <= 1e4 [K]")
+                call require(error, temperature_c - reference_temperature_c > -wlf_c2_k, path, 'material', &
+                             'temperature_c', str(temperature_c), "above reference_temperature_c - wlf_c2_k = "// &
+                             str(reference_temperature_c - wlf_c2_k)//" (where the WLF law diverges)")
+                self%wlf_c1 = wlf_c1; self%wlf_c2_k = wlf_c2_k
+            case ('arrhenius')
+                call given(activation_energy_j_mol, 'activation_energy_j_mol'); if (allocated(error)) return
+                call unused(wlf_c1, 'wlf_c1'); call unused(wlf_c2_k, 'wlf_c2_k'); if (allocated(error)) return
+                call require(error, finite_in(activation_energy_j_mol, 0.0_dp, 1.0e7_dp, open_low=.true.), path, &
+                             'material', 'activation_energy_j_mol', str(activation_energy_j_mol), "> 0 and <= 1e7 [J/mol]")
+                self%activation_energy_j_mol = activation_energy_j_mol
+            end select
+        end subroutine read_shift
+
+        subroutine given(x, name)
+            real(dp), intent(in) :: x
+            character(len=*), intent(in) :: name
+            if (allocated(error)) return
+            if (is_unset(x)) call fatal_error(error, "veslide: "//path//": &material "//name//" is needed with"// &
+                                              " shift = '"//self%shift//"'")
+        end subroutine given
+
+        subroutine unused(x, name)
+            real(dp), intent(in) :: x
+            character(len=*), intent(in) :: name
+            if (allocated(error)) return
+            if (.not. is_unset(x)) call fatal_error(error, "veslide: "//path//": &material "//name// &
+                                                    " has no use with shift = '"//self%shift//"'")
+        end subroutine unused
+
         subroutine take_series(name_c, c, name_t, t)
             character(len=*), intent(in) :: name_c, name_t
             real(dp), intent(in) :: c(:), t(:)
@@ -131,11 +205,13 @@ contains
             character(len=*), intent(in) :: lines(:)
             integer, intent(out) :: stat
             character(len=*), intent(out) :: msg
-            character(len=max_text + 1) :: model
+            character(len=max_text + 1) :: model, shift
             real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
             real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
+            real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol
             namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, &
-                creep_tau_s, relax_e_pa, relax_rho_s
+                creep_tau_s, relax_e_pa, relax_rho_s, shift, temperature_c, reference_temperature_c, wlf_c1, &
+                wlf_c2_k, activation_energy_j_mol
             read (lines, nml=material, iostat=stat, iomsg=msg)
         end subroutine try
 

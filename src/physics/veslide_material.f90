@@ -11,6 +11,7 @@ module veslide_material
     private
     public :: material_t, new_elastic, new_one_term, new_creep, new_relaxation
     public :: MATERIAL_ELASTIC, MATERIAL_CREEP, MATERIAL_RELAXATION, material_model_names
+    public :: shift_factor, shift_names
 
     !> Which series the terms of a material_t are
     integer, parameter :: MATERIAL_ELASTIC = 0, MATERIAL_CREEP = 1, MATERIAL_RELAXATION = 2
@@ -18,6 +19,11 @@ module veslide_material
     !> one-term creep series
     character(len=*), parameter :: material_model_names(4) = [character(len=10) :: 'elastic', 'one_term', &
                                                               'creep', 'relaxation']
+
+    !> The laws of the temperature shift a_T (the namelist's `&material shift`)
+    character(len=*), parameter :: shift_names(3) = [character(len=9) :: 'none', 'wlf', 'arrhenius']
+    real(dp), parameter :: gas_constant = 8.314462618_dp     !! R [J/(mol K)] (CODATA 2018, exact)
+    real(dp), parameter :: zero_celsius = 273.15_dp          !! [K]
 
     type :: material_t
         integer :: form = MATERIAL_ELASTIC      !! which series the terms below are
@@ -34,6 +40,25 @@ module veslide_material
     end type material_t
 
 contains
+
+    !> The time-temperature shift factor a_T: a material at `t_c` behaves as the master curve at
+    !> `t_ref_c` with every relaxation and retardation time multiplied by a_T,
+    !> E*(w, T) = E*(a_T w, T_ref). 'wlf' (Williams, Landel & Ferry, J. Am. Chem. Soc. 77 (1955)
+    !> 3701): log10 a_T = -c1 (T - T_ref)/(c2 + T - T_ref), c2 in kelvin; 'arrhenius':
+    !> ln a_T = (E_a/R) (1/T - 1/T_ref), temperatures in kelvin; 'none': 1. The caller checks
+    !> T - T_ref > -c2 (WLF) and T > 0 K.
+    pure real(dp) function shift_factor(shift, t_c, t_ref_c, c1, c2_k, activation_j_mol) result(a)
+        character(len=*), intent(in) :: shift
+        real(dp), intent(in) :: t_c, t_ref_c, c1, c2_k, activation_j_mol
+        select case (shift)
+        case ('wlf')
+            a = 10.0_dp**(-c1*(t_c - t_ref_c)/(c2_k + t_c - t_ref_c))
+        case ('arrhenius')
+            a = exp(activation_j_mol/gas_constant*(1.0_dp/(t_c + zero_celsius) - 1.0_dp/(t_ref_c + zero_celsius)))
+        case default
+            a = 1.0_dp
+        end select
+    end function shift_factor
 
     subroutine check_poisson(nu, error)
         real(dp), intent(in) :: nu
