@@ -185,27 +185,29 @@ find_hdf5() {
     if command -v pkg-config >/dev/null 2>&1; then
         for cand in "${names[@]}"; do cands+=("pkg-config:$cand"); done
     fi
-    command -v "$wrapper" >/dev/null 2>&1 && cands+=("prefix:$(dirname "$(dirname "$(command -v "$wrapper")")")")
+    command -v "$wrapper" >/dev/null 2>&1 && cands+=("$wrapper:$(command -v "$wrapper")")
     for cand in "${cands[@]}"; do
         kind=${cand%%:*}; cand=${cand#*:}
         h5_version=""
-        if [ "$kind" = prefix ]; then hdf5_prefix "$cand" || { h5_tried+=("$cand (no hdf5.mod and libhdf5_fortran)"); continue; }
-        else hdf5_pkgconfig "$cand" || continue
-        fi
+        case "$kind" in
+            prefix) hdf5_prefix "$cand" ;;
+            pkg-config) hdf5_pkgconfig "$cand" ;;
+            *) hdf5_prefix "$(dirname "$(dirname "$cand")")" ;;      # the prefix of h5fc, h5pfc
+        esac || { [ "$kind" = pkg-config ] || h5_tried+=("$kind $cand: no hdf5.mod and libhdf5_fortran"); continue; }
         # shellcheck disable=SC2086
         if probe "$mode" "$compiler" "$src" "${fflags[@]}" $h5_cflags "${ldflags[@]}" $h5_libs; then
             mkdir -p "$dir"
             {
-                echo "# Written by scripts/setup.sh: the $flavour HDF5 it found ($kind $cand), under the name"
+                echo "# Written by scripts/setup.sh: the ${flavour/mpi/parallel} HDF5 it found ($kind $cand), under the name"
                 echo "# fpm's hdf5 metapackage looks up first; scripts/env.sh (or mpi/build.sh) puts this first."
                 echo "Name: hdf5_hl_fortran"
-                echo "Description: HDF5 ($flavour) for veslide, from $kind $cand"
+                echo "Description: HDF5 (${flavour/mpi/parallel}) for veslide, from $kind $cand"
                 echo "Version: ${h5_version:-0}"
                 echo "Cflags: $h5_cflags"
                 echo "Libs: $h5_libs"
             } > "$dir/hdf5_hl_fortran.pc.new"
             cmp -s "$dir/hdf5_hl_fortran.pc.new" "$dir/hdf5_hl_fortran.pc" 2>/dev/null ||
-                echo "veslide setup: $flavour HDF5 ${h5_version:-} from $kind $cand"
+                echo "veslide setup: ${flavour/mpi/parallel} HDF5 ${h5_version:-} from $kind $cand"
             mv "$dir/hdf5_hl_fortran.pc.new" "$dir/hdf5_hl_fortran.pc"
             return 0
         fi
