@@ -128,7 +128,8 @@ probe() {
     if ! command -v "$compiler" >/dev/null 2>&1; then
         echo "$compiler: command not found" > "$tmp/log"; return 1
     fi
-    (cd "$tmp" && "$compiler" "$src" "$@" -o a.out) > "$tmp/log" 2>&1 || return 1
+    # (from the checkout's root, as fpm compiles: relative paths in the flags mean the same)
+    "$compiler" "$tmp/$src" "$@" -o "$tmp/a.out" > "$tmp/log" 2>&1 || return 1
     [ "$mode" = link ] || (cd "$tmp" && ./a.out) >> "$tmp/log" 2>&1
 }
 # the first line of the last probe's output that says why it failed
