@@ -7,7 +7,7 @@ program veslide_main
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_quantities, only: results_t
-    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, case_memory
+    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, summary_width, case_memory
     use veslide_memory, only: format_gib, device_estimate_bytes
     use veslide_system, only: available_memory_bytes
     use veslide_kinds, only: i8, dp
@@ -234,7 +234,7 @@ contains
     !> The run summary, read from the case's results list
     subroutine summary()
         type(results_t) :: r
-        character(len=120), allocatable :: lines(:)
+        character(len=summary_width), allocatable :: lines(:)
         call case_results(cfg, c, r)
         lines = summary_lines(cfg, c, r)
         do i = 1, size(lines)

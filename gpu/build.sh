@@ -108,7 +108,8 @@ rm -f build/gfortran_*/veslide/libveslide.a build/gfortran_*/veslide/test_*.o bu
 for p in $(paths 2>/dev/null); do rm -f "$p"; done
 fpm build "${flags[@]}" --tests >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
 
-case "${1:-veslide}" in
+what=${1:-veslide}
+case "$what" in
     test)
         shift
         # the environment ./dev.sh test gives the suite (the figure scripts' Python, no display)
@@ -119,7 +120,7 @@ case "${1:-veslide}" in
         for p in $(paths); do echo "$root/$p"; done
         ;;
     veslide|veslide-bench)
-        echo "$root/$(fpm run "${flags[@]}" "$1" --runner echo 2>/dev/null | tail -1)"
+        echo "$root/$(fpm run "${flags[@]}" "$what" --runner echo 2>/dev/null | tail -1)"
         ;;
     veslide-tests)
         echo "$root/$(fpm test "${flags[@]}" --runner echo 2>/dev/null | tail -1)"

@@ -7,7 +7,7 @@ module test_veslide_case
     use veslide_hdf5, only: h5file_t
     use veslide_output, only: prepare_output, release_output, commit_output
     use veslide_quantities, only: results_t
-    use veslide_case, only: case_t, run_case, write_case, case_results
+    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, summary_width
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name
     use test_veslide_config, only: read_text
@@ -23,7 +23,9 @@ contains
             new_unittest("hdf5-contract", test_hdf5_contract), &
             new_unittest("results-named-once-with-units", test_results_list), &
             new_unittest("friction-sign-and-lateral-direction", test_friction_sign), &
-            new_unittest("persson-equals-the-solve-in-full-contact", test_persson_full_contact) &
+            new_unittest("persson-equals-the-solve-in-full-contact", test_persson_full_contact), &
+            new_unittest("approach-is-hertz-plus-the-lattice-term", test_approach_hertz), &
+            new_unittest("summary-names-long-paths-whole", test_summary_long_paths) &
             ]
     end subroutine collect_case
 
@@ -139,5 +141,60 @@ contains
         call check(error, r%get('persson_lateral_force_ratio'), r%get('lateral_force_ratio'), "lateral force", &
                    rel=1.0e-8_dp)
     end subroutine test_persson_full_contact
+
+    !> approach_m is the rigid-body approach since first contact (README conventions): for a
+    !> paraboloid of radius R under a force F = p L^2 with a << L it is Hertz's a^2/R plus the
+    !> displacement of the periodic images at the apex with the mean displacement zero,
+    !> F Z/(pi E* L), Z = 4 zeta(1/2) beta(1/2) = -3.90026... (the square lattice's sum of 1/|m|
+    !> less its integral; beta: Dirichlet's). Measured on 256^2: within 7e-4 at a/L = 0.04 and
+    !> 0.06; it grows with the load (before, approach_m was the mean gap, which falls).
+    subroutine test_approach_hertz(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: pi = 3.141592653589793_dp, lattice = -3.900264920001956_dp
+        real(dp), parameter :: l = 0.01_dp, radius = 0.1_dp, estar = 1.0e6_dp/0.75_dp
+        real(dp), parameter :: loads(2) = [10.0_dp, 43.4_dp]
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        real(dp) :: f, a, expected, approach(2)
+        character(len=16) :: text
+        integer :: k
+        do k = 1, 2
+            write (text, '(f0.1)') loads(k)
+            call read_text('approach', "&grid nx = 256, ny = 256, lx_m = 0.01 / &surface kind = 'paraboloid', "// &
+                           "radius_m = 0.1 / &material young_pa = 1.0e6, poisson = 0.5 / &load mean_pressure_pa = "// &
+                           trim(text)//" / &solver fft_planner = 'estimate' / &output fields = .false. /", cfg, error)
+            if (allocated(error)) return
+            call run_case(cfg, c, error); if (allocated(error)) return
+            call case_results(cfg, c, r)
+            f = loads(k)*l**2
+            a = (3.0_dp*f*radius/(4.0_dp*estar))**(1.0_dp/3.0_dp)
+            expected = a**2/radius + f*lattice/(pi*estar*l)
+            approach(k) = r%get('approach_m')
+            call check(error, approach(k), expected, "approach against Hertz with the lattice term", rel=2.0e-3_dp)
+            if (allocated(error)) return
+        end do
+        call check(error, approach(2) > approach(1), "the approach grows with the load")
+    end subroutine test_approach_hertz
+
+    !> The summary's first line names the input and the output whole, however long (it was cut
+    !> at 120 characters)
+    subroutine test_summary_long_paths(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        character(len=summary_width), allocatable :: lines(:)
+        character(len=:), allocatable :: out
+        out = '/tmp/'//repeat('o', 250)//'/'//repeat('p', 250)//'.h5'
+        call read_text('summary', "&grid nx = 16, ny = 16 / &surface k_cut = 4 / &solver fft_planner='estimate' /"// &
+                       " &output file = '"//out//"' /", cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call case_results(cfg, c, r)
+        lines = summary_lines(cfg, c, r)
+        call check(error, index(lines(1), cfg%path) > 0 .and. index(lines(1), out) > 0, &
+                   "the header lacks a path: "//trim(lines(1)))
+    end subroutine test_summary_long_paths
 
 end module test_veslide_case

@@ -5,6 +5,7 @@ module test_veslide_config
     use veslide_kinds, only: dp
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t, read_config
+    use veslide_output, only: prepare_output
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name, write_text
     implicit none
@@ -41,6 +42,7 @@ contains
             new_unittest("ly-default-keeps-cells-square", test_grid_ly), &
             new_unittest("unknown-variable", test_unknown_variable), &
             new_unittest("type-error-names-the-variable", test_type_error), &
+            new_unittest("type-error-in-a-multi-line-group-on-one-line", test_type_error_lines), &
             new_unittest("cell-size-absurd", test_grid_absurd) &
             ]
     end subroutine collect_config_grid
@@ -80,7 +82,8 @@ contains
             new_unittest("bad-enumeration", test_bad_enum), &
             new_unittest("tolerance-in-range", test_solver_tolerance), &
             new_unittest("anderson-memory-in-range", test_anderson_memory), &
-            new_unittest("longest-kernel-name-survives", test_kernel_name) &
+            new_unittest("longest-kernel-name-survives", test_kernel_name), &
+            new_unittest("overlong-choice-texts-refused", test_overlong_choices) &
             ]
     end subroutine collect_config_solver
 
@@ -180,12 +183,23 @@ contains
                        "&output file = 'a&b.h5' /", cfg, error)
     end subroutine test_misspelt_group
 
+    !> A missing input and names the file system refuses (a component over 255 bytes) are
+    !> refused with the reason in the system's own words
     subroutine test_missing_file(error)
         type(error_t), allocatable, intent(out) :: error
         type(config_t) :: cfg
         type(error_t), allocatable :: e
+        character(len=:), allocatable :: tmp
+        integer :: lock
         call read_config('/nonexistent/veslide.nml', cfg, e)
-        call expect_words(e, [character(len=32) :: '/nonexistent/veslide.nml', 'no such file'], error)
+        call expect_words(e, [character(len=32) :: '/nonexistent/veslide.nml', 'No such file or directory'], error)
+        if (allocated(error)) return
+        ! a name the file system refuses: the reason in the system's words
+        call read_config('/tmp/'//repeat('n', 300)//'.nml', cfg, e)
+        call expect_words(e, [character(len=32) :: 'File name too long'], error)
+        if (allocated(error)) return
+        call prepare_output('/tmp/'//repeat('n', 300)//'.h5', .false., tmp, lock, e)
+        call expect_words(e, [character(len=32) :: '.lock', 'in its directory: File name too long'], error)
     end subroutine test_missing_file
 
     subroutine test_kcut_nyquist(error)
@@ -416,6 +430,48 @@ contains
         call expect_message('type4', "&grid nz = 4 /", [character(len=32) :: "&grid nz", "no such variable", &
                             "nx, ny, lx_m, ly_m"], error)
     end subroutine test_type_error
+
+    !> A value of the wrong type on a line of its own (a group over several lines, a comment
+    !> after it) is named in one line without the comment
+    subroutine test_type_error_lines(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(error_t), allocatable :: e
+        character(len=*), parameter :: nl = new_line('a')
+        call read_text('lines', "&grid"//nl//"  nx = 64,"//nl//"  ny = abc,  ! rows"//nl//"  lx_m = 0.01"//nl//"/", &
+                       cfg, e)
+        call expect_words(e, [character(len=40) :: "&grid ny = abc cannot be read: an integer"], error)
+        if (allocated(error)) return
+        call check(error, index(e%message, nl) == 0 .and. index(e%message, '!') == 0, &
+                   "the message is one line without the comment: "//e%message)
+    end subroutine test_type_error_lines
+
+    !> A choice whose text runs past the longest name is refused, not cut to a valid name (a
+    !> valid name padded to the old buffers' length and followed by more text was accepted)
+    subroutine test_overlong_choices(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), parameter :: pad = repeat(' ', 40)//"x'"
+        call expect_message('long1', "&solver method = 'pdr"//pad//" /", [character(len=16) :: "&solver method"], error)
+        if (allocated(error)) return
+        call expect_message('long2', "&solver fft_planner = 'estimate"//pad//" /", &
+                            [character(len=20) :: "&solver fft_planner"], error)
+        if (allocated(error)) return
+        call expect_message('long3', "&solver device = 'cpu"//pad//" /", [character(len=16) :: "&solver device"], error)
+        if (allocated(error)) return
+        call expect_message('long4', "&solver kernel = 'spectral"//pad//" /", [character(len=16) :: "&solver kernel"], &
+                            error)
+        if (allocated(error)) return
+        call expect_message('long5', "&surface kind = 'flat"//pad//" /", [character(len=16) :: "&surface kind"], error)
+        if (allocated(error)) return
+        call expect_message('long6', "&surface scale_to = 'expected"//pad//" /", &
+                            [character(len=20) :: "&surface scale_to"], error)
+        if (allocated(error)) return
+        call expect_message('long7', "&material model = 'elastic"//pad//" /", [character(len=16) :: "&material model"], &
+                            error)
+        if (allocated(error)) return
+        call expect_message('long8', "&solver method = '"//repeat('p', 1100)//"' /", &
+                            [character(len=40) :: "&solver method is longer than 1023"], error)
+    end subroutine test_overlong_choices
 
     subroutine test_grid_absurd(error)
         type(error_t), allocatable, intent(out) :: error

@@ -21,7 +21,7 @@ module test_veslide_device
                               multiply_spectrum
     use veslide_kernel_passes, only: resolvent_multiplier, resolvent_apply
     use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
-    use veslide_bccg_passes, only: metric, set_contact, statistics, residual, precondition, direction, energy, step, &
+    use veslide_bccg_passes, only: metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
                                    update_transform, step_transform, gap_multiply, add_points, clipped_points
     use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
                                   full_contact, gap_to_z, sum_of, one_plus, difference_from
@@ -302,7 +302,8 @@ contains
         type(carray_t) :: kdh, kdd, kh, kdv, pkh, pkd, hkh, hkd
         type(iarray_t) :: ah, ad
         type(grid_t) :: grid
-        real(dp) :: wa(na), wb(ny), r3h(3, ny), r3d(3, ny), rh(ny), rdv(ny), ch(ny), cdv(ny), gmin(2), clip(ny)
+        real(dp) :: wa(na), wb(ny), r3h(3, ny), r3d(3, ny), r4h(4, ny), r4d(4, ny), rh(ny), rdv(ny), ch(ny), cdv(ny), &
+                    gmin(2), clip(ny)
         real(dp) :: pts_h(3, 8), pts_d(3, 8)
         complex(dp) :: ex(na, 3), ey(ny, 3)
         integer(i8) :: nact(2)
@@ -327,12 +328,15 @@ contains
         call statistics(xd, ad, pd, 0.1_dp, r3d, nact(2), gmin(2))
         call same_values(error, reshape(r3d, [3*ny]), reshape(r3h, [3*ny]), "statistics")
         if (.not. allocated(error)) call check(error, nact(1) == nact(2) .and. gmin(1) == gmin(2), "set size, min g")
-        call residual(xh, ah, vh, 0.05_dp, rh); call residual(xd, ad, vd, 0.05_dp, rdv)
-        call same_real(error, xh, xd, "residual"); call same_values(error, rdv, rh, "residual r.v")
+        call residual(xh, ah, vh, 0.05_dp, r4h); call residual(xd, ad, vd, 0.05_dp, r4d)
+        call same_real(error, xh, xd, "residual")
+        call same_values(error, reshape(r4d, [4*ny]), reshape(r4h, [4*ny]), "residual sums")
+        call set_sum(xh, ah, rh); call set_sum(xd, ad, rdv)
+        call same_values(error, rdv, rh, "set_sum")
         call twin_complex(na, ny, k, kh, kdv)
         call precondition(kh, ksh, wa, wah, wb, 1.0e3_dp, ch); call precondition(kdv, ksd, wa, wad, wb, 1.0e3_dp, cdv)
         call same_complex(error, kh, kdv, "precondition"); call same_values(error, cdv, ch, "precondition r.z")
-        call direction(xh, ah, vh, 0.4_dp); call direction(xd, ad, vd, 0.4_dp)
+        call direction(xh, ah, vh, 0.4_dp, 0.03_dp); call direction(xd, ad, vd, 0.4_dp, 0.03_dp)
         call same_real(error, xh, xd, "direction x"); call same_real(error, vh, vd, "direction v")
         call energy(kh, ksh, wa, wah, wb, ch); call energy(kdv, ksd, wa, wad, wb, cdv)
         call same_values(error, cdv, ch, "energy")

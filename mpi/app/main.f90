@@ -15,7 +15,7 @@ program veslide_batch
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_study, only: run_study, merge_study_parts, study_progress_t
     use veslide_device, only: device_enabled, device_count, device_select
-    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines
+    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, summary_width
     use veslide_quantities, only: results_t
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_system, only: ignore_file_size_signal
@@ -136,7 +136,7 @@ contains
         type(case_t) :: c
         type(results_t) :: r
         type(MPI_Comm) :: node
-        character(len=120), allocatable :: lines(:)
+        character(len=summary_width), allocatable :: lines(:)
         integer :: node_ranks, i, nlen
         nlen = 0; if (rank == 0) nlen = len(tmp)
         call MPI_Bcast(nlen, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)

@@ -48,9 +48,12 @@ def test_fields_are_indexed_by_x_and_y_in_metres(case):
         sel = fields.pressure_pa.sel(x=fields.x[i], y=fields.y[j]).item()
         assert sel == p[j, i]
         assert fields.pressure_pa.values[i, j] == p[j, i]
-    # the gap relation of the README holds on the read arrays: g = w - h + d
-    d = case.scalars["approach_m"]
+    # the gap relation of the README holds on the read arrays: g = w - h + D with the
+    # approach max(h) - D, and the mean separation D - mean(h)
+    d = float(fields.height_m.max()) - case.scalars["approach_m"]
     g = fields.displacement_m - fields.height_m + d
+    np.testing.assert_allclose(case.scalars["mean_separation_m"], d - float(fields.height_m.mean()),
+                               rtol=1e-9)
     np.testing.assert_allclose(fields.gap_m, g, atol=1e-9 * float(abs(fields.height_m).max()))
 
 

@@ -66,13 +66,17 @@ def test_namelist_file_and_relative_paths_against_the_cwd(tmp_path, monkeypatch,
     assert r.path == tmp_path / "from_nml.h5" and r.path.exists() and r.converged
     r2 = veslide.run("case.nml", output="other.h5", exe=exe, quiet=True, progress=None)
     assert r2.path == tmp_path / "other.h5" and r2.log == []
-    # an existing result is refused (I/O error, exit status 1), replaced with overwrite=True
+    # an existing result of the same input is read again; another input's is refused (as the
+    # program refuses an existing output), and replaced with overwrite=True
+    assert veslide.run("case.nml", output="other.h5", exe=exe, progress=None).reused
+    nml["surface"]["k_cut"] = 6
+    nml.write("case.nml", force=True)
     with pytest.raises(veslide.InputError, match="other.h5"):
         veslide.run("case.nml", output="other.h5", exe=exe, progress=None)
     veslide.run("case.nml", output="other.h5", exe=exe, overwrite=True, progress=None)
-    # no output named anywhere: a fresh temporary directory
+    # no output named anywhere: a result in memory
     r3 = veslide.run(params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8}), exe=exe, progress=None)
-    assert r3.path.name == "veslide.h5" and r3.path.parent.name.startswith("veslide-")
+    assert r3.path is None and r3.in_memory and r3.converged
 
 
 @pytest.mark.parametrize("groups, words", [
@@ -89,9 +93,8 @@ def test_refused_input_raises_input_error_with_the_programs_line(tmp_path, exe, 
     direct = subprocess.run([str(exe), str(tmp_path / "bad.nml"), "--output", str(out)],
                             capture_output=True, text=True)
     assert direct.returncode == 1 and err.returncode == 1
-    # the program's one line, verbatim (it names the namelist file: here a temporary one)
-    sent = err.command[1]
-    assert err.message == str(err) == direct.stderr.strip().replace(str(tmp_path / "bad.nml"), sent)
+    # the program's one line, verbatim, naming the dict instead of the temporary namelist file
+    assert err.message == str(err) == direct.stderr.strip().replace(str(tmp_path / "bad.nml"), "params dict")
     assert err.namelist == (tmp_path / "bad.nml").read_text()
     assert "\n" not in err.message
     for w in words:

@@ -80,3 +80,23 @@ def test_read_running_on_a_finished_study_reads_it(study):
     assert not r.partial and len(r.summary) == 8
     with pytest.raises(FileNotFoundError):
         veslide.read_running(study.path.with_name("nothing.h5"))
+
+
+def test_refresh_updates_the_result_in_place(tmp_path, exe):
+    """refresh() re-reads into the same object (a notebook's variable is never left stale)."""
+    proc, out = start_study(tmp_path, exe, n_speeds=60)
+    try:
+        proc.stdout.readline()
+        r = veslide.read_running(out)
+        n1 = len(r.summary)
+        case1 = r.cases[1]
+        assert "study written" in proc.stdout.read() and proc.wait(timeout=120) == 0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert n1 >= 1
+    assert r.refresh() is r
+    assert r.path == out and not r.partial and not r.running
+    assert len(r.summary) == 120 and len(r.cases) == 120 and len(r.ensemble) == 60
+    assert case1.refresh() is case1 and case1.scalars == r.cases[1].scalars and case1.path == out

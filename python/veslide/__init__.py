@@ -3,6 +3,7 @@
     import veslide
     r = veslide.run({"grid": {"nx": 64, "ny": 64}, "motion": {"speed_m_s": 0.1}})
     r.scalars["friction_coefficient"], r.fields.pressure_pa.sel(x=0.005, y=0.002, method="nearest")
+    h = veslide.start("study.nml"); h.progress.fraction; h.wait()   # in the background
     s = veslide.read("study.h5"); s.summary, s.ensemble, s.cases[3].fields
     veslide.read_running("study.h5")          # a study still being written (its part file)
     ref = veslide.refine("case.nml", [256, 512, 1024, 2048]); ref.estimate   # error bands by refinement
@@ -11,15 +12,17 @@ Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [i
 """
 from .results import Arrays, Cases, Result, Scalars, read, read_running
 from .refinement import Refinement, StudyRefinement, convergence, refine
-from .runner import ConvergenceWarning, InputError, VeslideError, find_executable, namelist, run, write_namelist
+from .runner import (Cancelled, ConvergenceWarning, InputError, OutputExistsError, Progress, Run, VeslideError,
+                     find_executable, git_revision, namelist, run, start, write_namelist)
 from .topography import major_axis_deg, psd_2d, psd_radial, read_topography, slope_tensor, write_topography
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
-__all__ = ["read", "read_running", "run", "write_topography", "read_topography", "find_executable",
+__all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revision", "write_topography", "read_topography", "find_executable",
            "namelist", "write_namelist", "refine", "convergence", "Refinement", "StudyRefinement",
            "psd_2d", "psd_radial", "slope_tensor", "major_axis_deg",
-           "Result", "Scalars", "Arrays", "Cases", "InputError", "VeslideError", "ConvergenceWarning"]
+           "Result", "Scalars", "Arrays", "Cases", "InputError", "OutputExistsError", "VeslideError",
+           "Cancelled", "ConvergenceWarning"]
 
 
 def __getattr__(name):

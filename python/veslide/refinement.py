@@ -17,7 +17,6 @@ a cluster) are analysed by `convergence(results)`. A study (&sweep) is refined c
 """
 import copy
 import math
-import subprocess
 import tempfile
 import warnings
 from pathlib import Path
@@ -27,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 from .results import Result, read
-from .runner import ConvergenceWarning, find_executable, load_params, run
+from .runner import ConvergenceWarning, load_params, reuse_existing, run
 
 #: The scalars analysed unless others are asked for (those a file lacks are skipped)
 DEFAULT_SCALARS = ("contact_area_fraction", "contact_area_fraction_cells", "mean_separation_m",
@@ -350,8 +349,9 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
     reuse       a result file already there from the same input and the same program version
                 (`veslide --version` against the file's `veslide_version`) is read, not run again:
                 a refinement interrupted on a cluster continues. A file of another input or
-                version is an error. A program rebuilt without a new version is not detected:
-                pass overwrite=True after changing it.
+                version is an error (`veslide.OutputExistsError`, a FileExistsError). A program
+                rebuilt without a new version is not detected: pass overwrite=True after changing
+                it. The rule of `veslide.run(..., reuse=True)` (`veslide.runner.reuse_existing`).
     overwrite   run again and replace the files instead
     threads, exe, progress   as for `veslide.run`
     """
@@ -387,13 +387,6 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
     return Refinement(results, scalars, assumed_order)
 
 
-def _program_version(exe):
-    """The version the executable reports (`veslide --version`: 'veslide X.Y.Z')."""
-    out = subprocess.run([str(find_executable(exe)), "--version"], capture_output=True, text=True, timeout=60)
-    words = out.stdout.split()
-    return words[1] if out.returncode == 0 and len(words) >= 2 else None
-
-
 def _run_grids(base, grids, out_dir, threads, exe, reuse, overwrite, progress):
     results = []
     version = None
@@ -406,16 +399,9 @@ def _run_grids(base, grids, out_dir, threads, exe, reuse, overwrite, progress):
         nml["output"].pop("file", None)
         out = out_dir / ("refine-%dx%d.h5" % (n, ny))
         if out.exists() and not overwrite:
-            if not reuse:
-                raise FileExistsError("%s exists: pass reuse=True to read it or overwrite=True to run again" % out)
-            r = read(out)
-            if r.input is None or str(r.input) != str(nml):
-                raise FileExistsError("%s holds the result of another input: pass overwrite=True or another "
-                                      "output_dir" % out)
-            version = version or _program_version(exe)
-            if r.provenance.get("veslide_version") != version:
-                raise FileExistsError("%s was written by veslide %s, the program is %s: pass overwrite=True"
-                                      % (out, r.provenance.get("veslide_version"), version))
+            # veslide.run's rule, also where the namelist says &output overwrite (a refinement continues)
+            r = reuse_existing(out, nml, exe, reuse, version)
+            version = r.provenance.get("veslide_version")
             if progress is not None:
                 progress("refine: %s reused" % out.name)
         else:

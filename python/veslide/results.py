@@ -1,9 +1,11 @@
 """Reading veslide results: a single case, a study, or a study still being written."""
-import glob
+import io
+import shutil
 from collections.abc import Mapping
 from pathlib import Path
 
 import f90nml
+import h5py
 import numpy as np
 import pandas as pd
 import xarray as xr
@@ -91,7 +93,8 @@ class Cases(Mapping):
         if k not in self._numbers:
             raise KeyError(k)
         if k not in self._cache:
-            self._cache[k] = Result(self._parent.path, group="/cases/%06d" % k, parent=self._parent)
+            self._cache[k] = Result(self._parent.path, group="/cases/%06d" % k, parent=self._parent,
+                                    image=self._parent._image)
         return self._cache[k]
 
     def __iter__(self):
@@ -113,26 +116,42 @@ class Result:
     `provenance`, `anisotropy`, `patches`, `persson`, `parameters`; read when first used:
     `fields`, `cases`. `partial` is True for a part file OUT.part (a study being written or
     interrupted), `running` when its writer was alive at reading time. `returncode`, `log` and
-    `stderr` are set by `veslide.run`."""
+    `stderr` are set by `veslide.run`, `reused` when it read an earlier run's file instead.
 
-    def __init__(self, path, group="/", parent=None):
-        self.path = Path(path)
+    `in_memory`: the whole file was read into memory (`veslide.read(path, memory=True)`, or a
+    `veslide.run` that asked for no file: its `path` is then None); `save(path)` writes it."""
+
+    def __init__(self, path, group="/", parent=None, *, image=None):
         self.group = group
         self.parent = parent
-        final = published_name(self.path)
-        self.partial = final is not None
-        self.running = self.partial and writer_alive(final)
+        self._image = image
         self.returncode = None
         self.log = None
         self.stderr = None
+        self.reused = False
+        self._attach(path)
+
+    def _attach(self, path):
+        """(Re)read everything from `path` (or from the image in memory)."""
+        self.path = Path(path) if path is not None else None
+        final = published_name(self.path) if self._image is None else None
+        self.partial = final is not None
+        self.running = self.partial and writer_alive(final)
         self._fields = None
         self._cases = None
         retry(self._load, self.partial)
+
+    @property
+    def in_memory(self):
+        """The file's bytes are held in memory (no file is read again)."""
+        return self._image is not None
 
     # -- reading -----------------------------------------------------------------------------
     def _open(self):
         """The file, or, for a part file published meanwhile, the published one (the same data:
         publication links the part file under its final name)."""
+        if self._image is not None:
+            return h5py.File(io.BytesIO(self._image), "r")
         if not self.path.exists() and self.partial:
             final = published_name(self.path)
             if final is not None and final.exists():
@@ -216,19 +235,40 @@ class Result:
         return None
 
     def refresh(self):
-        """Read the file again (for a running study: the rows and cases written since; once it
-        is published, the published file)."""
+        """Read the file again, into this object, and return it (for a running study: the rows
+        and cases written since; once it is published, the published file). A case of a study
+        refreshes its study too. A result in memory has nothing to re-read."""
+        if self._image is not None:
+            return self
         if self.parent is not None:
-            return Result(self.path, self.group, self.parent.refresh())
-        if self.partial and not self.path.exists():
-            final = published_name(self.path)
+            self.parent.refresh()
+            self._attach(self.parent.path)
+            return self
+        path = self.path
+        if self.partial and not path.exists():
+            final = published_name(path)
             if final is not None and final.exists():
-                return Result(final)
-        return Result(self.path)
+                path = final
+        self._attach(path)
+        return self
+
+    def save(self, path):
+        """Write the whole file (a study's, for one of its cases) to `path`, e.g. a result that
+        `veslide.run` kept in memory; returns the path. An existing file is not replaced."""
+        root = self.parent if self.parent is not None else self
+        path = Path(path)
+        with open(path, "xb") as out:
+            if root._image is not None:
+                out.write(root._image)
+            else:
+                with open(root.path, "rb") as src:
+                    shutil.copyfileobj(src, out)
+        return path
 
     def __repr__(self):
         what = "study" if self.is_study else "case"
-        bits = ["%s %s%s" % (what, self.path, "" if self.group == "/" else ":" + self.group)]
+        where = "in memory" if self.path is None else self.path
+        bits = ["%s %s%s" % (what, where, "" if self.group == "/" else ":" + self.group)]
         if self.partial:
             bits.append("partial (writer %s)" % ("running" if self.running else "gone"))
         if self.summary is not None:
@@ -242,10 +282,13 @@ class Result:
         return "<veslide.Result %s>" % ", ".join(bits)
 
 
-def read(path):
+def read(path, memory=False):
     """Read a veslide HDF5 result (a case, a study, or a part file OUT.part of a study that
-    is running or was interrupted) into a `Result`."""
+    is running or was interrupted) into a `Result`. `memory=True` reads the whole file into
+    memory first: the Result needs the file no more (it may be removed or replaced)."""
     path = Path(path)
+    if memory and path.exists():
+        return Result(path, image=path.read_bytes())
     if not path.exists():
         parts = _part_files(path)
         hint = (" (a running study writes %s: use veslide.read_running(%r))" % (parts[-1].name, str(path))

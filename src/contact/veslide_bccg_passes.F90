@@ -4,10 +4,11 @@
 !> memory). Real fields are (nx, ny), spectra (na, nb) = the grid's spectral storage; row (or
 !> spectral column) partial sums come back one per row, added in order by the solver.
 !>  statistics  g = x - gprev: per row [sum of g on the set, sum p g, sum p]; set size; min g
-!>  residual    the set grows by the points outside it with g < 0; x = -g on it, 0 outside;
-!>              per row sum of -g v (r.v_old)
+!>  residual    the set grows by the points outside it with g < 0; x = r = -g on it, 0 outside;
+!>              per row [r.v_old, sum of r, sum of v_old, set size] over the (grown) set
 !>  precondition  z^ = k^/(M N^2) (0 where M = 0); per spectral column sum wa |k|^2 w, times wb
-!>  direction   v = x + beta v on the set, 0 outside; x = v
+!>  set_sum     per row sum of x over the set
+!>  direction   v = x + beta v - shift on the set, 0 outside; x = v
 !>  energy      per spectral column sum wa M |k|^2, times wb (v.Mv by Parseval)
 !>  step        p = a p + alpha v on the set, clipped at 0 (the clipped amounts into x, the
 !>              points leave the set); per row sum p (and the number clipped)
@@ -22,7 +23,7 @@ module veslide_bccg_passes
     use veslide_device, only: device_alloc, device_free, device_upload, device_download
     implicit none
     private
-    public :: metric, set_contact, statistics, residual, precondition, direction, energy, step, &
+    public :: metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
               update_transform, step_transform, gap_multiply, add_points, clipped_points
 
 #ifdef VESLIDE_CUDA
@@ -47,6 +48,7 @@ module veslide_bccg_passes
             real(c_double), value :: gprev
             real(c_double), intent(out) :: rows(*)
         end subroutine statistics_gpu
+        !> rows(4, ny): [r.v_old, sum r, sum v_old, set size]
         subroutine residual_gpu(nx, ny, x, act, v, gbar, rows) bind(c, name='veslide_bccg_residual')
             import :: c_int, c_ptr, c_double
             integer(c_int), value :: nx, ny
@@ -62,11 +64,17 @@ module veslide_bccg_passes
             real(c_double), value :: n2
             real(c_double), intent(out) :: cols(*)
         end subroutine precondition_gpu
-        subroutine direction_gpu(n, x, act, v, beta) bind(c, name='veslide_bccg_direction')
+        subroutine set_sum_gpu(nx, ny, x, act, rows) bind(c, name='veslide_bccg_set_sum')
+            import :: c_int, c_ptr, c_double
+            integer(c_int), value :: nx, ny
+            type(c_ptr), value :: x, act
+            real(c_double), intent(out) :: rows(*)
+        end subroutine set_sum_gpu
+        subroutine direction_gpu(n, x, act, v, beta, shift) bind(c, name='veslide_bccg_direction')
             import :: c_long, c_ptr, c_double
             integer(c_long), value :: n
             type(c_ptr), value :: x, act, v
-            real(c_double), value :: beta
+            real(c_double), value :: beta, shift
         end subroutine direction_gpu
         subroutine energy_gpu(na, nb, k, ks, wa, cols) bind(c, name='veslide_bccg_energy')
             import :: c_int, c_ptr, c_double
@@ -150,12 +158,13 @@ contains
         call statistics_cpu(x%h, act%h, p%h, gprev, rows, nact, gmin)
     end subroutine statistics
 
+    !> rows(4, ny): per row [r.v_old, sum of r, sum of v_old, set size] over the grown set
     subroutine residual(x, act, v, gbar, rows)
         type(rarray_t), intent(inout) :: x
         type(iarray_t), intent(inout) :: act
         type(rarray_t), intent(in) :: v
         real(dp), intent(in) :: gbar
-        real(dp), intent(out) :: rows(:)
+        real(dp), intent(out) :: rows(:, :)
 #ifdef VESLIDE_CUDA
         if (x%device) then
             call residual_gpu(x%n1, x%n2, x%d, act%d, v%d, gbar, rows); return
@@ -163,6 +172,19 @@ contains
 #endif
         call residual_cpu(x%h, act%h, v%h, gbar, rows)
     end subroutine residual
+
+    !> rows(ny): per row sum of x over the set
+    subroutine set_sum(x, act, rows)
+        type(rarray_t), intent(in) :: x
+        type(iarray_t), intent(in) :: act
+        real(dp), intent(out) :: rows(:)
+#ifdef VESLIDE_CUDA
+        if (x%device) then
+            call set_sum_gpu(x%n1, x%n2, x%d, act%d, rows); return
+        end if
+#endif
+        call set_sum_cpu(x%h, act%h, rows)
+    end subroutine set_sum
 
     subroutine precondition(k, ks, wa, wa_dev, wb, n2, cols)
         type(carray_t), intent(inout) :: k
@@ -179,16 +201,16 @@ contains
         call precondition_cpu(k%h, ks%h, wa, wb, n2, cols)
     end subroutine precondition
 
-    subroutine direction(x, act, v, beta)
+    subroutine direction(x, act, v, beta, shift)
         type(rarray_t), intent(inout) :: x, v
         type(iarray_t), intent(in) :: act
-        real(dp), intent(in) :: beta
+        real(dp), intent(in) :: beta, shift
 #ifdef VESLIDE_CUDA
         if (x%device) then
-            call direction_gpu(elements(x), x%d, act%d, v%d, beta); return
+            call direction_gpu(elements(x), x%d, act%d, v%d, beta, shift); return
         end if
 #endif
-        call direction_cpu(x%h, act%h, v%h, beta)
+        call direction_cpu(x%h, act%h, v%h, beta, shift)
     end subroutine direction
 
     subroutine energy(k, ks, wa, wa_dev, wb, cols)
@@ -382,8 +404,8 @@ contains
         integer(int8), intent(inout) :: act(:, :)
         real(dp), intent(in) :: v(:, :)
         real(dp), intent(in) :: gbar
-        real(dp), intent(out) :: rows(:)
-        real(dp) :: g, w
+        real(dp), intent(out) :: rows(:, :)
+        real(dp) :: g, w(4)
         integer :: i, j
         !$omp parallel do schedule(guided) private(i, g, w)
         do j = 1, size(x, 2)
@@ -393,15 +415,35 @@ contains
                 if (act(i, j) == 0 .and. g < 0.0_dp) act(i, j) = 1_int8
                 if (act(i, j) /= 0) then
                     x(i, j) = -g
-                    w = w - g*v(i, j)
+                    w(1) = w(1) - g*v(i, j)
+                    w(2) = w(2) - g
+                    w(3) = w(3) + v(i, j)
+                    w(4) = w(4) + 1.0_dp
                 else
                     x(i, j) = 0.0_dp
                 end if
             end do
-            rows(j) = w
+            rows(:, j) = w
         end do
         !$omp end parallel do
     end subroutine residual_cpu
+
+    subroutine set_sum_cpu(x, act, rows)
+        real(dp), intent(in) :: x(:, :)
+        integer(int8), intent(in) :: act(:, :)
+        real(dp), intent(out) :: rows(:)
+        real(dp) :: w
+        integer :: i, j
+        !$omp parallel do schedule(guided) private(i, w)
+        do j = 1, size(x, 2)
+            w = 0.0_dp
+            do i = 1, size(x, 1)
+                if (act(i, j) /= 0) w = w + x(i, j)
+            end do
+            rows(j) = w
+        end do
+        !$omp end parallel do
+    end subroutine set_sum_cpu
 
     subroutine precondition_cpu(k, ks, wa, wb, n2, cols)
         complex(dp), intent(inout) :: k(:, :)
@@ -423,17 +465,17 @@ contains
         !$omp end parallel do
     end subroutine precondition_cpu
 
-    subroutine direction_cpu(x, act, v, beta)
+    subroutine direction_cpu(x, act, v, beta, shift)
         real(dp), intent(inout) :: x(:, :), v(:, :)
         integer(int8), intent(in) :: act(:, :)
-        real(dp), intent(in) :: beta
+        real(dp), intent(in) :: beta, shift
         real(dp) :: z
         integer :: i, j
         !$omp parallel do schedule(guided) private(i, z)
         do j = 1, size(x, 2)
             do i = 1, size(x, 1)
                 if (act(i, j) /= 0) then
-                    z = x(i, j) + beta*v(i, j)
+                    z = x(i, j) + beta*v(i, j) - shift
                 else
                     z = 0.0_dp
                 end if

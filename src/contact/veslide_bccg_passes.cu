@@ -57,6 +57,9 @@ struct residual_f {
         if (a != 0) {
             x[n] = -g;
             s[0] -= g * v[n];
+            s[1] -= g;
+            s[2] += v[n];
+            s[3] += 1.0;
         } else {
             x[n] = 0.0;
         }
@@ -78,12 +81,22 @@ struct precondition_f {
     }
 };
 
+struct set_sum_f {
+    const double *x;
+    const int8_t *act;
+    int nx;
+    VS_HD void operator()(int i, int j, double *s, double *) const {
+        long n = i + (long)nx * j;
+        if (act[n] != 0) s[0] += x[n];
+    }
+};
+
 struct direction_f {
     double *x, *v;
     const int8_t *act;
-    double beta;
+    double beta, shift;
     VS_HD void operator()(long n) const {
-        double z = act[n] != 0 ? x[n] + beta * v[n] : 0.0;
+        double z = act[n] != 0 ? x[n] + beta * v[n] - shift : 0.0;
         v[n] = z;
         x[n] = z;
     }
@@ -172,7 +185,11 @@ void veslide_bccg_statistics(int nx, int ny, const double *x, const int8_t *act,
 }
 
 void veslide_bccg_residual(int nx, int ny, double *x, int8_t *act, const double *v, double gbar, double *rows) {
-    vs::reduce_rows<1, 0>(residual_f{x, act, v, gbar, nx}, nx, ny, rows);
+    vs::reduce_rows<4, 0>(residual_f{x, act, v, gbar, nx}, nx, ny, rows);
+}
+
+void veslide_bccg_set_sum(int nx, int ny, const double *x, const int8_t *act, double *rows) {
+    vs::reduce_rows<1, 0>(set_sum_f{x, act, nx}, nx, ny, rows);
 }
 
 void veslide_bccg_precondition(int na, int nb, double2 *k, const double *ks, const double *wa, double n2,
@@ -180,8 +197,8 @@ void veslide_bccg_precondition(int na, int nb, double2 *k, const double *ks, con
     vs::reduce_rows<1, 0>(precondition_f{k, ks, wa, n2, na}, na, nb, cols);
 }
 
-void veslide_bccg_direction(long n, double *x, const int8_t *act, double *v, double beta) {
-    vs::for_each(direction_f{x, v, act, beta}, n);
+void veslide_bccg_direction(long n, double *x, const int8_t *act, double *v, double beta, double shift) {
+    vs::for_each(direction_f{x, v, act, beta, shift}, n);
 }
 
 void veslide_bccg_energy(int na, int nb, const double2 *k, const double *ks, const double *wa, double *cols) {

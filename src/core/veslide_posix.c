@@ -13,14 +13,30 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* The errno of the last failure of veslide_path_kind or veslide_lock (0: none) */
+static int last_errno = 0;
+
 /* -1: no such path, 0: regular file, 1: directory, 2: anything else (FIFO, device, socket) */
 int veslide_path_kind(const char *path)
 {
     struct stat st;
-    if (stat(path, &st) != 0) return -1;
+    if (stat(path, &st) != 0) {
+        last_errno = errno;
+        return -1;
+    }
+    last_errno = 0;
     if (S_ISREG(st.st_mode)) return 0;
     if (S_ISDIR(st.st_mode)) return 1;
     return 2;
+}
+
+/* The system's words for the last failure of veslide_path_kind or veslide_lock ("File name
+ * too long", "Permission denied"), into buf (n bytes, NUL-terminated); "" when none */
+void veslide_last_error(char *buf, int n)
+{
+    if (n <= 0) return;
+    buf[0] = '\0';
+    if (last_errno != 0) snprintf(buf, (size_t)n, "%s", strerror(last_errno));
 }
 
 /* An exclusive advisory lock on `path` (created if missing), held until veslide_unlock or the
@@ -29,7 +45,10 @@ int veslide_path_kind(const char *path)
 int veslide_lock(const char *path)
 {
     int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) return -1;
+    if (fd < 0) {
+        last_errno = errno;
+        return -1;
+    }
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
         int busy = (errno == EWOULDBLOCK);
         close(fd);

@@ -9,7 +9,7 @@ module veslide_system
     implicit none
     private
     public :: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, PATH_OTHER
-    public :: lock_file, unlock_file, LOCK_BUSY, ignore_file_size_signal
+    public :: lock_file, unlock_file, LOCK_BUSY, ignore_file_size_signal, last_system_error, missing_reason
     public :: available_memory_bytes, peak_memory_bytes, resident_memory_bytes, exit_now, prefer_passive_wait
     public :: use_threads
 
@@ -22,6 +22,11 @@ module veslide_system
             import :: c_int, c_char
             character(kind=c_char), intent(in) :: path(*)
         end function c_path_kind
+        subroutine c_last_error(buf, n) bind(c, name='veslide_last_error')
+            import :: c_char, c_int
+            character(kind=c_char), intent(out) :: buf(*)
+            integer(c_int), value :: n
+        end subroutine c_last_error
         integer(c_int) function c_lock(path) bind(c, name='veslide_lock')
             import :: c_int, c_char
             character(kind=c_char), intent(in) :: path(*)
@@ -81,6 +86,32 @@ contains
         character(len=*), intent(in) :: path
         fd = int(c_lock(path//c_null_char))
     end function lock_file
+
+    !> The system's own words for the last failure of path_kind or lock_file ('File name too
+    !> long', 'Permission denied', ...); '' when it did not fail
+    function last_system_error() result(reason)
+        character(len=:), allocatable :: reason
+        character(kind=c_char) :: buf(256)
+        integer :: k
+        call c_last_error(buf, int(size(buf), c_int))
+        reason = ''
+        do k = 1, size(buf)
+            if (buf(k) == c_null_char) exit
+            reason = reason//buf(k)
+        end do
+    end function last_system_error
+
+    !> Why `path` cannot be opened for reading, in the system's words ('No such file or
+    !> directory', 'File name too long', 'Permission denied' for a directory on the way); ''
+    !> when it exists
+    function missing_reason(path) result(reason)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: reason
+        reason = ''
+        if (path_kind(path) /= PATH_MISSING) return
+        reason = last_system_error()
+        if (len(reason) == 0) reason = 'no such file'
+    end function missing_reason
 
     subroutine unlock_file(fd)
         integer, intent(in) :: fd

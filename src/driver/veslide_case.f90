@@ -10,7 +10,7 @@ module veslide_case
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t, distribute_grid
     use veslide_collective, only: share_error, global_max
-    use veslide_fields, only: field_rms, field_max
+    use veslide_fields, only: field_rms, field_max, field_mean
     use veslide_spectrum, only: slope_tensor
     use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
     use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
@@ -35,8 +35,12 @@ module veslide_case
     implicit none
     private
     public :: case_t, build_surface, build_material, build_kernel, case_grid, run_case, solve_prepared, &
-              case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines, &
+              case_results, write_case, write_case_group, velocity_of, size_and_check_memory, summary_lines, summary_width, &
               case_memory, case_on_device
+
+    !> The length of a line of the run summary: two texts of the input (up to 1023 characters
+    !> each, the input's and the output's paths) and the words around them, never cut
+    integer, parameter :: summary_width = 2200
 
     !> Everything one solve produced
     type :: case_t
@@ -424,7 +428,9 @@ contains
         call r%add('rms_height_m', field_rms(c%grid, c%h), 'm')
         call r%add('max_pressure_pa', field_max(c%grid, c%state%p), 'Pa')
         call r%add('mean_pressure_pa', cfg%load%mean_pressure_pa, 'Pa')
-        call r%add('approach_m', c%state%approach_m, 'm')
+        ! the rigid-body approach since first contact: g = w - h + D with mean w = 0 gives
+        ! D = h_max at first touch and D = h_mean + d under load (d: the solver's mean gap)
+        call r%add('approach_m', field_max(c%grid, c%h) - field_mean(c%grid, c%h) - c%state%approach_m, 'm')
         call add_solver_quantities(r, c%state, cfg%solver%tolerance)
         call r%add('length_x_m', c%grid%lx_m, 'm')
         call r%add('length_y_m', c%grid%ly_m, 'm')
@@ -500,8 +506,8 @@ contains
         type(config_t), intent(in) :: cfg
         type(case_t), intent(in) :: c
         type(results_t), intent(in) :: r
-        character(len=120), allocatable :: lines(:)
-        character(len=120) :: b
+        character(len=summary_width), allocatable :: lines(:)
+        character(len=summary_width) :: b
         real(dp) :: hrms
         hrms = r%get('rms_height_m')
         allocate (lines(0))
@@ -561,7 +567,7 @@ contains
     contains
         function b_(t) result(l)
             character(len=*), intent(in) :: t
-            character(len=120) :: l
+            character(len=summary_width) :: l
             l = t
         end function b_
     end function summary_lines

@@ -1,15 +1,20 @@
 !> Named scenes: the hard cases every solver change is measured on (`veslide-bench hard`, and
 !> the `hard` test suite at a small grid). All share the paper's geometry (L0 = 1 cm, spectrum
 !> q0 .. k_cut q0, rms slope 0.025) and material time tau = 10 ms, so v tau/L0 = speed [m/s].
+!> The profiles (`profile_case`): many one-row and stripe-like random profiles, on which a solver
+!> that converges on every 2-D scene can still stall (the `hard` suite runs each method on all).
 module veslide_scenes
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_config, only: config_t, default_config, complete_config
     implicit none
     private
-    public :: hard_case_count, hard_case
+    public :: hard_case_count, hard_case, profile_case_count, profile_case
 
     integer, parameter :: ncase = 29
+    !> profiles: one-row (nx 64, ny 1), stripes of 4 rows (eccentricity 0.1 along x) and of
+    !> 8 rows (eccentricity 0.2 across x)
+    integer, parameter :: nrow1 = 150, nstripe4 = 75, nstripe8 = 75
 
 contains
 
@@ -64,5 +69,52 @@ contains
         end select
         call complete_config(cfg, error)
     end subroutine hard_case
+
+    pure integer function profile_case_count() result(n)
+        n = nrow1 + nstripe4 + nstripe8
+    end function profile_case_count
+
+    !> Configuration of profile k (1..profile_case_count()) solved by `method`, of an elastic
+    !> solid or (`viscoelastic`) of the one-term law at v tau/L0 = 0.13: a random profile of
+    !> seed k (one-row) or k - offset (stripes), the load cycling over 1e3, 3.2e4 and 3e5 Pa
+    !> (contact fractions from about 0.3 % to 30 %)
+    subroutine profile_case(k, method, viscoelastic, cfg, name, error)
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: method
+        logical, intent(in) :: viscoelastic
+        type(config_t), intent(out) :: cfg
+        character(len=:), allocatable, intent(out) :: name
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: loads(3) = [1.0e3_dp, 32.0e3_dp, 3.0e5_dp]
+        character(len=32) :: text
+        integer :: ny, seed
+        call default_config(cfg, 'profile')
+        if (k <= nrow1) then
+            ny = 1; seed = k
+        else if (k <= nrow1 + nstripe4) then
+            ny = 4; seed = k - nrow1
+            cfg%surface%eccentricity = 0.1_dp; cfg%surface%alpha_deg = 0.0_dp
+        else
+            ny = 8; seed = k - nrow1 - nstripe4
+            cfg%surface%eccentricity = 0.2_dp; cfg%surface%alpha_deg = 90.0_dp
+        end if
+        cfg%grid%nx = merge(64, 128, ny == 1); cfg%grid%ny = ny
+        cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp*ny/cfg%grid%nx
+        cfg%surface%seed = seed; cfg%surface%k_cut = 16.0_dp
+        cfg%load%mean_pressure_pa = loads(modulo(k, 3) + 1)
+        if (viscoelastic) then
+            cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+            cfg%material%tau_s = 0.01_dp; cfg%motion%speed_m_s = 0.13_dp
+        else
+            cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e7_dp
+        end if
+        cfg%solver%method = method
+        cfg%solver%fft_planner = 'estimate'; cfg%output%fields = .false.
+        cfg%output%file = 'profile.h5'
+        write (text, '(i0, " x ", i0, ", seed ", i0, ", ", es8.1, " Pa")') cfg%grid%nx, ny, seed, &
+            cfg%load%mean_pressure_pa
+        name = trim(method)//' on the profile '//trim(text)
+        call complete_config(cfg, error)
+    end subroutine profile_case
 
 end module veslide_scenes

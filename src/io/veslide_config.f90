@@ -8,6 +8,7 @@ module veslide_config
     use veslide_kinds, only: dp, pi
     use veslide_error, only: error_t, fatal_error
     use veslide_strings, only: str
+    use veslide_system, only: missing_reason
     use veslide_config_common, only: require, group_text_t, scan_namelist, get_group
     use veslide_config_grid, only: grid_config_t, read_grid_config
     use veslide_config_surface, only: surface_config_t, read_surface_config
@@ -58,7 +59,7 @@ contains
         logical :: exists
         inquire (file=path, exist=exists, size=n)
         if (.not. exists) then
-            call fatal_error(error, "veslide: cannot open '"//path//"': no such file"); return
+            call fatal_error(error, "veslide: cannot open '"//path//"': "//missing_reason(path)); return
         end if
         open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', &
               iostat=stat, iomsg=msg)

@@ -214,7 +214,7 @@ contains
             end do
             var = lower(trim(adjustl(item(1:index(item, '=') - 1))))
             if (index(var, '(') > 0) var = trim(var(1:index(var, '(') - 1))
-            value = trim(adjustl(item(index(item, '=') + 1:)))
+            value = one_line(item(index(item, '=') + 1:))
             iv = name_index(var, names)
             if (iv == 0) then
                 call fatal_error(error, at//var//": no such variable (the variables of &"//group//": "// &
@@ -233,6 +233,30 @@ contains
         call fatal_error(error, at//"cannot be read: "//trim(msg)//" (the variables of &"//group//": "// &
                          join(names)//")")
     contains
+        !> The value as one line of a message: without its comment, line ends and trailing commas
+        pure function one_line(text) result(s)
+            character(len=*), intent(in) :: text
+            character(len=:), allocatable :: s
+            character(len=1) :: quote
+            integer :: j
+            s = text; quote = ' '
+            do j = 1, len(s)
+                if (quote /= ' ') then
+                    if (s(j:j) == quote) quote = ' '
+                else if (s(j:j) == '"' .or. s(j:j) == "'") then
+                    quote = s(j:j)
+                else if (s(j:j) == '!') then
+                    s = s(1:j - 1); exit
+                end if
+                if (iachar(s(j:j)) < 32) s(j:j) = ' '
+            end do
+            s = trim(adjustl(s))
+            do while (len(s) > 0)
+                if (s(len(s):len(s)) /= ',') exit
+                s = trim(s(1:len(s) - 1))
+            end do
+        end function one_line
+
         pure function join(list) result(s)
             character(len=*), intent(in) :: list(:)
             character(len=:), allocatable :: s

@@ -4,7 +4,8 @@ module veslide_config_material
     use veslide_error, only: error_t, fatal_error
     use veslide_strings, only: str
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
-                                     finite_in, max_list, unset_real, list_length, check_list
+                                     finite_in, max_list, unset_real, list_length, check_list, check_text_length, &
+                                     max_text
     use veslide_material, only: material_model_names
     implicit none
     private
@@ -38,7 +39,7 @@ contains
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        character(len=16) :: model
+        character(len=max_text + 1) :: model
         real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
         real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
         integer :: stat
@@ -55,6 +56,7 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'material', g%body, names, kinds, try, error); return
         end if
+        call check_text_length(error, model, path, 'material', 'model'); if (allocated(error)) return
         self%model = trim(model); self%young_pa = young_pa; self%poisson = poisson; self%einf_pa = einf_pa
         self%ratio = ratio; self%tau_s = tau_s; self%e0_pa = e0_pa
         call check_list(error, creep_c_per_pa, path, 'material', 'creep_c_per_pa')
@@ -129,7 +131,7 @@ contains
             character(len=*), intent(in) :: lines(:)
             integer, intent(out) :: stat
             character(len=*), intent(out) :: msg
-            character(len=16) :: model
+            character(len=max_text + 1) :: model
             real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
             real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
             namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, &

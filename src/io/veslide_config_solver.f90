@@ -4,7 +4,7 @@ module veslide_config_solver
     use veslide_error, only: error_t
     use veslide_strings, only: str
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
-                                     finite_in
+                                     finite_in, check_text_length, max_text
     use veslide_solver_options, only: solver_method_names, device_names
     use veslide_kernel, only: kernel_names
     use veslide_fftw, only: fft_planner_names
@@ -46,8 +46,8 @@ contains
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        character(len=16) :: method, fft_planner, device
-        character(len=24) :: kernel
+        character(len=max_text + 1) :: method, fft_planner, device
+        character(len=max_text + 1) :: kernel
         real(dp) :: tolerance, alias_tol, balance_ratio, balance_factor
         integer :: max_iterations, alias_max, threads, anderson_memory, balance_every, stat
         character(len=512) :: msg
@@ -63,6 +63,10 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'solver', g%body, names, kinds, try, error); return
         end if
+        call check_text_length(error, method, path, 'solver', 'method')
+        call check_text_length(error, kernel, path, 'solver', 'kernel')
+        call check_text_length(error, fft_planner, path, 'solver', 'fft_planner')
+        call check_text_length(error, device, path, 'solver', 'device'); if (allocated(error)) return
         self%method = trim(method); self%tolerance = tolerance; self%max_iterations = max_iterations
         self%kernel = trim(kernel); self%alias_tol = alias_tol; self%alias_max = alias_max
         self%fft_planner = trim(fft_planner); self%threads = threads
@@ -101,8 +105,8 @@ contains
             character(len=*), intent(in) :: lines(:)
             integer, intent(out) :: stat
             character(len=*), intent(out) :: msg
-            character(len=16) :: method, fft_planner, device
-            character(len=24) :: kernel
+            character(len=max_text + 1) :: method, fft_planner, device
+            character(len=max_text + 1) :: kernel
             real(dp) :: tolerance, alias_tol, balance_ratio, balance_factor
             integer :: max_iterations, alias_max, threads, anderson_memory, balance_every
             namelist /solver/ method, tolerance, max_iterations, kernel, alias_tol, alias_max, fft_planner, threads, &

@@ -43,8 +43,8 @@ contains
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        character(len=32) :: kind
-        character(len=16) :: scale_to
+        character(len=max_text + 1) :: kind
+        character(len=max_text + 1) :: scale_to
         character(len=max_text + 1) :: file, dataset
         integer(i8) :: seed
         real(dp) :: hurst, eccentricity, alpha_deg, k_low, k_roll, k_cut, rms_slope, rms_height_m
@@ -64,6 +64,8 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'surface', g%body, names, kinds, try, error); return
         end if
+        call check_text_length(error, kind, path, 'surface', 'kind')
+        call check_text_length(error, scale_to, path, 'surface', 'scale_to')
         call check_text_length(error, file, path, 'surface', 'file')
         call check_text_length(error, dataset, path, 'surface', 'dataset'); if (allocated(error)) return
         self%kind = trim(kind); self%seed = seed; self%hurst = hurst; self%eccentricity = eccentricity
@@ -115,8 +117,8 @@ contains
             character(len=*), intent(in) :: lines(:)
             integer, intent(out) :: stat
             character(len=*), intent(out) :: msg
-            character(len=32) :: kind
-            character(len=16) :: scale_to
+            character(len=max_text + 1) :: kind
+            character(len=max_text + 1) :: scale_to
             character(len=max_text + 1) :: file, dataset
             integer(i8) :: seed
             real(dp) :: hurst, eccentricity, alpha_deg, k_low, k_roll, k_cut, rms_slope, rms_height_m

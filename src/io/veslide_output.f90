@@ -14,7 +14,8 @@ module veslide_output
     use veslide_quantities, only: results_t
     use veslide_device, only: device_enabled, device_emulated, device_count, device_info_t, device_info
     use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
-    use veslide_system, only: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, lock_file, unlock_file, LOCK_BUSY
+    use veslide_system, only: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, lock_file, unlock_file, LOCK_BUSY, &
+                              last_system_error
     implicit none
     private
     public :: prepare_output, release_output, commit_output, discard_output, write_provenance, process_id, &
@@ -86,7 +87,7 @@ contains
                 "' (it holds '"//path//".lock'); wait for it or choose another output"); return
         else if (lock < 0) then
             call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: cannot create '"// &
-                             path//".lock' in its directory"); return
+                             path//".lock' in its directory: "//last_system_error()); return
         end if
         if (path_kind(tmp) == PATH_MISSING) then
             open (newunit=u, file=tmp, status='new', action='write', iostat=stat, iomsg=msg)

@@ -5,6 +5,7 @@ module veslide_topography
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error
     use veslide_hdf5, only: h5file_t
+    use veslide_system, only: missing_reason
     implicit none
     private
     public :: read_topography, topography_shape
@@ -53,13 +54,12 @@ contains
         type(error_t), allocatable, intent(out) :: error
         integer(i8) :: dims(7)
         integer :: rank
-        logical :: is_double, exists
+        logical :: is_double
         character(len=:), allocatable :: at
         at = "file '"//file//"': "
         n = 0
-        inquire (file=file, exist=exists)
-        if (.not. exists) then
-            call fatal_error(error, at//"no such file"); return
+        if (len(missing_reason(file)) > 0) then
+            call fatal_error(error, at//missing_reason(file)); return
         end if
         call f%open(file, 'r', error)
         if (allocated(error)) then
