@@ -257,8 +257,8 @@ probe_all() {
     probe run "$fc" lapack.f90 "${fflags[@]}" "${ldflags[@]}" -llapack -lblas ||
         lack "liblapack-dev libblas-dev" "LAPACK and BLAS (liblapack, libblas) not found: $(why)." \
             " Provide them (module load lapack or openblas) and export VESLIDE_LAPACK_DIR=PREFIX" \
-            " (PREFIX/lib/liblapack.so and libblas.so; for OpenBLAS or MKL alone, links of those two" \
-            " names to it: docs/install.md), or -L in FPM_LDFLAGS"
+            " (PREFIX/lib/liblapack.so and libblas.so; for OpenBLAS alone, links of those two names to" \
+            " it: docs/install.md), or -L in FPM_LDFLAGS"
     if ! find_hdf5 serial; then
         tried="${h5_tried[*]:-none (no VESLIDE_HDF5_DIR, no pkg-config entry, no h5fc on PATH)}"
         lack libhdf5-dev "HDF5's Fortran library (hdf5.mod, libhdf5_fortran) not found; tried: $tried." \
