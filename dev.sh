@@ -9,7 +9,7 @@ caller=$PWD
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 cd "$root"
 bash scripts/setup.sh
-export PATH="$root/.venv/bin:$PATH"
+source scripts/env.sh               # .venv/bin on PATH, the HDF5 setup.sh found, library prefixes
 rev=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
 if [ "$rev" != unknown ] && [ -n "$(git status --porcelain --untracked-files=no 2>/dev/null)" ]; then
     rev="$rev-dirty"
@@ -21,15 +21,20 @@ export MPLBACKEND=Agg
 profile=(--profile release)
 cmd="${1:-run}"; shift || true
 
-# The release build of the veslide program (absolute path), built when out of date
+# The release build of the veslide program (absolute path), built when out of date; veslide and
+# veslide-bench are linked into .venv/bin (source .venv/bin/activate puts them on PATH)
 veslide_exe() {
+    local exe
     fpm build "${profile[@]}" >&2 || return 1
-    echo "$root/$(fpm run "${profile[@]}" veslide --runner echo 2>/dev/null | tail -1)"
+    exe="$root/$(fpm run "${profile[@]}" veslide --runner echo 2>/dev/null | tail -1)"
+    ln -sfn "$exe" "$root/.venv/bin/veslide"
+    ln -sfn "$(dirname "$exe")/veslide-bench" "$root/.venv/bin/veslide-bench"
+    echo "$exe"
 }
 
 # pytest on python/tests against this checkout's build; writes "python: N passed, N failed" to $1
 python_tests() {
-    local out=$1 log status=0 line passed failed
+    local out=$1 log status=0 line passed failed n
     shift
     log=$(mktemp)
     (cd "$root/python" && VESLIDE_EXE="$exe" "$root/.venv/bin/python" -m pytest -q -p no:cacheprovider "$@") \
@@ -37,7 +42,10 @@ python_tests() {
     line=$(grep -E '^=* ?[0-9]+ (passed|failed|error|skipped|errors|deselected)' "$log" | tail -1 || true)
     [ -n "$line" ] || line=$(tail -1 "$log")
     passed=$(grep -oE '[0-9]+ passed' <<<"$line" | grep -oE '[0-9]+' || echo 0)
-    failed=$(grep -oE '[0-9]+ (failed|errors?)' <<<"$line" | grep -oE '[0-9]+' | paste -sd+ | bc || echo 0)
+    failed=0
+    for n in $(grep -oE '[0-9]+ (failed|errors?)' <<<"$line" | grep -oE '[0-9]+' || true); do
+        failed=$((failed + n))
+    done
     rm -f "$log"
     [ "$status" -eq 0 ] || [ "${failed:-0}" -gt 0 ] || failed=1   # pytest failed without counting a test
     echo "python: ${passed:-0} passed, ${failed:-0} failed" > "$out"

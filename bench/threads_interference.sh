@@ -10,7 +10,7 @@
 # with this one (e.g. an older commit's), labelled 'other'. docs/solver-scaling.md has the results.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-export PATH="$PWD/.venv/bin:$PATH"
+source scripts/env.sh     # .venv/bin on PATH, the HDF5 that setup.sh found (serial), library prefixes
 n=${1:-1024}; rounds=${2:-3}; other=${3:-}
 fpm build --profile release >/dev/null
 this=$(fpm run --profile release veslide --runner echo 2>/dev/null | tail -1)

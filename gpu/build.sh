@@ -25,7 +25,7 @@ cd "$root"
 emulate=0
 if [ "${1:-}" = --emulate ]; then emulate=1; shift; fi
 bash scripts/setup.sh >&2
-export PATH="$root/.venv/bin:$PATH"
+source scripts/env.sh     # .venv/bin on PATH, the HDF5 that setup.sh found (serial), library prefixes
 
 sources=(src/core/veslide_device.cu src/grid/veslide_transform.cu src/grid/veslide_passes.cu
          src/physics/veslide_kernel_passes.cu src/contact/veslide_contact_passes.cu

@@ -3,10 +3,13 @@
 # on 2 and on 3 ranks (uneven shares), joined by rank 0, must equal the serial run (every cell of
 # /summary and /ensemble but timings), leave no rank file behind, and refuse to replace the joined
 # file without --overwrite; single cases on a grid distributed over 2 and 3 ranks must equal the
-# serial run (fields and scalars to 1e-10, the same iteration count).
+# serial run (fields and scalars to 1e-10, the same iteration count); `--output PATH` (relative
+# to the caller) writes a study and a single case there, and a bad option is refused in one line.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-export PATH="$root/.venv/bin:$PATH"
+bash "$root/scripts/setup.sh" --mpi          # once here, not in each of the builds below
+export VESLIDE_SETUP_DONE=mpi
+source "$root/scripts/env.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cat > "$work/study.nml" <<NML
@@ -120,3 +123,50 @@ if bash "$root/mpi/run.sh" -n 2 "$work/study.nml" --quiet 2>"$work/err.txt"; the
 fi
 grep -q "exists" "$work/err.txt" || { echo "mpi check: refusal without a reason: $(cat "$work/err.txt")"; exit 1; }
 echo "mpi check: existing file refused in one line: ok"
+# --output: the file written instead of &output file, a relative path the caller's (as for veslide);
+# &output file (mpi.h5, kept from above) untouched
+before=$(stat -c %Y "$work/mpi.h5")
+mkdir "$work/here"
+(cd "$work/here" && bash "$root/mpi/run.sh" -n 2 ../study.nml --output study-o.h5 --quiet)
+[ -f "$work/here/study-o.h5" ] && [ "$(stat -c %Y "$work/mpi.h5")" = "$before" ] ||
+    { echo "mpi check: --output of a study not written where asked"; exit 1; }
+cp "$work/here/study-o.h5" "$work/mpi.h5.o"
+compare_study() {
+    python - "$1" "$2" "$3" <<'PY'
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1]) as a, h5py.File(sys.argv[2]) as b:
+    for table in ("/summary", "/ensemble"):
+        x, y = a[table][()], b[table][()]
+        for name in x.dtype.names:
+            if "seconds" in name or "memory_peak" in name:
+                continue
+            assert np.array_equal(x[name], y[name]) if x.dtype[name].kind == "i" else \
+                np.allclose(x[name], y[name], rtol=1e-9, atol=0), table + " " + name
+print("mpi check, %s: ok" % sys.argv[3])
+PY
+}
+compare_study "$work/serial.h5" "$work/mpi.h5.o" "--output of a study on 2 ranks equals the serial run"
+(cd "$work/here" && bash "$root/mpi/run.sh" -n 3 ../case0-mpi.nml -o case-o.h5 --quiet)
+[ -f "$work/here/case-o.h5" ] || { echo "mpi check: --output of a single case not written where asked"; exit 1; }
+python - "$work/case0-serial.h5" "$work/here/case-o.h5" <<'PY'
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1]) as a, h5py.File(sys.argv[2]) as b:
+    for name in a["/fields"]:
+        x, y = a["/fields"][name][()], b["/fields"][name][()]
+        assert np.max(np.abs(x - y)) <= 1e-10 * np.max(np.abs(x)), name
+print("mpi check, --output of a case on 3 ranks equals the serial run: ok")
+PY
+for bad in "--output" "--outptu x.h5"; do
+    # shellcheck disable=SC2086
+    if (cd "$work/here" && bash "$root/mpi/run.sh" -n 2 ../study.nml $bad 2>"$work/err.txt" >/dev/null); then
+        echo "mpi check: '$bad' was accepted"; exit 1
+    fi
+    # (one line of the program's, then mpirun's own report of the exit status)
+    [ "$(grep -c "^veslide-batch: " "$work/err.txt")" -eq 1 ] && head -1 "$work/err.txt" | grep -q "^veslide-batch: " ||
+        { echo "mpi check: '$bad' not refused in one line:"; cat "$work/err.txt"; exit 1; }
+done
+echo "mpi check: a missing --output name and an unknown option refused in one line: ok"

@@ -26,7 +26,7 @@ if [ "$mode" = quick ]; then
 fi
 if [ -z "${VESLIDE_EXE:-}" ]; then
     bash scripts/setup.sh
-    export PATH="$PWD/.venv/bin:$PATH"
+    source scripts/env.sh     # .venv/bin on PATH, the HDF5 that setup.sh found (serial), library prefixes
 fi
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
 mkdir -p "$results" "$figures"

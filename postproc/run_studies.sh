@@ -13,7 +13,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 study="${1:?usage: run_studies.sh band|cells|cellspeed|persson_s [--plot]}"
 [ -d "inputs/studies/$study" ] || { echo "no inputs/studies/$study" >&2; exit 1; }
 bash scripts/setup.sh
-export PATH="$PWD/.venv/bin:$PATH"
+source scripts/env.sh     # .venv/bin on PATH, the HDF5 that setup.sh found (serial), library prefixes
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 mkdir -p "results/studies/$study" docs/figures/studies
 if [ "${2:-}" != "--plot" ]; then

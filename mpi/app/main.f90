@@ -1,4 +1,5 @@
-!> veslide-batch FILE.nml [--overwrite] [--quiet]: FILE.nml on every MPI rank at once.
+!> veslide-batch FILE.nml [--output PATH] [--overwrite] [--quiet]: FILE.nml on every MPI rank at once
+!> (--output PATH: the result file instead of &output file, as for veslide).
 !> A single case (no &sweep list): one grid distributed over the ranks (FFTW's MPI transforms,
 !> rows of every field per rank), solved together and written collectively (parallel HDF5) into
 !> the file a serial run writes. A study: rank r runs the speed chains (seed, eccentricity, angle, pressure) whose index is r modulo the
@@ -18,31 +19,54 @@ program veslide_batch
     use veslide_quantities, only: results_t
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_system, only: ignore_file_size_signal
+    use veslide_version, only: version_string
     implicit none
+    character(len=*), parameter :: usage = &
+        "usage: mpirun -n N veslide-batch FILE.nml [--output PATH] [--overwrite] [--quiet]"
     type(config_t) :: cfg
     type(error_t), allocatable :: error
-    character(len=:), allocatable :: input, out, tmp, mine
-    character(len=512) :: arg
+    character(len=:), allocatable :: input, out, tmp, mine, arg, output
     character(len=:), allocatable :: parts(:)
     integer :: rank, nranks, nfail, total, k, n, status, failed, lock
-    logical :: overwrite, quiet
+    logical :: overwrite, quiet, output_given
 
     call MPI_Init()
     call MPI_Comm_rank(MPI_COMM_WORLD, rank)
     call MPI_Comm_size(MPI_COMM_WORLD, nranks)
-    overwrite = .false.; quiet = .false.; allocate (character(len=0) :: input)
-    do k = 1, command_argument_count()
-        call get_command_argument(k, arg, n)
-        select case (trim(arg))
-        case ('--overwrite'); overwrite = .true.
-        case ('--quiet', '-q'); quiet = .true.
-        case default; input = trim(arg)
+    overwrite = .false.; quiet = .false.; output_given = .false.; output = ''
+    allocate (character(len=0) :: input)
+    ! the options of veslide that apply here, with its meanings and its messages
+    k = 1
+    do while (k <= command_argument_count())
+        arg = argument(k)
+        select case (arg)
+        case ('-h', '--help')
+            call finish(usage//new_line('a')//"  runs the case (a grid distributed over the ranks) or the &sweep"// &
+                        " study FILE.nml describes;"//new_line('a')//"  --output PATH: the result file instead of"// &
+                        " &output file (a relative PATH is the caller's)")
+        case ('--version')
+            call finish('veslide-batch '//version_string())
+        case ('-o', '--output')
+            k = k + 1
+            if (k > command_argument_count()) call die("veslide-batch: "//arg//" needs a file name")
+            output = argument(k); output_given = .true.
+            if (len(output) == 0) call die("veslide-batch: "//arg//" needs a file name, got ''")
+        case ('--overwrite')
+            overwrite = .true.
+        case ('-q', '--quiet')
+            quiet = .true.
+        case default
+            if (index(arg, '-') == 1) call die("veslide-batch: unknown option '"//arg//"' ("//usage//")")
+            if (len(input) > 0) call die("veslide-batch: only one input file, got '"//input//"' and '"//arg//"'")
+            input = arg
         end select
+        k = k + 1
     end do
-    if (len(input) == 0) call die("usage: mpirun -n N veslide-batch FILE.nml [--overwrite] [--quiet]")
+    if (len(input) == 0) call die(usage)
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
     call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message)
+    if (output_given) cfg%output%file = output
     out = cfg%output%file
     status = 0
     if (rank == 0) then
@@ -83,6 +107,7 @@ program veslide_batch
     end if
     if (rank == 0) then
         call read_config(input, cfg, error)          ! the study's own values (run_study changes its copy)
+        if (output_given .and. .not. allocated(error)) cfg%output%file = output
         if (.not. allocated(error)) call merge_study_parts(cfg, tmp, parts, error)
         if (.not. allocated(error)) call commit_output(tmp, out, overwrite .or. cfg%output%overwrite, error)
         if (allocated(error)) then
@@ -157,7 +182,22 @@ contains
         stop
     end subroutine distributed_case
 
-    !> Every rank learns whether rank 0 failed
+    function argument(i) result(a)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: a
+        call get_command_argument(i, length=n)
+        allocate (character(len=n) :: a)
+        call get_command_argument(i, a)
+    end function argument
+
+    !> --help, --version: the text from rank 0, exit status 0
+    subroutine finish(text)
+        character(len=*), intent(in) :: text
+        if (rank == 0) write (stdout, '(a)') text
+        call MPI_Finalize()
+        stop
+    end subroutine finish
+
     !> A line every few seconds of a long solve (the residual and counts are global)
     subroutine print_solver_progress(info)
         type(solver_progress_t), intent(in) :: info
@@ -165,6 +205,7 @@ contains
         flush (stdout)
     end subroutine print_solver_progress
 
+    !> Every rank learns whether rank 0 failed
     subroutine agree(flag)
         integer, intent(inout) :: flag
         call MPI_Bcast(flag, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
