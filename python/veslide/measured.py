@@ -239,14 +239,15 @@ def _slope_variance(h, lx, ly, periodic):
 
 
 def _best_crop(h, axis, keep_min):
-    """(start, length) along `axis` with length >= keep_min whose last row differs least, in rms,
-    from its first: the smallest edge jump of the periodic repetition of h[start:start+length]
-    (as the solver measures it). Ties: the longest."""
+    """(start, length) along `axis`, length >= keep_min, whose next period's first row, the row at
+    start + length, differs least in rms from its first: the periodic repetition of
+    h[start:start+length] then steps from its last row to its first as the scan steps from that
+    row to the next. Ties: the longest."""
     n = h.shape[axis]
     a = np.moveaxis(h, axis, 0)
     best = None
-    for m in range(n, keep_min - 1, -1):
-        d = np.sqrt(np.mean((a[m - 1:] - a[:n - m + 1]) ** 2, axis=tuple(range(1, a.ndim))))   # start i: i+m-1 - i
+    for m in range(n - 1, min(keep_min, n - 1) - 1, -1):
+        d = np.sqrt(np.mean((a[m:] - a[:n - m]) ** 2, axis=tuple(range(1, a.ndim))))   # start i: i+m - i
         i = int(np.argmin(d))
         if best is None or d[i] < best[0] * (1 - 1e-12):
             best = (float(d[i]), i, m)
@@ -289,8 +290,8 @@ def _periodise(h, lx, ly, method, taper, detrended_topography):
             i0, mx = _best_crop(h[:, j0:j0 + my], 0, kx)
             j0, my = _best_crop(h[i0:i0 + mx], 1, ky) if ny > 1 else (0, 1)
         out = h[i0:i0 + mx, j0:j0 + my]
-        rec.update(how="the sub-rectangle, at least (1 - taper) of each side, whose last row (column) "
-                       "differs least in rms from its first (x, then y, twice)", taper=taper, start=[i0, j0],
+        rec.update(how="the sub-rectangle, at least (1 - taper) of each side, whose next period's first "
+                       "row (column) differs least in rms from its first (x, then y, twice)", taper=taper, start=[i0, j0],
                    points=[mx, my], scan_points=[nx, ny])
         lx, ly = lx * mx / nx, ly * my / ny
         costs["area_fraction_dropped"] = 1.0 - mx * my / (nx * ny)
@@ -401,8 +402,9 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
        'tukey': multiplied by a separable periodic Tukey window whose taper covers the fraction
        `taper` of each side (taper/2 at each edge), so the edges go to the mean;
        'mirror': the scan and its three mirror images, a cell of twice the sides;
-       'crop': the sub-rectangle, keeping at least (1 - taper) of each side, whose last row
-       (column) differs least from its first (x chosen, then y, twice);
+       'crop': the sub-rectangle, keeping at least (1 - taper) of each side, whose next
+       period's first row (column: the scan's row just past it) differs least from its first
+       (x chosen, then y, twice), so that it repeats as the scan continues;
        'none': the scan is periodic already.
     5. band and grid: the modes |q| <= k_cut q0 kept (q0 = 2 pi / length_x_m of the cell, as
        &surface k_cut), copied to the (nx, ny) solve grid (default: the cell's own points; one of
