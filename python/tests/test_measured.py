@@ -282,3 +282,58 @@ def test_solver_runs_a_prepared_square_scan(tmp_path, exe):
 @pytest.mark.xfail(strict=False, reason="needs the rectangular height reader")
 def test_solver_runs_a_prepared_rectangular_scan(tmp_path, exe):
     _solve(tmp_path, exe, (60, 45), 32, 24, "rect")
+
+
+README = Path(__file__).resolve().parents[2] / "README.md"
+
+
+def _readme_section(title="### A measured scan"):
+    text = README.read_text()
+    start = text.index("\n" + title + "\n")
+    end = text.index("\n### ", start + len(title) + 2)
+    return text[start:end]
+
+
+def _blocks(section, lang):
+    import re
+    return [m.group(1) for m in re.finditer(r"^```%s\n(.*?)^```$" % lang, section, re.M | re.S)]
+
+
+def test_readme_measured_scan_example_runs_as_written(tmp_path, exe, monkeypatch):
+    """the section's shell commands (the venv's python and ./dev.sh run replaced by this
+    interpreter and the program under test) print what it shows, and its Python block runs."""
+    import os
+    import re
+    sec = _readme_section()
+    sh = _blocks(sec, "sh")
+    text, = _blocks(sec, "text")
+    py, = _blocks(sec, "python")
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]), OMP_NUM_THREADS="1")
+    script = sh[0].replace(".venv/bin/python", sys.executable)
+    p = subprocess.run(["bash", "-e", "-c", script], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    got = p.stdout.splitlines()
+    want = text.splitlines()
+    assert len(got) == len(want)
+    for w, g in zip(want, got):
+        if "..." in w:
+            head, tail = w.split("...")
+            assert g.startswith(head) and g.endswith(tail), (w, g)
+        else:
+            assert g == w
+    run = sh[1].replace("./dev.sh run", str(exe))
+    p = subprocess.run(["bash", "-e", "-c", run], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert p.returncode == 0, p.stdout + p.stderr
+    area, mu = (float(v) for v in re.search(r"contact area ([0-9.]+), friction coefficient ([0-9.]+)", sh[1]).groups())
+    r = veslide.read(tmp_path / "measured.h5")
+    assert r.converged
+    assert r.scalars["contact_area_fraction"] == pytest.approx(area, abs=5e-5)
+    assert r.scalars["friction_coefficient"] == pytest.approx(mu, abs=5e-5)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("VESLIDE_EXE", str(exe))
+    (tmp_path / "surf.h5").unlink()
+    ns = {}
+    exec(compile(py, "README: A measured scan", "exec"), ns)
+    assert ns["r"].converged
+    assert ns["r"].scalars["friction_coefficient"] == r.scalars["friction_coefficient"]
+    assert ns["scan"].heights[3, 7] == ns["scan"].matrix[7, 3]
