@@ -125,6 +125,20 @@ def test_units_come_from_the_file(tmp_path):
                                       "by": "SurfaceTopography to_unit('m')"}
 
 
+def test_undefined_points_are_filled_and_counted(tmp_path):
+    h = rough(30, 20)
+    m = h.T.copy()
+    m[7, 11] = m[8, 11] = np.nan                                   # [iy, ix]: two points the instrument missed
+    scan = read(write_x3p(tmp_path / "holes.x3p", m, 1e-6, 1e-6))
+    assert scan.topography.has_undefined_data
+    s = prepare(scan, k_cut=4)
+    assert s.preparation["undefined_points"]["count"] == 2
+    assert s.preparation["undefined_points"]["fraction"] == pytest.approx(2 / 600)
+    assert np.all(np.isfinite(s.heights)) and np.all(np.isfinite(s.detrended))
+    with pytest.raises(ValueError, match="2 undefined points"):
+        prepare(scan, k_cut=4, fill=None)
+
+
 def rough(nx=50, ny=40, seed=3):
     """a smooth random non-periodic scan [ix, iy] (a few long waves, random phases, off-grid)"""
     rng = np.random.default_rng(seed)

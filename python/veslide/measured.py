@@ -444,7 +444,8 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     if topo.has_undefined_data:
         n_undefined = int(np.ma.count_masked(topo.heights()))
         if fill is None:
-            raise ValueError("%s: %d undefined points; fill='harmonic' fills them" % (src.get("path"), n_undefined))
+            raise ValueError("%s: %d undefined points; fill='harmonic' fills them"
+                             % (src.get("path") or "the scan", n_undefined))
         topo = topo.interpolate_undefined_data(fill)
     frac_undefined = n_undefined / (scan.nx * scan.ny)
     prep["undefined_points"] = {"count": n_undefined, "fraction": frac_undefined,
@@ -460,7 +461,7 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     removed = raw - raw.mean() - h0
     hrms = float(np.sqrt(np.mean(h0 ** 2)))
     if not hrms > 0:
-        raise ValueError("%s: the detrended scan is flat (h_rms = 0)" % src.get("path"))
+        raise ValueError("%s: the detrended scan is flat (h_rms = 0)" % (src.get("path") or "the scan"))
     prep["detrend"] = {"mode": detrend, "surfacetopography_mode": DETREND_MODES[detrend],
                        "coefficients": _jsonable(d.coeffs),
                        "coefficients_note": "SurfaceTopography polyfit order, in its units (m) and normalised "
