@@ -74,9 +74,27 @@ def test_dataarray_is_ordered_by_its_dimension_names(tmp_path):
         veslide.write_topography(tmp_path / "b.h5", xr.DataArray(h, dims=("row", "col")), L)
 
 
+def test_rectangles_are_written_with_both_sides(tmp_path):
+    h = np.arange(32.0).reshape(8, 4) * 1e-6                  # h[ix, iy], nx = 8, ny = 4
+    veslide.write_topography(tmp_path / "r.h5", h, L)         # one side: square cells, ly = lx ny/nx
+    veslide.write_topography(tmp_path / "r.h5", h, (L, 2 * L), dataset="/pair", preparation={"detrend": "plane"})
+    with h5py.File(tmp_path / "r.h5", "r") as f:
+        a, b = f["/height_m"], f["/pair"]
+        assert a.shape == (4, 8) and a[1, 6] == h[6, 1]
+        assert (a.attrs["length_x_m"], a.attrs["length_y_m"], a.attrs["length_m"]) == (L, L / 2, L)
+        assert (b.attrs["length_x_m"], b.attrs["length_y_m"], b.attrs["length_m"]) == (L, 2 * L, L)
+        assert "preparation" not in a.attrs and b.attrs["preparation"] == '{"detrend": "plane"}'
+    back = veslide.load_topography(tmp_path / "r.h5", "/pair")
+    np.testing.assert_array_equal(back.heights, h)
+    assert (back.length_x_m, back.length_y_m, back.preparation) == (L, 2 * L, {"detrend": "plane"})
+    assert veslide.read_topography(tmp_path / "r.h5", "/pair")[1] == L
+
+
 def test_bad_topographies_are_refused(tmp_path):
-    with pytest.raises(ValueError, match="square"):
-        veslide.write_topography(tmp_path / "t.h5", np.zeros((8, 4)), L)
+    with pytest.raises(ValueError, match="nx >= 2"):
+        veslide.write_topography(tmp_path / "t.h5", np.zeros((1, 4)), L)
+    with pytest.raises(ValueError, match="pair"):
+        veslide.write_topography(tmp_path / "t.h5", np.zeros((4, 4)), (L, L, L))
     with pytest.raises(ValueError, match="NaN"):
         veslide.write_topography(tmp_path / "t.h5", np.full((4, 4), np.nan), L)
     with pytest.raises(ValueError, match="length_m"):

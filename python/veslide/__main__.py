@@ -1,8 +1,14 @@
 """python -m veslide refine NAMELIST NX NX NX ... [--output-dir DIR] [--threads N]
+python -m veslide topography SCAN --out SURF.h5 [--nx N] [--ny N] [--detrend curvature|plane|none]
+                             [--periodic tukey|mirror|crop|none] [--taper F] [--k-cut K] ...
 
-Runs one case on several grids (or reuses the files already there from the same input) and prints
-the table and the error estimate of `veslide.refine`; exit status 1 on bad input, 2 when a solve
-did not converge (as the program's)."""
+refine: runs one case on several grids (or reuses the files already there from the same input)
+and prints the table and the error estimate of `veslide.refine`; exit status 1 on bad input, 2
+when a solve did not converge (as the program's).
+
+topography: reads a measured scan (any format SurfaceTopography reads), prepares it as
+`veslide.topography.prepare` does and writes the height file for `&surface kind='file'`, printing
+one line per choice with what it cost; exit status 1 on bad input."""
 import argparse
 import sys
 import warnings
@@ -22,7 +28,27 @@ def main(argv=None):
     r.add_argument("sizes", nargs="+", type=int, help="nx of each grid (ny scaled with it)")
     r.add_argument("--output-dir", default="refine", help="where refine-NXxNY.h5 go (default: ./refine)")
     r.add_argument("--threads", type=int, default=None, help="OMP_NUM_THREADS of each run")
+    t = sub.add_parser("topography", help="make a measured scan a periodic height file for &surface kind='file'")
+    t.add_argument("scan", help="the instrument's file (x3p, sdf, sur, datx, opd, plu, gwy, nc, asc, ...)")
+    t.add_argument("--out", required=True, help="the height file to write (HDF5)")
+    t.add_argument("--dataset", default="/height_m", help="its dataset (default /height_m)")
+    t.add_argument("--format", default=None, help="the file's format when not found from its content (e.g. x3p)")
+    t.add_argument("--channel", default=None, help="the channel, by index or name (default: the reader's)")
+    t.add_argument("--unit", default=None, help="length unit for a file that gives none (e.g. um)")
+    t.add_argument("--size", nargs=2, type=float, metavar=("LX", "LY"), default=None,
+                   help="the scan's sides in that unit, for a file that gives none")
+    t.add_argument("--nx", type=int, default=None, help="points of the solve grid along x (default: the cell's)")
+    t.add_argument("--ny", type=int, default=None, help="along y (default: from nx and the cell's aspect ratio)")
+    t.add_argument("--detrend", default="curvature", choices=["curvature", "plane", "none"])
+    t.add_argument("--periodic", default="tukey", choices=["tukey", "mirror", "crop", "none"])
+    t.add_argument("--taper", type=float, default=0.1,
+                   help="tukey: fraction of each side in the taper; crop: the most cut from each side (0.1)")
+    t.add_argument("--k-cut", type=float, default=None,
+                   help="modes kept: |q| <= k_cut 2 pi/lx (default: half the solve grid's Nyquist)")
+    t.add_argument("--overwrite", action="store_true", help="replace the dataset if the file has it")
     args = ap.parse_args(argv)
+    if args.command == "topography":
+        return _topography(args)
     warnings.simplefilter("ignore", ConvergenceWarning)       # the exit status and the notes say it
     try:
         ref = refine(args.namelist, args.sizes, args.output_dir, threads=args.threads, progress=None)
@@ -34,6 +60,33 @@ def main(argv=None):
         print()
         print(ref.estimate.to_string())
     return 0 if ref.converged else 2      # as the program: 2 when a solve did not converge
+
+
+def _topography(args):
+    from .topography import prepare, read
+    channel = args.channel
+    if channel is not None and channel.isdigit():
+        channel = int(channel)
+    try:
+        scan = read(args.scan, format=args.format, channel=channel, unit=args.unit, physical_sizes=args.size)
+        s = prepare(scan, nx=args.nx, ny=args.ny, detrend=args.detrend, periodic=args.periodic,
+                    taper=args.taper, k_cut=args.k_cut)
+        for line in s.lines:
+            print(line)
+        path = s.write(args.out, args.dataset, overwrite=args.overwrite)
+    except ImportError as e:
+        print("veslide topography: %s" % e, file=sys.stderr)
+        return 1
+    except Exception as e:           # the readers raise their own kinds: each is a refused input here
+        msg = str(e)
+        print("veslide topography: %s" % (msg if args.scan in msg else "%s: %s" % (args.scan, msg)), file=sys.stderr)
+        return 1
+    print("written:   %s:%s (%d x %d, %.6g x %.6g m; layout [iy, ix] in h5py, the solver's (nx, ny)); "
+          "the preparation in its attribute 'preparation'" % (path, args.dataset, s.nx, s.ny, s.length_x_m,
+                                                               s.length_y_m))
+    print("use:       &grid nx = %d, ny = %d /  &surface kind = 'file', file = '%s', dataset = '%s' /"
+          % (s.nx, s.ny, path, args.dataset))
+    return 0
 
 
 if __name__ == "__main__":

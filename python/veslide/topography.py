@@ -1,5 +1,14 @@
-"""Height files for `&surface kind='file'`, and the spectral measures of a surface (PSD, slope
-tensor). Heights are indexed [ix, iy] throughout (numpy's and SurfaceTopography's order)."""
+"""Height files for `&surface kind='file'`, measured scans made into them, and the spectral
+measures of a surface (PSD, slope tensor).
+
+Heights are indexed [ix, iy] throughout (numpy's and SurfaceTopography's order). An instrument's
+matrix is [iy, ix] (one row per scan line along x): pass `matrix.T`, or `Scan.from_matrix`. The
+height file holds the solver's Fortran (nx, ny) array: h5py shape (ny, nx), index [iy, ix].
+
+Measured scans (`veslide.measured`, needs SurfaceTopography): `read(path, ...)` -> `Scan`,
+`prepare(scan, nx, ny, detrend, periodic, taper, k_cut)` -> `PreparedSurface` (`.write(path)`).
+"""
+import json
 from pathlib import Path
 
 import h5py
@@ -25,25 +34,45 @@ def _as_xy(heights):
     return h
 
 
-def write_topography(path, heights, length_m, dataset="/height_m", *, overwrite=False):
+def _lengths(length_m, nx, ny):
+    """(lx, ly) [m] from a number (the side along x; square cells: ly = lx ny / nx) or a pair."""
+    if np.ndim(length_m) == 0:
+        lx = float(length_m)
+        ly = lx * ny / nx
+    else:
+        if len(length_m) != 2:
+            raise ValueError("length_m must be a number or a pair (lx, ly) [m], got %r" % (length_m,))
+        lx, ly = (float(v) for v in length_m)
+    for name, v in (("length_m", lx), ("length_m (y)", ly)):
+        if not (v > 0 and np.isfinite(v)):
+            raise ValueError("%s must be > 0, got %r" % (name, v))
+    return lx, ly
+
+
+def write_topography(path, heights, length_m, dataset="/height_m", *, preparation=None, overwrite=False):
     """Write heights [m] for `&surface kind='file', file=path, dataset=dataset`.
 
-    heights   2-D, indexed [ix, iy] (x first; an xarray DataArray with dims x and y in any order);
-              square (the solver reads square grids).
-    length_m  the cell side [m], stored as the dataset's attribute `length_m` (the solver uses it
-              unless &grid lx_m is set).
+    heights      2-D, indexed [ix, iy] (x first; an xarray DataArray with dims x and y in any
+                 order); nx >= 2, ny >= 1, nx and ny may differ. An instrument's matrix [iy, ix]
+                 (rows along x) is written as `matrix.T`.
+    length_m     the cell's side along x [m] (square cells: ly = lx ny / nx), or the pair
+                 (lx, ly); stored as the attributes `length_x_m`, `length_y_m` and `length_m`
+                 (= length_x_m, for older readers). The solver uses them unless &grid sets lx_m.
+    preparation  how the heights were made (a dict, written as JSON text, or a text): the
+                 attribute `preparation`, which the solver copies into its output
+                 (`veslide.topography.prepare` fills it).
     The solver reads a Fortran (nx, ny) array h(ix, iy): HDF5 stores it with dims (ny, nx), so the
     array written by h5py is the transpose, heights.T, with a `layout` attribute saying so.
     The file is created or appended to; an existing dataset is replaced only with overwrite=True."""
     h = _as_xy(heights)
     nx, ny = h.shape
-    if nx != ny or nx < 2:
-        raise ValueError("heights must be square (the solver reads nx = ny >= 2), got %d x %d" % (nx, ny))
+    if nx < 2 or ny < 1:
+        raise ValueError("heights must have nx >= 2 and ny >= 1 points, got %d x %d" % (nx, ny))
     if not np.all(np.isfinite(h)):
         raise ValueError("heights contain NaN or infinite values")
-    length_m = float(length_m)
-    if not (length_m > 0 and np.isfinite(length_m)):
-        raise ValueError("length_m must be > 0, got %r" % length_m)
+    lx, ly = _lengths(length_m, nx, ny)
+    if preparation is not None and not isinstance(preparation, str):
+        preparation = json.dumps(preparation, sort_keys=False)
     path = Path(path)
     with h5py.File(path, "a") as f:
         if dataset in f:
@@ -51,19 +80,55 @@ def write_topography(path, heights, length_m, dataset="/height_m", *, overwrite=
                 raise FileExistsError("%s: dataset %s exists (overwrite=True replaces it)" % (path, dataset))
             del f[dataset]
         ds = f.create_dataset(dataset, data=np.ascontiguousarray(h.T))   # [iy, ix] on disk
-        ds.attrs["length_m"] = length_m
+        ds.attrs["length_x_m"] = lx
+        ds.attrs["length_y_m"] = ly
+        ds.attrs["length_m"] = lx
         ds.attrs["units"] = "m"
         ds.attrs["layout"] = LAYOUT
+        if preparation is not None:
+            ds.attrs["preparation"] = preparation
     return path
 
 
 def read_topography(path, dataset="/height_m"):
-    """(heights indexed [ix, iy], length_m or None) from a height file as the solver reads it."""
+    """(heights indexed [ix, iy], length_m or None) from a height file as the solver reads it
+    (length_m: the side along x; `load` gives both sides and the preparation)."""
     with open_file(path) as f:
         ds = f[dataset]
         h = np.ascontiguousarray(ds[()].T)
-        length = ds.attrs.get("length_m")
+        length = ds.attrs.get("length_x_m", ds.attrs.get("length_m"))
     return h, (float(length) if length is not None else None)
+
+
+def load(path, dataset="/height_m"):
+    """A height file as a `HeightFile`: heights [ix, iy] (the transpose of h5py's (ny, nx)),
+    length_x_m, length_y_m (None when the file has none; ly from lx ny / nx when only length_m),
+    preparation (the dict of its `preparation` JSON; {} without one) and attrs."""
+    with open_file(path) as f:
+        ds = f[dataset]
+        h = np.ascontiguousarray(ds[()].T)
+        attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in ds.attrs.items()}
+    nx, ny = h.shape
+    lx = attrs.get("length_x_m", attrs.get("length_m"))
+    ly = attrs.get("length_y_m", None if lx is None else float(lx) * ny / nx)
+    prep = attrs.get("preparation")
+    try:
+        prep = json.loads(prep) if prep else {}
+    except ValueError:
+        prep = {"text": prep}
+    return HeightFile(h, None if lx is None else float(lx), None if ly is None else float(ly), prep, attrs)
+
+
+class HeightFile:
+    """A height file read back by `load`: heights [ix, iy] [m], length_x_m, length_y_m,
+    preparation (dict), attrs (the dataset's attributes)."""
+
+    def __init__(self, heights, length_x_m, length_y_m, preparation, attrs):
+        self.heights, self.length_x_m, self.length_y_m = heights, length_x_m, length_y_m
+        self.preparation, self.attrs = preparation, attrs
+
+    def __repr__(self):
+        return "<HeightFile %d x %d, %s x %s m>" % (*self.heights.shape, self.length_x_m, self.length_y_m)
 
 
 def _heights_and_sizes(heights, length_x_m, length_y_m):
@@ -134,3 +199,7 @@ def major_axis_deg(tensor):
     """Direction [deg, 0..180) of the major axis of a symmetric 2 x 2 tensor."""
     t = np.asarray(tensor)
     return np.degrees(0.5 * np.arctan2(2 * t[0, 1], t[0, 0] - t[1, 1])) % 180.0
+
+
+# measured scans: read through SurfaceTopography (imported when first used), prepared here
+from .measured import PreparedSurface, Scan, prepare, read  # noqa: E402
