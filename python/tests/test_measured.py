@@ -293,7 +293,6 @@ def test_solver_runs_a_prepared_square_scan(tmp_path, exe):
     _solve(tmp_path, exe, (60, 60), 32, 32, "square")
 
 
-@pytest.mark.xfail(strict=False, reason="needs the rectangular height reader")
 def test_solver_runs_a_prepared_rectangular_scan(tmp_path, exe):
     _solve(tmp_path, exe, (60, 45), 32, 24, "rect")
 
