@@ -7,6 +7,7 @@
     s = veslide.read("study.h5"); s.summary, s.ensemble, s.cases[3].fields
     veslide.read_running("study.h5")          # a study still being written (its part file)
     ref = veslide.refine("case.nml", [256, 512, 1024, 2048]); ref.estimate   # error bands by refinement
+    m = veslide.fit_prony(f_hz, storage_pa, loss_pa); veslide.run({"material": m.to_namelist(), ...})
 
 Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [iy, ix] in h5py).
 """
@@ -14,6 +15,7 @@ from .results import Arrays, Cases, Result, Scalars, read, read_running
 from .refinement import Refinement, StudyRefinement, convergence, refine
 from .runner import (Cancelled, ConvergenceWarning, InputError, OutputExistsError, Progress, Run, VeslideError,
                      find_executable, git_revision, namelist, run, start, write_namelist)
+from .material import FitReport, Material, fit_prony, shift_factor
 from .topography import major_axis_deg, psd_2d, psd_radial, read_topography, slope_tensor, write_topography
 
 __version__ = "0.2.0"
@@ -21,6 +23,7 @@ __version__ = "0.2.0"
 __all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revision", "write_topography", "read_topography", "find_executable",
            "namelist", "write_namelist", "refine", "convergence", "Refinement", "StudyRefinement",
            "psd_2d", "psd_radial", "slope_tensor", "major_axis_deg",
+           "Material", "FitReport", "fit_prony", "shift_factor",
            "Result", "Scalars", "Arrays", "Cases", "InputError", "OutputExistsError", "VeslideError",
            "Cancelled", "ConvergenceWarning"]
 
