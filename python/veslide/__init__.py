@@ -8,6 +8,7 @@
     veslide.read_running("study.h5")          # a study still being written (its part file)
     ref = veslide.refine("case.nml", [256, 512, 1024, 2048]); ref.estimate   # error bands by refinement
     scan = veslide.read_scan("scan.x3p"); veslide.prepare_scan(scan, nx=256).write("surf.h5")   # a measured scan
+    m = veslide.fit_prony(f_hz, storage_pa, loss_pa); veslide.run({"material": m.to_namelist(), ...})
 
 Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [iy, ix] in h5py).
 """
@@ -18,6 +19,7 @@ from .runner import (Cancelled, ConvergenceWarning, InputError, OutputExistsErro
 from .topography import (PreparedSurface, Scan, major_axis_deg, psd_2d, psd_radial, read_topography, slope_tensor,
                          write_topography)
 from .topography import load as load_topography, prepare as prepare_scan, read as read_scan
+from .material import FitReport, Material, fit_prony, shift_factor
 
 __version__ = "0.2.0"
 
@@ -25,6 +27,7 @@ __all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revis
            "namelist", "write_namelist", "refine", "convergence", "Refinement", "StudyRefinement",
            "psd_2d", "psd_radial", "slope_tensor", "major_axis_deg",
            "read_scan", "prepare_scan", "load_topography", "Scan", "PreparedSurface",
+           "Material", "FitReport", "fit_prony", "shift_factor",
            "Result", "Scalars", "Arrays", "Cases", "InputError", "OutputExistsError", "VeslideError",
            "Cancelled", "ConvergenceWarning"]
 

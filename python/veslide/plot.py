@@ -734,3 +734,47 @@ def refinement(ref, scalar="contact_area_fraction", ax=None, *, cells=True, **kw
     order = "" if not np.isfinite(e["observed_order"]) else ", observed order %.2g" % e["observed_order"]
     ax.set_title("error band of the finest grid %.2g%s" % (e["error"], order), fontsize="small")
     return ax
+
+
+def modulus_vs_frequency(material, ax=None, *, frequency_hz=None, storage_pa=None, loss_pa=None, temperature_c=None,
+                         unit="MPa", n=400):
+    """A material's E'(f) and E''(f) (log axes, solid and dashed lines) and tan delta (dotted, on a
+    second axis to the right), with the data as markers: those given, else the data of its fit
+    (`material.fit`, moved from the reference to the temperature drawn, f / a_T). Drawn at
+    `temperature_c` (default: the material's). Returns (ax, ax_tan)."""
+    ax = _new_axes(ax)
+    fit = getattr(material, "fit", None)
+    if frequency_hz is None and fit is not None:
+        frequency_hz = fit.frequency_hz / material.shift_factor(temperature_c)
+        storage_pa, loss_pa = fit.storage_pa, fit.loss_pa
+    if frequency_hz is not None:
+        fd = np.asarray(frequency_hz, dtype=float)
+        lo, hi = fd.min() / 3, fd.max() * 3
+    else:
+        t = material.times_s * material.shift_factor(temperature_c)
+        lo, hi = 0.01 / (2 * np.pi * t.max()), 100 / (2 * np.pi * t.min())
+    f = np.geomspace(lo, hi, n)
+    e = material.modulus(f, temperature_c)
+    k = _SCALE[unit]
+    ax.plot(f, k * e.real, "-", color="C0", label="$E'$")
+    ax.plot(f, k * e.imag, "--", color="C1", label="$E''$")
+    ax_tan = ax.twinx()
+    ax_tan.plot(f, e.imag / e.real, ":", color="C2", label=r"$\tan\delta$")
+    if frequency_hz is not None:
+        s, lss = np.asarray(storage_pa, dtype=float), np.asarray(loss_pa, dtype=float)
+        ax.plot(fd, k * s, "o", color="C0", ms=3, mfc="none", label="$E'$ data")
+        ax.plot(fd, k * lss, "s", color="C1", ms=3, mfc="none", label="$E''$ data")
+        ax_tan.plot(fd, lss / s, "^", color="C2", ms=3, mfc="none", label=r"$\tan\delta$ data")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax_tan.set_yscale("log")
+    ax.set_xlabel("$f$ [Hz]")
+    ax.set_ylabel("$E'$, $E''$ [%s]" % unit_tex(unit))
+    ax_tan.set_ylabel(r"$\tan\delta$")
+    t = material.temperature_c if temperature_c is None else temperature_c
+    t = material.reference_temperature_c if t is None else t
+    if t is not None:
+        ax.set_title("%g $^\\circ$C" % t, fontsize="small")
+    lines = ax.get_lines() + ax_tan.get_lines()
+    ax.legend(lines, [ln.get_label() for ln in lines], fontsize="small")
+    return ax, ax_tan
