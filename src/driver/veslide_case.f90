@@ -12,7 +12,8 @@ module veslide_case
     use veslide_collective, only: share_error, global_max
     use veslide_fields, only: field_rms, field_max, field_mean
     use veslide_spectrum, only: slope_tensor
-    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation, shift_factor
+    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation, shift_factor, &
+                                BASE_BONDED, BASE_FRICTIONLESS
     use veslide_surface, only: psd_t, random_surface, cosine_surface, bisinusoid_surface, &
                                paraboloid_surface, cylinder_surface, rms_height
     use veslide_kernel, only: kernel_t, new_kernel, kernel_variant_id, KERNEL_SPECTRAL
@@ -159,6 +160,10 @@ contains
             case ('relaxation')
                 call new_relaxation(mat, m%e0_pa, m%prony_coef, a*m%prony_time_s, m%poisson, error)
             end select
+            if (.not. allocated(error) .and. m%thickness_m > 0.0_dp) then
+                mat%thickness_m = m%thickness_m
+                mat%base = merge(BASE_BONDED, BASE_FRICTIONLESS, m%base == 'bonded')
+            end if
         end associate
         call add_context(error, "veslide: "//cfg%path//": &material: ")
     end subroutine build_material
@@ -442,6 +447,7 @@ contains
         call r%add('nx', real(c%grid%nx, dp), '-', is_integer=.true.)
         call r%add('ny', real(c%grid%ny, dp), '-', is_integer=.true.)
         call r%add('contact_modulus_pa', c%mat%e0_pa/(1.0_dp - c%mat%poisson**2), 'Pa')
+        if (cfg%material%thickness_m > 0.0_dp) call r%add('layer_thickness_m', cfg%material%thickness_m, 'm')
         if (cfg%material%shift /= 'none') then
             call r%add('temperature_c', cfg%material%temperature_c, 'degC')
             call r%add('shift_factor', material_shift(cfg), '-')

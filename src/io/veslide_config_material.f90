@@ -6,7 +6,7 @@ module veslide_config_material
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
                                      finite_in, max_list, unset_real, list_length, check_list, check_text_length, &
                                      max_text, is_unset
-    use veslide_material, only: material_model_names, shift_names
+    use veslide_material, only: material_model_names, shift_names, base_names
     implicit none
     private
     public :: material_config_t, read_material_config
@@ -27,16 +27,20 @@ module veslide_config_material
         character(len=:), allocatable :: shift
         real(dp) :: temperature_c = 0.0_dp, reference_temperature_c = 0.0_dp
         real(dp) :: wlf_c1 = 0.0_dp, wlf_c2_k = 0.0_dp, activation_energy_j_mol = 0.0_dp
+        !> a layer of this thickness on a rigid base [m] (0: a half-space), resting on it as `base`
+        real(dp) :: thickness_m = 0.0_dp
+        character(len=:), allocatable :: base
     end type material_config_t
 
-    character(len=*), parameter :: names(17) = [character(len=23) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
+    character(len=*), parameter :: names(19) = [character(len=23) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
         'ratio', 'tau_s', 'e0_pa', 'creep_c_per_pa', 'creep_tau_s', 'relax_e_pa', 'relax_rho_s', 'shift', &
-        'temperature_c', 'reference_temperature_c', 'wlf_c1', 'wlf_c2_k', 'activation_energy_j_mol']
-    character(len=*), parameter :: kinds(17) = [character(len=40) :: "a quoted text ('one_term')", &
+        'temperature_c', 'reference_temperature_c', 'wlf_c1', 'wlf_c2_k', 'activation_energy_j_mol', 'thickness_m', &
+        'base']
+    character(len=*), parameter :: kinds(19) = [character(len=40) :: "a quoted text ('one_term')", &
         'a real number', 'a real number', 'a real number', 'a real number', 'a real number', 'a real number', &
         'a list of real numbers', 'a list of real numbers', 'a list of real numbers', 'a list of real numbers', &
         "a quoted text ('wlf')", 'a real number', 'a real number', 'a real number', 'a real number', &
-        'a real number']
+        'a real number', 'a real number', "a quoted text ('bonded')"]
     !> Largest modulus and time accepted [Pa], [s]: beyond them double precision loses the physics
     real(dp), parameter :: max_modulus = 1.0e15_dp, max_time = 1.0e15_dp
 
@@ -48,16 +52,17 @@ contains
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
-        character(len=max_text + 1) :: model, shift
+        character(len=max_text + 1) :: model, shift, base
         real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
         real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
-        real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol
+        real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol, thickness_m
         integer :: stat
         character(len=512) :: msg
         character(len=:), allocatable :: lines(:)
         namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, creep_tau_s, &
             relax_e_pa, relax_rho_s, shift, temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, &
-            activation_energy_j_mol
+            activation_energy_j_mol, thickness_m, base
+        thickness_m = 0.0_dp; base = 'bonded'
         shift = 'none'; temperature_c = unset_real(); reference_temperature_c = unset_real()
         wlf_c1 = unset_real(); wlf_c2_k = unset_real(); activation_energy_j_mol = unset_real()
         model = 'elastic'; young_pa = self%young_pa; poisson = self%poisson; einf_pa = self%einf_pa
@@ -70,7 +75,14 @@ contains
             call diagnose_read(stat, msg, path, 'material', g%body, names, kinds, try, error); return
         end if
         call check_text_length(error, model, path, 'material', 'model')
-        call check_text_length(error, shift, path, 'material', 'shift'); if (allocated(error)) return
+        call check_text_length(error, shift, path, 'material', 'shift')
+        call check_text_length(error, base, path, 'material', 'base'); if (allocated(error)) return
+        self%thickness_m = thickness_m; self%base = trim(base)
+        call require(error, thickness_m == 0.0_dp .or. finite_in(thickness_m, 1.0e-12_dp, 1.0e3_dp), path, &
+                     'material', 'thickness_m', str(thickness_m), "0 (a half-space) or 1e-12 to 1e3 [m]")
+        call require(error, is_one_of(self%base, base_names), path, 'material', 'base', "'"//self%base//"'", &
+                     choices_text(base_names))
+        if (allocated(error)) return
         call read_shift(); if (allocated(error)) return
         self%model = trim(model); self%young_pa = young_pa; self%poisson = poisson; self%einf_pa = einf_pa
         self%ratio = ratio; self%tau_s = tau_s; self%e0_pa = e0_pa
@@ -205,13 +217,13 @@ contains
             character(len=*), intent(in) :: lines(:)
             integer, intent(out) :: stat
             character(len=*), intent(out) :: msg
-            character(len=max_text + 1) :: model, shift
+            character(len=max_text + 1) :: model, shift, base
             real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
             real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
-            real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol
+            real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol, thickness_m
             namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, &
                 creep_tau_s, relax_e_pa, relax_rho_s, shift, temperature_c, reference_temperature_c, wlf_c1, &
-                wlf_c2_k, activation_energy_j_mol
+                wlf_c2_k, activation_energy_j_mol, thickness_m, base
             read (lines, nml=material, iostat=stat, iomsg=msg)
         end subroutine try
 

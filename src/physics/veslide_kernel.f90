@@ -101,14 +101,15 @@ contains
         end if
     end function sinc
 
-    !> Continuous kernel 2(1-nu^2) C(-q.v)/|q| times the cell factor of the variant
+    !> Continuous kernel 2(1-nu^2) C(-q.v) S(|q| d)/|q| (S: a layer's factor, 1 for a half-space)
+    !> times the cell factor of the variant
     pure complex(dp) function term(mat, q, v, a, b, variant) result(t)
         type(material_t), intent(in) :: mat
         real(dp), intent(in) :: q(2), v(2), a, b
         integer, intent(in) :: variant
         real(dp) :: s, qn
         qn = norm2(q)
-        t = 2.0_dp*(1.0_dp - mat%poisson**2)*mat%compliance(-dot_product(q, v))/qn
+        t = 2.0_dp*(1.0_dp - mat%poisson**2)*mat%compliance(-dot_product(q, v))*mat%layer(qn)/qn
         select case (variant)
         case (KERNEL_COLLOCATION, KERNEL_COLLOCATION_ALIAS)
             s = sinc(0.5_dp*q(1)*a)*sinc(0.5_dp*q(2)*b)

@@ -11,7 +11,7 @@ module veslide_material
     private
     public :: material_t, new_elastic, new_one_term, new_creep, new_relaxation
     public :: MATERIAL_ELASTIC, MATERIAL_CREEP, MATERIAL_RELAXATION, material_model_names
-    public :: shift_factor, shift_names
+    public :: shift_factor, shift_names, layer_factor, base_names, BASE_BONDED, BASE_FRICTIONLESS
 
     !> Which series the terms of a material_t are
     integer, parameter :: MATERIAL_ELASTIC = 0, MATERIAL_CREEP = 1, MATERIAL_RELAXATION = 2
@@ -25,6 +25,10 @@ module veslide_material
     real(dp), parameter :: gas_constant = 8.314462618_dp     !! R [J/(mol K)] (CODATA 2018, exact)
     real(dp), parameter :: zero_celsius = 273.15_dp          !! [K]
 
+    !> How a layer rests on its rigid base (the namelist's `&material base`)
+    integer, parameter :: BASE_BONDED = 1, BASE_FRICTIONLESS = 2
+    character(len=*), parameter :: base_names(2) = [character(len=12) :: 'bonded', 'frictionless']
+
     type :: material_t
         integer :: form = MATERIAL_ELASTIC      !! which series the terms below are
         real(dp) :: e0_pa = 0.0_dp              !! relaxed (rubbery, w -> 0) modulus [Pa]
@@ -32,8 +36,12 @@ module veslide_material
         real(dp) :: poisson = 0.0_dp            !! Poisson ratio [-]
         real(dp), allocatable :: coef(:)        !! c_k [1/Pa] (creep) or e_j [Pa] (relaxation)
         real(dp), allocatable :: time_s(:)      !! tau_k or rho_j [s]
+        !> a layer of this thickness on a rigid base [m] (0: a half-space), and how it rests there
+        real(dp) :: thickness_m = 0.0_dp
+        integer :: base = BASE_BONDED
     contains
         procedure :: compliance => material_compliance
+        procedure :: layer => material_layer
         procedure :: is_elastic => material_is_elastic
         procedure :: loss_peak_time => material_loss_peak_time
         procedure :: loss_peak => material_loss_peak
@@ -59,6 +67,55 @@ contains
             a = 1.0_dp
         end select
     end function shift_factor
+
+    !> The layer's factor S(q d) on the half-space's compliance of a surface mode |q| = `qn`
+    !> (1 for a half-space). Derived for a mode exp(i q x) of normal traction on a layer
+    !> 0 <= z <= d in plane strain (the 2-D problem of each mode) from the Navier equations, the
+    !> surface free of shear, and at z = d either u = 0 (bonded) or u_z = 0 with no shear
+    !> (frictionless); with t = q d and kappa = 3 - 4 nu,
+    !>   bonded:        S = (kappa sinh 2t - 2t)/(kappa cosh 2t + 2t^2 + (1 + kappa^2)/2)
+    !>   frictionless:  S = (cosh 2t - 1)/(sinh 2t + 2t)
+    !> (docs/validation.md: the derivation's steps and checks). Limits: S -> 1 as t -> infinity;
+    !> thin layers S -> t (1 - 2 nu)/(2 (1 - nu)^2) bonded (the confined compression of the layer,
+    !> d (1+nu)(1-2nu)/(E(1-nu)) per unit pressure), S -> 2t^3/3 bonded and incompressible
+    !> (stiffening as 1/(q d)^3), S -> t/2 frictionless (d (1-nu^2)/E). For nu = 1/2 and a bonded
+    !> base S = (sinh 2t - 2t)/(cosh 2t + 2t^2 + 1). Evaluated without overflow (divided by
+    !> cosh 2t) and, for small t, with sinh 2t - 2t from its series.
+    elemental real(dp) function layer_factor(t, poisson, base) result(s)
+        real(dp), intent(in) :: t, poisson
+        integer, intent(in) :: base
+        real(dp) :: kappa, x, sech, th, shx, x2
+        integer :: k
+        x = 2.0_dp*t
+        if (x > 700.0_dp) then
+            s = 1.0_dp; return
+        end if
+        sech = 1.0_dp/cosh(x); th = tanh(x)
+        if (base == BASE_FRICTIONLESS) then
+            ! (cosh x - 1)/(sinh x + x) = 2 sinh^2(t)/(sinh x + x)
+            s = 2.0_dp*sinh(t)**2*sech/(th + x*sech)
+            return
+        end if
+        kappa = 3.0_dp - 4.0_dp*poisson
+        if (x < 0.5_dp) then              ! sinh x - x = x^3/3! + x^5/5! + ... (to x^17: 1e-17)
+            x2 = x*x; shx = 0.0_dp
+            do k = 17, 3, -2
+                shx = (shx + 1.0_dp)*x2/real(k*(k - 1), dp)
+            end do
+            shx = shx*x
+            s = ((kappa - 1.0_dp)*sinh(x) + shx)/(kappa*cosh(x) + 2.0_dp*t*t + 0.5_dp*(1.0_dp + kappa*kappa))
+        else
+            s = (kappa*th - x*sech)/(kappa + (2.0_dp*t*t + 0.5_dp*(1.0_dp + kappa*kappa))*sech)
+        end if
+    end function layer_factor
+
+    !> The layer factor of this solid at |q| = `qn` [1/m] (1 for a half-space)
+    elemental real(dp) function material_layer(self, qn) result(s)
+        class(material_t), intent(in) :: self
+        real(dp), intent(in) :: qn
+        s = 1.0_dp
+        if (self%thickness_m > 0.0_dp) s = layer_factor(qn*self%thickness_m, self%poisson, self%base)
+    end function material_layer
 
     subroutine check_poisson(nu, error)
         real(dp), intent(in) :: nu
