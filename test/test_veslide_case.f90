@@ -2,6 +2,7 @@
 !> units everywhere, the same values as the file), and refusals that name the input
 module test_veslide_case
     use veslide_kinds, only: dp, i8
+    use veslide_material, only: layer_factor, BASE_BONDED, BASE_FRICTIONLESS
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t
     use veslide_hdf5, only: h5file_t
@@ -26,7 +27,9 @@ contains
             new_unittest("persson-equals-the-solve-in-full-contact", test_persson_full_contact), &
             new_unittest("approach-is-hertz-plus-the-lattice-term", test_approach_hertz), &
             new_unittest("summary-names-long-paths-whole", test_summary_long_paths), &
-            new_unittest("temperature-is-a-speed-scale", test_temperature_superposition) &
+            new_unittest("temperature-is-a-speed-scale", test_temperature_superposition), &
+            new_unittest("layer-single-wave-in-full-contact", test_layer_single_wave), &
+            new_unittest("layer-thick-is-the-half-space", test_layer_thick) &
             ]
     end subroutine collect_case
 
@@ -241,5 +244,79 @@ contains
             call check(error, area_t, r%get('contact_area_fraction'), "area at T against a_T v at T_ref", rel=1.0e-9_dp)
         end subroutine same_as_speed
     end subroutine test_temperature_superposition
+
+    !> A single wave in full contact on a layer: the pressure is H/K mode by mode, so friction and
+    !> lateral force are the half-space's divided by S(q d) (q d = 0.7, a wave at 30 degrees to
+    !> v: both force components; bonded with nu = 1/2, frictionless with nu = 0.3)
+    subroutine test_layer_single_wave(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: q = 2.0_dp*2.0_dp*3.141592653589793_dp/0.01_dp, t = 0.7_dp
+        call one("bonded", 0.5_dp, BASE_BONDED, error); if (allocated(error)) return
+        call one("frictionless", 0.3_dp, BASE_FRICTIONLESS, error)
+    contains
+        subroutine one(base, nu, id, error)
+            character(len=*), intent(in) :: base
+            real(dp), intent(in) :: nu
+            integer, intent(in) :: id
+            type(error_t), allocatable, intent(out) :: error
+            type(config_t) :: cfg
+            type(case_t) :: c
+            type(results_t) :: r
+            real(dp) :: f0, l0, s
+            character(len=64) :: text
+            character(len=:), allocatable :: base_text
+            base_text = "&grid nx = 32, ny = 32, lx_m = 0.01 / &surface kind = 'cosine', amplitude_m = 1e-7,"// &
+                " wavelength_m = 0.005, direction_deg = 0 / &load mean_pressure_pa = 1e6 / &motion speed_m_s = 0.1,"// &
+                " direction_deg = 30 / &solver fft_planner = 'estimate', tolerance = 1e-12 / &output fields = .false. /"
+            call read_text('wave0', base_text//" &material model = 'one_term', poisson = "//str_nu(nu)//" /", cfg, error)
+            if (allocated(error)) return
+            call run_case(cfg, c, error); if (allocated(error)) return
+            call case_results(cfg, c, r)
+            call check(error, r%get('contact_area_fraction'), 1.0_dp, "full contact", abs=0.0_dp); if (allocated(error)) return
+            f0 = r%get('friction_coefficient'); l0 = r%get('lateral_force_ratio')
+            write (text, '(es24.17)') t/q
+            call read_text('wave1', base_text//" &material model = 'one_term', poisson = "//str_nu(nu)// &
+                           ", thickness_m = "//trim(text)//", base = '"//base//"' /", cfg, error)
+            if (allocated(error)) return
+            call run_case(cfg, c, error); if (allocated(error)) return
+            call case_results(cfg, c, r)
+            s = layer_factor(t, nu, id)
+            call check(error, r%get('friction_coefficient'), f0/s, base//": friction = half-space/S", rel=1.0e-12_dp)
+            if (allocated(error)) return
+            call check(error, r%get('lateral_force_ratio'), l0/s, base//": lateral force = half-space/S", rel=1.0e-12_dp)
+            if (allocated(error)) return
+            call check(error, abs(l0) > 1.0e-3_dp*abs(f0), base//": the lateral force is not zero")
+        end subroutine one
+        function str_nu(nu) result(t)
+            real(dp), intent(in) :: nu
+            character(len=:), allocatable :: t
+            character(len=16) :: b
+            write (b, '(f0.3)') nu
+            t = trim(b)
+        end function str_nu
+    end subroutine test_layer_single_wave
+
+    !> A layer with q d >= 20 for every mode of the scene (q0 d = 20) is the half-space to 1e-12
+    subroutine test_layer_thick(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        real(dp) :: a0, f0, g0
+        character(len=*), parameter :: base = "&grid nx = 32, ny = 32, lx_m = 0.01 / &surface k_cut = 8 /"// &
+            " &motion speed_m_s = 0.1 / &solver fft_planner = 'estimate',"// &
+            " tolerance = 1e-12 / &output fields = .false. /"
+        call read_text('thick0', base//" &material model = 'one_term' /", cfg, error); if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call case_results(cfg, c, r)
+        a0 = r%get('contact_area_fraction'); f0 = r%get('friction_coefficient'); g0 = r%get('mean_separation_m')
+        call read_text('thick1', base//" &material model = 'one_term', thickness_m = 0.031830988618379 /", cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call case_results(cfg, c, r)
+        call check(error, r%get('contact_area_fraction'), a0, "area", rel=1.0e-12_dp); if (allocated(error)) return
+        call check(error, r%get('friction_coefficient'), f0, "friction", rel=1.0e-12_dp); if (allocated(error)) return
+        call check(error, r%get('mean_separation_m'), g0, "mean separation", rel=1.0e-12_dp)
+    end subroutine test_layer_thick
 
 end module test_veslide_case

@@ -2,7 +2,9 @@
 !> the refusal of bad constants
 module test_veslide_material
     use veslide_kinds, only: dp
-    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation
+    use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation, layer_factor, &
+                                BASE_BONDED, BASE_FRICTIONLESS
+    use veslide_lapack, only: dgesv
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use reference_oracles, only: paper_solid, einf, tau
     implicit none
@@ -18,6 +20,8 @@ contains
             new_unittest("relaxation-equals-creep", test_relaxation_creep), &
             new_unittest("elastic-is-frequency-independent", test_elastic), &
             new_unittest("loss-peak-of-the-standard-solid", test_loss_peak), &
+            new_unittest("layer-factor-against-the-boundary-value-problem", test_layer_bvp), &
+            new_unittest("layer-factor-limits", test_layer_limits), &
             new_unittest("creep-sum-must-stay-below-1/E0", test_creep_sum, should_fail=.true., &
                          expect="sum of c_k must be below 1/E0"), &
             new_unittest("poisson-out-of-range", test_bad_poisson, should_fail=.true., expect="poisson") &
@@ -106,5 +110,107 @@ contains
         type(material_t) :: m
         call new_one_term(m, einf, 11.0_dp, tau, 0.6_dp, error)
     end subroutine test_bad_poisson
+
+    !> S(q d) against the layer's boundary-value problem solved numerically: plane strain for a
+    !> mode exp(i q x) (q = 1, E = 1), the Navier equations' general solution
+    !> U = (x1 + x2 z) e^z + (x3 + x4 z) e^-z, W = (-x1 + (kappa - z) x2) e^z + (x3 + (kappa + z) x4) e^-z,
+    !> sigma_zz = lambda (U + W') + 2 mu W' = -1 and sigma_xz = mu (U' - W) = 0 at z = 0, and at
+    !> z = d U = W = 0 (bonded) or W = sigma_xz = 0 (frictionless): S = W(0)/(2 (1 - nu^2))
+    subroutine test_layer_bvp(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: ts(5) = [0.05_dp, 0.3_dp, 1.0_dp, 2.0_dp, 3.5_dp], nus(4) = [0.0_dp, 0.25_dp, &
+                                                                                             0.4_dp, 0.45_dp]
+        real(dp) :: worst, s_bvp, kappa
+        integer :: it, iv, base
+        worst = 0.0_dp
+        do base = BASE_BONDED, BASE_FRICTIONLESS
+            do iv = 1, size(nus)
+                do it = 1, size(ts)
+                    s_bvp = solve_layer(ts(it), nus(iv), base)
+                    worst = max(worst, abs(layer_factor(ts(it), nus(iv), base)/s_bvp - 1.0_dp))
+                end do
+            end do
+        end do
+        call report("largest relative difference", worst)
+        call check(error, worst <= 1.0e-12_dp, "S differs from the boundary-value problem")
+    contains
+        real(dp) function solve_layer(d, nu, base) result(s)
+            real(dp), intent(in) :: d, nu
+            integer, intent(in) :: base
+            real(dp) :: a(4, 4), b(4, 1), lam, mu
+            integer :: ipiv(4), info
+            lam = nu/((1.0_dp + nu)*(1.0_dp - 2.0_dp*nu)); mu = 0.5_dp/(1.0_dp + nu); kappa = 3.0_dp - 4.0_dp*nu
+            a(1, :) = lam*(cu(0.0_dp) + cwp(0.0_dp)) + 2.0_dp*mu*cwp(0.0_dp); b(1, 1) = -1.0_dp
+            a(2, :) = mu*(cup(0.0_dp) - cw(0.0_dp)); b(2, 1) = 0.0_dp
+            if (base == BASE_BONDED) then
+                a(3, :) = cu(d)
+            else
+                a(3, :) = mu*(cup(d) - cw(d))
+            end if
+            a(4, :) = cw(d); b(3:4, 1) = 0.0_dp
+            call dgesv(4, 1, a, 4, ipiv, b, 4, info)
+            s = dot_product(cw(0.0_dp), b(:, 1))/(2.0_dp*(1.0_dp - nu**2))
+            if (info /= 0) s = huge(1.0_dp)
+        end function solve_layer
+            function cu(z) result(c)
+                real(dp), intent(in) :: z
+                real(dp) :: c(4)
+                c = [exp(z), z*exp(z), exp(-z), z*exp(-z)]
+            end function cu
+            function cup(z) result(c)
+                real(dp), intent(in) :: z
+                real(dp) :: c(4)
+                c = [exp(z), (1.0_dp + z)*exp(z), -exp(-z), (1.0_dp - z)*exp(-z)]
+            end function cup
+            function cw(z) result(c)
+                real(dp), intent(in) :: z
+                real(dp) :: c(4)
+                c = [-exp(z), (kappa - z)*exp(z), exp(-z), (kappa + z)*exp(-z)]
+            end function cw
+            function cwp(z) result(c)
+                real(dp), intent(in) :: z
+                real(dp) :: c(4)
+                c = [-exp(z), (kappa - 1.0_dp - z)*exp(z), -exp(-z), (1.0_dp - kappa - z)*exp(-z)]
+            end function cwp
+    end subroutine test_layer_bvp
+
+    !> The limits: q d >= 20 is the half-space to 1e-12; a thin bonded layer is the confined
+    !> compression of its thickness, S/t -> (1 - 2 nu)/(2 (1 - nu)^2), and incompressible
+    !> stiffens as (q d)^3: S = (2 t^3/3)(1 - 9 t^2/5 + 23 t^4/7 + ...) (the series of the closed
+    !> form, 1e-4 .. 1e-1, where the closed form written directly cancels); a thin frictionless
+    !> layer S/t -> 1/2;
+    !> nu = 1/2 bonded is (sinh 2t - 2t)/(cosh 2t + 2t^2 + 1) (written directly where it does not cancel)
+    subroutine test_layer_limits(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: t, worst
+        integer :: base, k
+        worst = 0.0_dp
+        do base = BASE_BONDED, BASE_FRICTIONLESS
+            do k = 0, 3
+                t = 20.0_dp*10.0_dp**k
+                worst = max(worst, abs(layer_factor(t, 0.3_dp, base) - 1.0_dp), abs(layer_factor(t, 0.5_dp, base) - 1.0_dp))
+            end do
+        end do
+        call report("q d >= 20: largest |S - 1|", worst)
+        call check(error, worst <= 1.0e-12_dp, "q d >= 20 is not the half-space"); if (allocated(error)) return
+        t = 1.0e-7_dp
+        call check(error, layer_factor(t, 0.3_dp, BASE_BONDED)/t, 0.4_dp/(2.0_dp*0.49_dp), "confined compression", &
+                   rel=1.0e-6_dp)
+        if (allocated(error)) return
+        call check(error, layer_factor(t, 0.3_dp, BASE_FRICTIONLESS)/t, 0.5_dp, "free compression", rel=1.0e-6_dp)
+        if (allocated(error)) return
+        do k = 1, 4
+            t = 10.0_dp**(-k)
+            call check(error, layer_factor(t, 0.5_dp, BASE_BONDED)/(2.0_dp*t**3/3.0_dp), &
+                       1.0_dp - 1.8_dp*t*t + 23.0_dp/7.0_dp*t**4, "incompressible: 2 t^3/3", rel=20.0_dp*t**6 + 1.0e-14_dp)
+            if (allocated(error)) return
+        end do
+        do k = 1, 5
+            t = 0.25_dp*k
+            call check(error, layer_factor(t, 0.5_dp, BASE_BONDED), (sinh(2*t) - 2*t)/(cosh(2*t) + 2*t*t + 1), &
+                       "nu = 1/2, bonded", rel=1.0e-13_dp)
+            if (allocated(error)) return
+        end do
+    end subroutine test_layer_limits
 
 end module test_veslide_material

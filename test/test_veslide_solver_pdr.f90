@@ -5,7 +5,7 @@ module test_veslide_solver_pdr
     use veslide_kinds, only: dp, pi
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
-    use veslide_material, only: material_t, new_elastic
+    use veslide_material, only: material_t, new_elastic, BASE_BONDED, BASE_FRICTIONLESS
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
     use veslide_solver_options, only: solver_options_t, solver_method_id, solver_method_names, SOLVER_PDR, &
@@ -29,6 +29,7 @@ contains
             new_unittest("dense-16-elastic", test_dense_16_elastic), &
             new_unittest("dense-32-visco-ratio-100", test_dense_32_visco), &
             new_unittest("dense-32-anisotropic-45", test_dense_32_aniso), &
+            new_unittest("dense-32-layer-bonded-and-frictionless", test_dense_32_layer), &
             new_unittest("full-contact-forces-exact", test_full_contact_forces), &
             new_unittest("matches-dr", test_matches_dr), &
             new_unittest("warm-start-from-pressure-and-gap", test_warm_start), &
@@ -66,6 +67,22 @@ contains
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
     end subroutine test_dense_32_aniso
+
+    !> A viscoelastic layer (q0 d = 0.5, so the longest waves feel the base) on both bases, sliding:
+    !> pdr against the dense exact solution of the same discrete (layered) problem
+    subroutine test_dense_32_layer(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(material_t) :: m
+        real(dp) :: h(32, 32)
+        integer :: base
+        call paper_rough(32, h, error); if (allocated(error)) return
+        do base = BASE_BONDED, BASE_FRICTIONLESS
+            call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+            m%thickness_m = 0.5_dp*lcell/(2.0_dp*pi); m%base = base
+            call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
+            if (allocated(error)) return
+        end do
+    end subroutine test_dense_32_layer
 
     !> In full contact P(q) = H(q)/K(q): the forces in closed form, and pdr, which starts from that
     !> solution when it is admissible, confirms it within a few FFT pairs
