@@ -35,7 +35,8 @@ contains
             new_unittest("rank-parts-join-into-the-serial-study", test_merge), &
             new_unittest("stopped-study-resumes-to-the-same-result", test_resume), &
             new_unittest("part-file-of-another-input-refused", test_resume_other, should_fail=.true., &
-                         expect="part file of another input") &
+                         expect="part file of another input"), &
+            new_unittest("temperature-sweep-is-a-speed-scale", test_temperature_sweep) &
             ]
     end subroutine collect_study
 
@@ -261,6 +262,54 @@ contains
         if (calls == 1) first_call = info
         last_call = info
     end subroutine record_progress
+
+    !> A study over temperature (WLF, 20 and 30 C) and speed: /summary and /ensemble carry the
+    !> temperature_c column, and the case at (30 C, v) equals the case at (20 C, v a_T(30)/a_T(20))
+    !> (time-temperature superposition) to the solver's tolerance
+    subroutine test_temperature_sweep(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out
+        character(len=64), allocatable :: cols(:)
+        logical, allocatable :: ints(:)
+        integer(i8), allocatable :: rows(:, :)
+        real(dp) :: ratio, fr(4), t(4), v(4)
+        character(len=32) :: vtext
+        integer :: nfail, jt, jf, jv, k
+        ratio = 10.0_dp**(-17.44_dp*10.0_dp/61.6_dp)        ! a_T(30)/a_T(20) with T_ref = 20
+        write (vtext, '(es24.17)') 0.1_dp*ratio
+        out = unique_name('temps.h5')
+        call read_text('temps', "&grid nx = 32, ny = 32 / &surface k_cut = 8 / &solver fft_planner='estimate',"// &
+                       " tolerance = 1e-12 / &material model='one_term', shift = 'wlf', reference_temperature_c = 20,"// &
+                       " wlf_c1 = 17.44, wlf_c2_k = 51.6 / &sweep speeds_m_s = 0.1, "//trim(vtext)// &
+                       ", temperatures_c = 20, 30, n_seeds = 2 /", cfg, error)
+        if (allocated(error)) return
+        call run_study(cfg, out, nfail, error); if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        call f%read_table('/summary', cols, ints, rows, error); if (allocated(error)) return
+        call check(error, trim(cols(7)) == 'temperature_c' .and. size(rows, 2) == 8, "the summary's temperature column")
+        if (allocated(error)) return
+        call f%read_table('/ensemble', cols, ints, rows, error); if (allocated(error)) return
+        call f%close()
+        call check(error, trim(cols(5)) == 'temperature_c' .and. trim(cols(6)) == 'n_seeds' .and. size(rows, 2) == 4, &
+                   "the ensemble's temperature column")
+        if (allocated(error)) return
+        jt = findloc(cols, 'temperature_c', dim=1); jv = findloc(cols, 'speed_m_s', dim=1)
+        jf = findloc(cols, 'mean_friction_coefficient', dim=1)
+        do k = 1, 4
+            t(k) = transfer(rows(jt, k), 0.0_dp); v(k) = transfer(rows(jv, k), 0.0_dp)
+            fr(k) = transfer(rows(jf, k), 0.0_dp)
+        end do
+        ! rows: (20 C, 0.1), (20 C, 0.1 r), (30 C, 0.1), (30 C, 0.1 r)
+        call check(error, t(1) == 20.0_dp .and. t(3) == 30.0_dp .and. v(1) == 0.1_dp .and. v(3) == 0.1_dp, &
+                   "the ensemble's order")
+        if (allocated(error)) return
+        call check(error, fr(3), fr(2), "friction at 30 C against 20 C at a_T v", rel=1.0e-8_dp)
+        if (allocated(error)) return
+        call check(error, abs(fr(1)/fr(3) - 1.0_dp) > 1.0e-3_dp, "the temperature changed nothing")
+        call remove(out)
+    end subroutine test_temperature_sweep
 
     !> A part file left by another input is not resumed, nor replaced: refused, naming it
     subroutine test_resume_other(error)

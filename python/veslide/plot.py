@@ -513,9 +513,10 @@ def _table(source):
 
 
 _GROUP_FORMATS = {"eccentricity": r"$\varepsilon$ = %.3g", "alpha_deg": r"$\alpha$ = %.4g$^\circ$",
-                  "pressure_pa": r"$p_0$ = %.4g Pa", "seed": "seed %d", "speed_m_s": r"$v$ = %.3g m/s"}
+                  "pressure_pa": r"$p_0$ = %.4g Pa", "seed": "seed %d", "speed_m_s": r"$v$ = %.3g m/s",
+                  "temperature_c": r"$T$ = %.4g °C"}
 # the parameters of a study's cases other than the seed (the columns /ensemble is grouped by)
-PARAMETERS = ("eccentricity", "alpha_deg", "pressure_pa", "speed_m_s")
+PARAMETERS = ("eccentricity", "alpha_deg", "pressure_pa", "speed_m_s", "temperature_c")
 
 
 def _format(fmt, value):
@@ -578,7 +579,10 @@ def force_vs_speed(source, quantity="friction_coefficient", ax=None, *, by=None,
         summary = source if isinstance(source, pd.DataFrame) else source.summary
         table, ens = seed_means(summary, quantity(summary)), True
         quantity, units = "value", {}
-    keys = by if by is not None else list(PARAMETERS[:3]) + ([] if ens else ["seed"])
+    # one line per combination of the parameters other than the speed (temperature_c in the
+    # studies of a material with a temperature shift)
+    keys = by if by is not None else ([k for k in PARAMETERS if k != "speed_m_s" and k in table.columns]
+                                      + ([] if ens else ["seed"]))
     scale = _SCALE[unit] if unit else 1.0
     kw = {"marker": "o", "ms": 4, "capsize": 3, **kw}
     for lab, part in _groups(table, keys, formats):

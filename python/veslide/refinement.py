@@ -133,9 +133,11 @@ class StudyRefinement:
             f["cell_m"] = f["length_x_m"] / f["nx"]
             f["converged"] = f["converged"].astype(bool)
             frames.append(f)
-        plan = frames[-1].set_index("case")[list(PARAMETERS)]
+        # a study of a material with a temperature shift has the column temperature_c too
+        params = tuple(PARAMETERS) + (("temperature_c",) if "temperature_c" in frames[-1].columns else ())
+        plan = frames[-1].set_index("case")[list(params)]
         for r, f in zip(results, frames):
-            mine = f.set_index("case")[list(PARAMETERS)]
+            mine = f.set_index("case")[list(params)]
             if not mine.index.equals(plan.index) or not np.allclose(mine.to_numpy(float), plan.to_numpy(float),
                                                                      rtol=1e-12, atol=0.0):
                 raise ValueError("%s: its cases are not those of %s (an unfinished or another study)"
@@ -152,14 +154,14 @@ class StudyRefinement:
                 ref = Refinement.from_table(mine[columns], names, units, assumed_order)
                 self.cases[int(k)] = ref
                 e = ref.estimate.reset_index()
-                for j, name in enumerate(("case",) + PARAMETERS):
+                for j, name in enumerate(("case",) + params):
                     e.insert(j, name, int(k) if name == "case" else plan.loc[k, name])
                 estimates.append(e)
         if caught:
             warnings.warn("veslide.refine: %d case(s) did not converge on some grid: see the notes" % len(caught),
                           ConvergenceWarning, stacklevel=3)
         self.estimate = pd.concat(estimates, ignore_index=True).set_index(["case", "scalar"])
-        self.table = rows.set_index(["case", "nx"]).sort_index()[list(PARAMETERS) + columns]
+        self.table = rows.set_index(["case", "nx"]).sort_index()[list(params) + columns]
 
     @property
     def converged(self):

@@ -31,16 +31,17 @@ module veslide_study
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
               seed_statistics, write_ensemble
 
-    !> The parameter columns that lead every /summary row
-    integer, parameter :: nparam = 6
-    character(len=*), parameter :: param_names(nparam) = [character(len=12) :: 'case', 'seed', 'eccentricity', &
-                                                          'alpha_deg', 'pressure_pa', 'speed_m_s']
-    character(len=*), parameter :: param_units(nparam) = [character(len=6) :: '-', '-', '-', 'degree', 'Pa', 'm/s']
+    !> The parameter columns that lead every /summary row; temperature_c (the 7th) in the studies
+    !> of a material with a temperature shift (whose temperature may be swept)
+    character(len=*), parameter :: param_names(7) = [character(len=13) :: 'case', 'seed', 'eccentricity', &
+                                                     'alpha_deg', 'pressure_pa', 'speed_m_s', 'temperature_c']
+    character(len=*), parameter :: param_units(7) = [character(len=6) :: '-', '-', '-', 'degree', 'Pa', 'm/s', 'degC']
 
     !> One speed chain: a surface and a load, run through every speed
     type :: study_chain_t
         integer(i8) :: seed = 0_i8
         real(dp) :: eccentricity = 0.0_dp, alpha_deg = 0.0_dp, pressure_pa = 0.0_dp
+        real(dp) :: temperature_c = 0.0_dp
         integer :: first_case = 0          !! global number of its first case; speeds follow
     end type study_chain_t
 
@@ -49,6 +50,7 @@ module veslide_study
         real(dp), allocatable :: speeds(:)
         integer(i8), allocatable :: seeds(:)
         integer :: ncase = 0
+        integer :: nparam = 6                  !! parameter columns (7 with temperature_c)
     end type study_plan_t
 
     !> What a progress callback is told after each case
@@ -80,26 +82,30 @@ contains
     subroutine plan_study(cfg, plan)
         type(config_t), intent(in) :: cfg
         type(study_plan_t), intent(out) :: plan
-        real(dp), allocatable :: alphas(:), eccs(:), pressures(:)
-        integer :: is, ie, ia, ip, k
+        real(dp), allocatable :: alphas(:), eccs(:), pressures(:), temps(:)
+        integer :: is, ie, ia, ip, it, k
         plan%speeds = list_or(cfg%sweep%speeds, cfg%motion%speed_m_s)
         alphas = list_or(cfg%sweep%alphas, cfg%surface%alpha_deg)
         eccs = list_or(cfg%sweep%eccentricities, cfg%surface%eccentricity)
         pressures = list_or(cfg%sweep%pressures, cfg%load%mean_pressure_pa)
+        temps = list_or(cfg%sweep%temperatures, cfg%material%temperature_c)
         if (size(cfg%sweep%seeds) > 0) then
             plan%seeds = cfg%sweep%seeds
         else
             plan%seeds = [cfg%surface%seed]
         end if
-        allocate (plan%chains(size(plan%seeds)*size(eccs)*size(alphas)*size(pressures)))
+        allocate (plan%chains(size(plan%seeds)*size(eccs)*size(alphas)*size(pressures)*size(temps)))
+        plan%nparam = merge(7, 6, cfg%material%shift /= 'none')
         k = 0
         do is = 1, size(plan%seeds)
             do ie = 1, size(eccs)
                 do ia = 1, size(alphas)
                     do ip = 1, size(pressures)
-                        k = k + 1
-                        plan%chains(k) = study_chain_t(plan%seeds(is), eccs(ie), alphas(ia), pressures(ip), &
-                                                       (k - 1)*size(plan%speeds) + 1)
+                        do it = 1, size(temps)
+                            k = k + 1
+                            plan%chains(k) = study_chain_t(plan%seeds(is), eccs(ie), alphas(ia), pressures(ip), &
+                                                           temps(it), (k - 1)*size(plan%speeds) + 1)
+                        end do
                     end do
                 end do
             end do
@@ -147,7 +153,7 @@ contains
         integer, allocatable :: keep(:)
         logical, allocatable :: done(:)
         integer(i8) :: surface_seed, estimate
-        real(dp) :: surface_ecc, surface_alpha, t_start, t_case
+        real(dp) :: surface_ecc, surface_alpha, t_start, t_case, kernels_temperature
         logical :: have_surface
 
         nfail = 0
@@ -159,7 +165,6 @@ contains
         nmine = count([(modulo(ic - 1, nranks) == rank, ic = 1, size(plan%chains))])*size(plan%speeds)
 
         call size_and_check_memory(cfg, estimate, error); if (allocated(error)) return
-        call build_material(cfg, mat, error); if (allocated(error)) return
         ! a measured topography fixes the grid and the cell size, which the kernels need
         have_surface = .false.
         if (cfg%surface%kind == 'file') then
@@ -168,10 +173,7 @@ contains
         end if
         call case_grid(cfg, grid, error); if (allocated(error)) return
         allocate (kernels(size(plan%speeds)), kernel_seconds(size(plan%speeds)))
-        do iv = 1, size(plan%speeds)
-            cfg%motion%speed_m_s = plan%speeds(iv)
-            call build_kernel(cfg, grid, mat, kernels(iv), kernel_seconds(iv), error); if (allocated(error)) return
-        end do
+        kernels_temperature = huge(1.0_dp)
         allocate (done(plan%ncase)); done = .false.
         nrow = 0
         if (path_kind(path) == PATH_REGULAR) then
@@ -192,6 +194,18 @@ contains
         do ic = 1, size(plan%chains)
             if (modulo(ic - 1, nranks) /= rank) cycle
             associate (chain => plan%chains(ic))
+                ! the material, and each speed's kernel, at the chain's temperature (built once
+                ! for a study without a temperature sweep)
+                if (chain%temperature_c /= kernels_temperature) then
+                    cfg%material%temperature_c = chain%temperature_c
+                    call build_material(cfg, mat, error); if (allocated(error)) return
+                    do iv = 1, size(plan%speeds)
+                        cfg%motion%speed_m_s = plan%speeds(iv)
+                        call build_kernel(cfg, grid, mat, kernels(iv), kernel_seconds(iv), error)
+                        if (allocated(error)) return
+                    end do
+                    kernels_temperature = chain%temperature_c
+                end if
                 cfg%surface%seed = chain%seed; cfg%surface%eccentricity = chain%eccentricity
                 cfg%surface%alpha_deg = chain%alpha_deg; cfg%load%mean_pressure_pa = chain%pressure_pa
                 if (cfg%surface%kind /= 'file' .and. .not. (have_surface .and. chain%seed == surface_seed .and. &
@@ -333,36 +347,43 @@ contains
             real(dp), intent(in) :: speed
             type(error_t), allocatable, intent(out) :: error
             character(len=16) :: tag
-            integer :: j
+            character(len=:), allocatable :: names
+            real(dp) :: values(7)
+            integer :: j, np
             write (tag, '("/cases/",i6.6)') k
             call write_case_group(f, trim(tag), cfg, c, error, r); if (allocated(error)) return
-            call f%write(trim(tag)//'/parameters', [real(k, dp), real(chain%seed, dp), chain%eccentricity, &
-                                                    chain%alpha_deg, chain%pressure_pa, speed], error)
+            np = plan%nparam
+            values = [real(k, dp), real(chain%seed, dp), chain%eccentricity, chain%alpha_deg, chain%pressure_pa, &
+                      speed, chain%temperature_c]
+            call f%write(trim(tag)//'/parameters', values(1:np), error)
             if (allocated(error)) return
-            call f%writeattr(trim(tag)//'/parameters', 'columns', &
-                             'case, seed, eccentricity, alpha_deg, pressure_pa, speed_m_s', error)
+            names = trim(param_names(1))
+            do j = 2, np
+                names = names//', '//trim(param_names(j))
+            end do
+            call f%writeattr(trim(tag)//'/parameters', 'columns', names, error)
             if (allocated(error)) return
-            ! every scalar of the case, except those that repeat a parameter column (speed_m_s)
-            if (.not. allocated(keep)) keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names), j = 1, r%n)])
+            ! every scalar of the case, except those that repeat a parameter column (speed_m_s,
+            ! temperature_c)
+            if (.not. allocated(keep)) &
+                keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names(1:np)), j = 1, r%n)])
             if (.not. allocated(table)) then
-                allocate (columns(nparam + size(keep)), units(nparam + size(keep)), is_int(nparam + size(keep)))
-                allocate (table(nparam + size(keep), nmine))
-                columns(1:nparam) = param_names; units(1:nparam) = param_units
-                is_int(1:nparam) = [.true., .true., .false., .false., .false., .false.]
+                allocate (columns(np + size(keep)), units(np + size(keep)), is_int(np + size(keep)))
+                allocate (table(np + size(keep), nmine))
+                columns(1:np) = param_names(1:np); units(1:np) = param_units(1:np)
+                is_int(1:np) = .false.; is_int(1:2) = .true.
                 do j = 1, size(keep)
-                    columns(nparam + j) = r%scalars(keep(j))%name; units(nparam + j) = r%scalars(keep(j))%units
-                    is_int(nparam + j) = r%scalars(keep(j))%is_integer
+                    columns(np + j) = r%scalars(keep(j))%name; units(np + j) = r%scalars(keep(j))%units
+                    is_int(np + j) = r%scalars(keep(j))%is_integer
                 end do
             end if
             nrow = nrow + 1
-            table(1:nparam, nrow) = [int(k, i8), chain%seed, transfer(chain%eccentricity, 0_i8), &
-                                     transfer(chain%alpha_deg, 0_i8), transfer(chain%pressure_pa, 0_i8), &
-                                     transfer(speed, 0_i8)]
+            table(1:np, nrow) = [int(k, i8), chain%seed, transfer(values(3:np), 0_i8, np - 2)]
             do j = 1, size(keep)
                 if (r%scalars(keep(j))%is_integer) then
-                    table(nparam + j, nrow) = nint(r%scalars(keep(j))%value, i8)
+                    table(np + j, nrow) = nint(r%scalars(keep(j))%value, i8)
                 else
-                    table(nparam + j, nrow) = transfer(r%scalars(keep(j))%value, 0_i8)
+                    table(np + j, nrow) = transfer(r%scalars(keep(j))%value, 0_i8)
                 end if
             end do
             call f%append_row('/summary', columns, units, is_int, table(:, nrow), error); if (allocated(error)) return
@@ -397,23 +418,29 @@ contains
         logical, allocatable :: eint(:)
         integer(i8), allocatable :: e(:, :)
         real(dp) :: x(nseed), mean, sem
-        integer :: m, r, j, ncol, nv, kk
-        ncol = size(columns); m = size(table, 2)/nseed; nv = ncol - nparam
-        allocate (ecols(5 + 2*nv), eunits(5 + 2*nv), eint(5 + 2*nv), e(5 + 2*nv, m))
-        ecols(1:4) = param_names(3:6); eunits(1:4) = param_units(3:6); eint(1:4) = .false.
-        ecols(5) = 'n_seeds'; eunits(5) = '-'; eint(5) = .true.
-        eint(6:) = .false.
+        integer :: m, r, j, ncol, nv, kk, np, ne
+        ncol = size(columns); m = size(table, 2)/nseed
+        ! the parameter columns lead (param_names; temperature_c the 7th when present)
+        np = 6
+        if (ncol >= 7) then
+            if (trim(columns(7)) == param_names(7)) np = 7
+        end if
+        nv = ncol - np; ne = np - 2          ! the parameters but case and seed, then n_seeds
+        allocate (ecols(ne + 1 + 2*nv), eunits(ne + 1 + 2*nv), eint(ne + 1 + 2*nv), e(ne + 1 + 2*nv, m))
+        ecols(1:ne) = param_names(3:np); eunits(1:ne) = param_units(3:np); eint(1:ne) = .false.
+        ecols(ne + 1) = 'n_seeds'; eunits(ne + 1) = '-'; eint(ne + 1) = .true.
+        eint(ne + 2:) = .false.
         do j = 1, nv
-            ecols(5 + j) = 'mean_'//trim(columns(nparam + j)); eunits(5 + j) = units(nparam + j)
-            ecols(5 + nv + j) = 'sem_'//trim(columns(nparam + j)); eunits(5 + nv + j) = units(nparam + j)
+            ecols(ne + 1 + j) = 'mean_'//trim(columns(np + j)); eunits(ne + 1 + j) = units(np + j)
+            ecols(ne + 1 + nv + j) = 'sem_'//trim(columns(np + j)); eunits(ne + 1 + nv + j) = units(np + j)
         end do
         do r = 1, m
-            e(1:4, r) = table(3:6, r)
-            e(5, r) = nseed
+            e(1:ne, r) = table(3:np, r)
+            e(ne + 1, r) = nseed
             do j = 1, nv
-                x = [(cell(table, is_int, nparam + j, r + (kk - 1)*m), kk = 1, nseed)]
-                call seed_statistics(x, axial_of(trim(columns(nparam + j))), mean, sem)
-                e(5 + j, r) = transfer(mean, 0_i8); e(5 + nv + j, r) = transfer(sem, 0_i8)
+                x = [(cell(table, is_int, np + j, r + (kk - 1)*m), kk = 1, nseed)]
+                call seed_statistics(x, axial_of(trim(columns(np + j))), mean, sem)
+                e(ne + 1 + j, r) = transfer(mean, 0_i8); e(ne + 1 + nv + j, r) = transfer(sem, 0_i8)
             end do
         end do
         call f%write_table('/ensemble', ecols, eunits, eint, e, error)

@@ -110,7 +110,8 @@ contains
         allocate (cfg%material%prony_coef(0), cfg%material%prony_time_s(0))
         cfg%solver%method = 'auto'; cfg%solver%kernel = 'spectral'; cfg%solver%fft_planner = 'measure'
         cfg%solver%device = 'auto'
-        allocate (cfg%sweep%speeds(0), cfg%sweep%alphas(0), cfg%sweep%eccentricities(0), cfg%sweep%pressures(0))
+        allocate (cfg%sweep%speeds(0), cfg%sweep%alphas(0), cfg%sweep%eccentricities(0), cfg%sweep%pressures(0), &
+                  cfg%sweep%temperatures(0))
         allocate (cfg%sweep%seeds(0))
         cfg%output%file = 'veslide.h5'
         allocate (cfg%warnings(0))
@@ -159,7 +160,18 @@ contains
         call require(error, (size(cfg%sweep%alphas) == 0 .and. size(cfg%sweep%eccentricities) == 0) .or. &
                      cfg%surface%kind == 'self_affine', p, 'sweep', 'alphas_deg/eccentricities', "", &
                      "only with &surface kind = 'self_affine'")
+        call require(error, size(cfg%sweep%temperatures) == 0 .or. cfg%material%shift /= 'none', p, 'sweep', &
+                     'temperatures_c', "", "only with a &material shift ('wlf' or 'arrhenius') and its reference")
         if (allocated(error)) return
+        if (cfg%material%shift == 'wlf') then
+            do k = 1, size(cfg%sweep%temperatures)
+                call require(error, cfg%sweep%temperatures(k) - cfg%material%reference_temperature_c > &
+                             -cfg%material%wlf_c2_k, p, 'sweep', 'temperatures_c('//str(k)//')', &
+                             str(cfg%sweep%temperatures(k)), "above reference_temperature_c - wlf_c2_k = "// &
+                             str(cfg%material%reference_temperature_c - cfg%material%wlf_c2_k))
+            end do
+            if (allocated(error)) return
+        end if
         if (cfg%sweep%n_seeds > 0) cfg%sweep%seeds = [(cfg%surface%seed + k, k = 0, cfg%sweep%n_seeds - 1)]
         if (cfg%sweep%is_study() .and. .not. cfg%output%fields_given) cfg%output%fields = .false.
         call collect_warnings(cfg)
