@@ -2,6 +2,7 @@
 !> units everywhere, the same values as the file), and refusals that name the input
 module test_veslide_case
     use veslide_kinds, only: dp, i8
+    use veslide_strings, only: str
     use veslide_material, only: layer_factor, BASE_BONDED, BASE_FRICTIONLESS
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t
@@ -278,14 +279,14 @@ contains
             base_text = "&grid nx = 32, ny = 32, lx_m = 0.01 / &surface kind = 'cosine', amplitude_m = 1e-7,"// &
                 " wavelength_m = 0.005, direction_deg = 0 / &load mean_pressure_pa = 1e6 / &motion speed_m_s = 0.1,"// &
                 " direction_deg = 30 / &solver fft_planner = 'estimate', tolerance = 1e-12 / &output fields = .false. /"
-            call read_text('wave0', base_text//" &material model = 'one_term', poisson = "//str_nu(nu)//" /", cfg, error)
+            call read_text('wave0', base_text//" &material model = 'one_term', poisson = "//str(nu)//" /", cfg, error)
             if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
             call case_results(cfg, c, r)
             call check(error, r%get('contact_area_fraction'), 1.0_dp, "full contact", abs=0.0_dp); if (allocated(error)) return
             f0 = r%get('friction_coefficient'); l0 = r%get('lateral_force_ratio')
             write (text, '(es24.17)') t/q
-            call read_text('wave1', base_text//" &material model = 'one_term', poisson = "//str_nu(nu)// &
+            call read_text('wave1', base_text//" &material model = 'one_term', poisson = "//str(nu)// &
                            ", thickness_m = "//trim(text)//", base = '"//base//"' /", cfg, error)
             if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
@@ -297,13 +298,6 @@ contains
             if (allocated(error)) return
             call check(error, abs(l0) > 1.0e-3_dp*abs(f0), base//": the lateral force is not zero")
         end subroutine one
-        function str_nu(nu) result(t)
-            real(dp), intent(in) :: nu
-            character(len=:), allocatable :: t
-            character(len=16) :: b
-            write (b, '(f0.3)') nu
-            t = trim(b)
-        end function str_nu
     end subroutine test_layer_single_wave
 
     !> A layer with q d >= 20 for every mode of the scene (q0 d = 20) is the half-space to 1e-12
