@@ -160,7 +160,8 @@ def _fpm_build_executable():
 
 def find_executable(exe=None):
     """The veslide executable: `exe` (a path or a command name), else $VESLIDE_EXE, else `veslide`
-    on the PATH (e.g. after `fpm install --prefix ~/.local`), else this checkout's fpm release
+    on the PATH (e.g. after `fpm install --prefix ~/.local`, or `.venv/bin` activated), else the
+    build `./dev.sh` linked into this checkout's `.venv/bin`, else this checkout's fpm release
     build."""
     for candidate, origin in ((exe, "exe"), (os.environ.get("VESLIDE_EXE"), "VESLIDE_EXE")):
         if candidate:
@@ -171,6 +172,11 @@ def find_executable(exe=None):
     on_path = shutil.which("veslide")
     if on_path:
         return Path(on_path)
+    # the link ./dev.sh makes to this checkout's release build (built with the set-up's library
+    # settings, which a bare `fpm run` here may not have)
+    link = REPO / ".venv" / "bin" / "veslide"
+    if link.exists() and os.access(link, os.X_OK):
+        return link.resolve()
     built = _fpm_build_executable()
     if built:
         return built
