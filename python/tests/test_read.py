@@ -95,6 +95,9 @@ def test_study_summary_keeps_integer_columns_and_units(study):
     assert s.attrs["units"] == dict(zip(names, [str(u) for u in units]))
     assert s.attrs["units"]["speed_m_s"] == "m/s" and s.attrs["units"]["alpha_deg"] == "degree"
     assert list(s["case"]) == list(range(1, 9))
+    # the program names its parameter columns (no temperature without a material shift)
+    assert s.attrs["parameters"] == ["case", "seed", "eccentricity", "alpha_deg", "pressure_pa", "speed_m_s"]
+    assert study.ensemble.attrs["parameters"] == ["eccentricity", "alpha_deg", "pressure_pa", "speed_m_s"]
     assert study.converged is True
     assert list(study.provenance["seeds"]) == [1, 2] and "seed" not in study.provenance
 

@@ -581,8 +581,9 @@ def force_vs_speed(source, quantity="friction_coefficient", ax=None, *, by=None,
         quantity, units = "value", {}
     # one line per combination of the parameters other than the speed (temperature_c in the
     # studies of a material with a temperature shift)
-    keys = by if by is not None else ([k for k in PARAMETERS if k != "speed_m_s" and k in table.columns]
-                                      + ([] if ens else ["seed"]))
+    params = table.attrs.get("parameters") or PARAMETERS       # the file names them (older files: ours)
+    keys = by if by is not None else ([k for k in params if k not in ("case", "seed", "speed_m_s")
+                                       and k in table.columns] + ([] if ens else ["seed"]))
     scale = _SCALE[unit] if unit else 1.0
     kw = {"marker": "o", "ms": 4, "capsize": 3, **kw}
     for lab, part in _groups(table, keys, formats):

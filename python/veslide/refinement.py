@@ -134,7 +134,10 @@ class StudyRefinement:
             f["converged"] = f["converged"].astype(bool)
             frames.append(f)
         # a study of a material with a temperature shift has the column temperature_c too
-        params = tuple(PARAMETERS) + (("temperature_c",) if "temperature_c" in frames[-1].columns else ())
+        # the parameters the file names (older files: seed .. speed_m_s, and temperature_c if present)
+        named = frames[-1].attrs.get("parameters")
+        params = (tuple(p for p in named if p != "case") if named else
+                  tuple(PARAMETERS) + (("temperature_c",) if "temperature_c" in frames[-1].columns else ()))
         plan = frames[-1].set_index("case")[list(params)]
         for r, f in zip(results, frames):
             mine = f.set_index("case")[list(params)]

@@ -60,6 +60,9 @@ def _table(ds):
     df = pd.DataFrame({n: np.asarray(data[n]) for n in names}, columns=list(names))
     units = [text(u) for u in np.atleast_1d(ds.attrs.get("units", []))]
     df.attrs["units"] = dict(zip(names, units)) if len(units) == len(names) else {}
+    # the columns that identify a case (the study's parameters), as the program names them
+    if "parameters" in ds.attrs:
+        df.attrs["parameters"] = [text(p) for p in np.atleast_1d(ds.attrs["parameters"])]
     return df
 
 

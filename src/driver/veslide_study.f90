@@ -32,7 +32,8 @@ module veslide_study
               seed_statistics, write_ensemble
 
     !> The parameter columns that lead every /summary row; temperature_c (the 7th) in the studies
-    !> of a material with a temperature shift (whose temperature may be swept)
+    !> of a material with a temperature shift (whose temperature may be swept). The attribute
+    !> `parameters` of /summary (and of /ensemble, without case and seed) names them for readers.
     character(len=*), parameter :: param_names(7) = [character(len=13) :: 'case', 'seed', 'eccentricity', &
                                                      'alpha_deg', 'pressure_pa', 'speed_m_s', 'temperature_c']
     character(len=*), parameter :: param_units(7) = [character(len=6) :: '-', '-', '-', 'degree', 'Pa', 'm/s', 'degC']
@@ -387,6 +388,9 @@ contains
                 end if
             end do
             call f%append_row('/summary', columns, units, is_int, table(:, nrow), error); if (allocated(error)) return
+            if (.not. f%attr_exists('/summary', 'parameters')) then     ! (the first row made the table)
+                call f%writeattr('/summary', 'parameters', param_names(1:np), error); if (allocated(error)) return
+            end if
             call f%flush(error)
         end subroutine write_row
 
@@ -443,7 +447,8 @@ contains
                 e(ne + 1 + j, r) = transfer(mean, 0_i8); e(ne + 1 + nv + j, r) = transfer(sem, 0_i8)
             end do
         end do
-        call f%write_table('/ensemble', ecols, eunits, eint, e, error)
+        call f%write_table('/ensemble', ecols, eunits, eint, e, error); if (allocated(error)) return
+        call f%writeattr('/ensemble', 'parameters', param_names(3:np), error)
     end subroutine write_ensemble
 
     !> Mean and standard error of the mean over seeds. Axial data (angles modulo pi, `axial`
@@ -522,6 +527,7 @@ contains
         end if
         call units_of(columns, units)
         call f%write_table('/summary', columns, units, is_int, table, error); if (allocated(error)) return
+        call f%writeattr('/summary', 'parameters', param_names(1:plan%nparam), error); if (allocated(error)) return
         if (size(plan%seeds) > 1) then
             call write_ensemble(f, columns, units, is_int, table, size(plan%seeds), error)
             if (allocated(error)) return
