@@ -1,0 +1,147 @@
+"""Layered solids (&material thickness_m, base) against ContactMechanics' layered substrate.
+
+ContactMechanics (PyPI, binary wheels; `pip install -e 'python[contactmechanics]'`) models a
+layer of thickness d on a rigid flat in `PeriodicFFTElasticHalfSpace(..., thickness=d,
+poisson=nu)`: its stiffness is the half-space's E* |q|/2 times
+    (kappa cosh 2t + 2t^2 + (1 + kappa^2)/2)/(kappa sinh 2t - 2t),   t = |q| d, kappa = 3 - 4 nu
+(its `off` = 4 nu (2 nu - 3) + 5 is (1 + kappa^2)/2), from Carbone & Mangialardi, JMPS 56 (2008)
+eq. (A.30): the layer bonded to the rigid base, the reciprocal of our bonded S. It has no
+frictionless base. Its q = 0 mode is the layer's confined compression (ours is the rigid-body
+approach); a load-controlled solve does not see it.
+
+What is checked:
+- its stiffness is 1/S of our bonded base at every mode of a grid (to 1e-13 from t = 0.1,
+  measured 7e-15 or less; 4e-13 at t = 0.01 for nu = 1/2, its own cancellation), and differs
+  from the frictionless base by 15-100 % for nu >= 0.3 (so its base is the bonded one);
+- the same rough surface (the program's heights, read back from /fields/height_m), grid, E, nu,
+  thickness and load, solved by both, tolerances tight (veslide 1e-12; ContactMechanics'
+  Polonsky-Keer CG with `external_force`, penetration 1e-14 h_rms, force 1e-14 of a cell's
+  mean): the cells in contact are the same cells, the mean gap agrees to 1e-6 relative
+  (measured 3e-14 or less), the pressure fields to 1e-8 of the mean pressure (measured 4e-11 or
+  less). Cases, all at q0 d = 1 with 13-17 % of the cells in contact: the half-space (the
+  control), a bonded layer of nu = 0.3 and one of nu = 0.5; and the frictionless base, with
+  ContactMechanics' solver on its half-space Green's function times our S written anew in numpy
+  (an independent factor and solver, not an independent model);
+- the layer matters in these cases (the mean gap 29-51 % above the half-space's);
+"""
+import numpy as np
+import pytest
+
+import veslide
+
+CM = pytest.importorskip("ContactMechanics", reason="ContactMechanics is not installed "
+                         "(pip install --only-binary=:all: 'ContactMechanics>=1.8'; python[contactmechanics])")
+from ContactMechanics import PeriodicFFTElasticHalfSpace  # noqa: E402
+from ContactMechanics.Optimization import constrained_conjugate_gradients  # noqa: E402
+
+N, LX, E = 64, 1.0e-3, 1.0e7
+D = LX/(2.0*np.pi)                 # q0 d = 1
+PRESSURE = 20.0e3
+
+
+def s_bonded(t, nu):
+    """S of a layer bonded to a rigid base: divided through by cosh 2t (no overflow), and
+    kappa sinh 2t - 2t = (kappa - 1) sinh 2t + (sinh 2t - 2t) with the last from its series
+    below 2t = 1/2 (no cancellation)."""
+    k = 3.0 - 4.0*nu
+    x = 2.0*np.asarray(t, dtype=float)
+    xc = np.minimum(x, 700.0)
+    sech = np.where(x < 700.0, 1.0/np.cosh(xc), 0.0)
+    series = sum(xc**j/np.prod(np.arange(1.0, j + 1.0)) for j in range(19, 1, -2))   # sinh x - x to x^19
+    num = np.where(x < 0.5, ((k - 1.0)*np.sinh(xc) + series)*sech, k*np.tanh(x) - x*sech)
+    return num/(k + (x*x/2.0 + (1.0 + k*k)/2.0)*sech)
+
+
+def s_frictionless(t):
+    """S of a layer resting on a rigid base without friction: (cosh 2t - 1)/(sinh 2t + 2t)."""
+    x = 2.0*np.asarray(t, dtype=float)
+    sech = np.where(x < 700.0, 1.0/np.cosh(np.minimum(x, 700.0)), 0.0)
+    return (1.0 - sech)/(np.tanh(x) + x*sech)
+
+
+def wavenumbers(n, lx):
+    """|q| [1/m] on ContactMechanics' half-spectrum (n//2 + 1, n): Nyquist counted positive."""
+    qx = np.arange(n//2 + 1)/lx
+    qy = np.abs(np.fft.fftfreq(n, lx/n))
+    qy[n//2] = (n//2)/lx
+    return 2.0*np.pi*np.hypot(qx[:, None], qy[None, :])
+
+
+def substrate(nu, thickness, base="bonded"):
+    with np.errstate(divide="ignore"):     # nu = 1/2: its q = 0 stiffness of the layer is infinite
+        if base == "bonded":
+            return PeriodicFFTElasticHalfSpace((N, N), E, (LX, LX), poisson=np.float64(nu),
+                                               thickness=thickness or None)
+        sub = PeriodicFFTElasticHalfSpace((N, N), E, (LX, LX), poisson=np.float64(nu))
+    q = wavenumbers(N, LX)
+    m = q > 0
+    sub.greens_function[m] *= s_frictionless(q[m]*thickness)
+    sub.surface_stiffness[m] = 1.0/sub.greens_function[m]
+    return sub
+
+
+@pytest.mark.parametrize("nu", [0.0, 0.3, 0.49, 0.5])
+@pytest.mark.parametrize("qd", [0.01, 1.0, 30.0])
+def test_contactmechanics_layer_is_the_bonded_base(nu, qd):
+    d = qd*LX/(2.0*np.pi)
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        half = PeriodicFFTElasticHalfSpace((N, N), E, (LX, LX), poisson=np.float64(nu))
+        layer = PeriodicFFTElasticHalfSpace((N, N), E, (LX, LX), poisson=np.float64(nu), thickness=d)
+    q = wavenumbers(N, LX)
+    m = q > 0
+    ratio = (layer.greens_function[m]/half.greens_function[m]).real
+    t = q[m]*d
+    # ContactMechanics forms kappa sinh 2t - 2t as it stands: for nu = 1/2 it cancels to
+    # (2t)^3/6, a relative error ~1.5 eps/t^2 (measured 4e-13 at t = 0.01; 1e-15 from t = 0.1)
+    assert np.all(np.abs(ratio/s_bonded(t, nu) - 1.0) < 1e-13 + 7e-16/t**2)
+    if qd <= 1.0 and nu >= 0.3:         # thick layers are both the half-space; for nu = 0 thin
+        assert np.max(np.abs(ratio/s_frictionless(t) - 1.0)) > 0.1    # ones both t/2
+
+
+def solve_both(nu, thickness, base="bonded"):
+    case = {"grid": {"nx": N, "ny": N, "lx_m": LX}, "surface": {"k_cut": 8, "seed": 3},
+            "material": {"young_pa": E, "poisson": nu, "thickness_m": thickness, "base": base},
+            "load": {"mean_pressure_pa": PRESSURE},
+            "solver": {"tolerance": 1e-12, "fft_planner": "estimate", "method": "bccg"}}
+    r = veslide.run(case, progress=None, threads=1)
+    assert r.converged
+    h = r.fields.height_m.transpose("x", "y").values           # [ix, iy], as ContactMechanics
+    sub = substrate(nu, thickness, base)
+    force = PRESSURE*LX*LX
+    res = constrained_conjugate_gradients(sub, h, external_force=force, pentol=1e-14*h.std(),
+                                          forcetol=1e-14*force/N**2, thermotol=1e-14, maxiter=10000)
+    assert res.success
+    return r, h, res
+
+
+CASES = {"half-space": (0.3, 0.0, "bonded"), "bonded nu 0.3": (0.3, D, "bonded"),
+         "bonded nu 0.5": (0.5, D, "bonded"), "frictionless nu 0.5": (0.5, D, "frictionless")}
+_SOLVED = {}
+
+
+def solved(name):
+    if name not in _SOLVED:
+        _SOLVED[name] = solve_both(*CASES[name])
+    return _SOLVED[name]
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_equals_contactmechanics(name):
+    r, h, res = solved(name)
+    s = r.scalars
+    assert s.get("layer_thickness_m", 0.0) == CASES[name][1]     # written for a layer only
+    p_cm = res.jac/(LX*LX/N**2)                                  # forces -> pressures [Pa]
+    p = r.fields.pressure_pa.transpose("x", "y").values
+    assert np.array_equal(p > 0, p_cm > 0)                       # the same cells in contact
+    assert s["contact_area_fraction_cells"] == np.count_nonzero(p_cm > 0)/N**2
+    assert 0.05 < s["contact_area_fraction_cells"] < 0.20
+    gap_cm = (res.x - h - res.offset).mean()                     # its gap: u - h - offset
+    assert s["mean_separation_m"] == pytest.approx(gap_cm, rel=1e-6)
+    assert np.max(np.abs(p - p_cm)) < 1e-8*PRESSURE
+
+
+def test_the_layer_matters_here():
+    half = solved("half-space")[0].scalars["mean_separation_m"]
+    for name in ("bonded nu 0.3", "bonded nu 0.5", "frictionless nu 0.5"):
+        assert solved(name)[0].scalars["mean_separation_m"] > 1.25*half
+
