@@ -23,14 +23,19 @@ What is checked:
   ContactMechanics' solver on its half-space Green's function times our S written anew in numpy
   (an independent factor and solver, not an independent model);
 - the layer matters in these cases (the mean gap 29-51 % above the half-space's);
+- the README's example "A layered solid" runs and prints what it says.
 """
+import doctest
+import re
+
 import numpy as np
 import pytest
 
 import veslide
 
-CM = pytest.importorskip("ContactMechanics", reason="ContactMechanics is not installed "
-                         "(pip install --only-binary=:all: 'ContactMechanics>=1.8'; python[contactmechanics])")
+CM = pytest.importorskip("ContactMechanics", reason="ContactMechanics is not installed (binary wheels: "
+                         "pip install --only-binary=:all: 'ContactMechanics>=1.8.3'; "
+                         "the package's extra 'contactmechanics')")
 from ContactMechanics import PeriodicFFTElasticHalfSpace  # noqa: E402
 from ContactMechanics.Optimization import constrained_conjugate_gradients  # noqa: E402
 
@@ -145,3 +150,20 @@ def test_the_layer_matters_here():
     for name in ("bonded nu 0.3", "bonded nu 0.5", "frictionless nu 0.5"):
         assert solved(name)[0].scalars["mean_separation_m"] > 1.25*half
 
+
+def test_readme_layered_example(tmp_path, monkeypatch, exe):
+    """The README's "### A layered solid" block, a doctest, checked as test_readme checks its own."""
+    from test_readme import README, NumberChecker
+    text = README.read_text()
+    start = text.index("\n### A layered solid\n")
+    section = text[start:text.index("\n## ", start)]
+    blocks = re.findall(r"^```python\n(.*?)^```$", section, re.M | re.S)
+    assert len(blocks) == 1 and blocks[0].startswith(">>> ")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("VESLIDE_EXE", str(exe))
+    monkeypatch.setenv("OMP_NUM_THREADS", "1")
+    runner = doctest.DocTestRunner(checker=NumberChecker(),
+                                   optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    test = doctest.DocTestParser().get_doctest(blocks[0], {}, "README.md A layered solid", str(README), 0)
+    runner.run(test)
+    assert runner.summarize(verbose=False).failed == 0
