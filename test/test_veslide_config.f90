@@ -518,6 +518,15 @@ contains
         if (allocated(error)) return
         call expect_message('s5', m//"shift = 'vft' /", [character(len=40) :: "&material shift", "arrhenius"], error)
         if (allocated(error)) return
+        ! just above WLF's divergence a_T overflows (log10 a_T > 308): refused, not a kernel of NaN
+        call expect_message('s7', m//"shift = 'wlf', reference_temperature_c = 20, wlf_c1 = 17.44, "// &
+                            "wlf_c2_k = 51.6, temperature_c = -31.5 /", &
+                            [character(len=40) :: "&material temperature_c = -31.5", "a_T = "], error)
+        if (allocated(error)) return
+        call expect_message('s8', m//"shift = 'wlf', reference_temperature_c = 20, wlf_c1 = 17.44, "// &
+                            "wlf_c2_k = 51.6 / &sweep temperatures_c = 20, -31.5 /", &
+                            [character(len=40) :: "&sweep temperatures_c(2) = -31.5"], error)
+        if (allocated(error)) return
         call read_text('s6', m//"shift = 'arrhenius', reference_temperature_c = 20, activation_energy_j_mol = 1e5 /", &
                        cfg, error)
         if (allocated(error)) return

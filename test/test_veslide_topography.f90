@@ -180,7 +180,25 @@ contains
             end do
         end do
         call surface_from('hwave', h, 2.0e-3_dp, cfg, hout, error); if (allocated(error)) return
-        call check(error, size(cfg%warnings) == 0, "a periodic wave warned")
+        call check(error, size(cfg%warnings) == 0, "a periodic wave warned"); if (allocated(error)) return
+        ! a ramp along y over 150 rows (three blocks of rows read): the jump along y, none along x
+        call ramp_y(error)
+    contains
+        subroutine ramp_y(error)
+            type(error_t), allocatable, intent(out) :: error
+            real(dp) :: hy(8, 150)
+            real(dp), allocatable :: hy_out(:, :)
+            character(len=16) :: expected
+            do j = 1, 150
+                hy(:, j) = 1.0_dp + real(j, dp)*1.0e-6_dp      ! far from zero: moments about a height
+            end do
+            call surface_from('hrampy', hy, 2.0e-3_dp, cfg, hy_out, error); if (allocated(error)) return
+            ! jump 149 steps over an rms of sqrt((150^2 - 1)/12) steps
+            write (expected, '(f0.2)') 149.0_dp/sqrt((150.0_dp**2 - 1.0_dp)/12.0_dp)
+            call check(error, size(cfg%warnings) == 1, "one warning for the ramp along y"); if (allocated(error)) return
+            call check(error, index(cfg%warnings(1)%text, "jump by "//trim(expected)//" h_rms") > 0 .and. &
+                       index(cfg%warnings(1)%text, "along y") > 0, cfg%warnings(1)%text)
+        end subroutine ramp_y
     end subroutine test_edge_jump
 
     !> The file's record of its preparation is kept, and written to the output

@@ -2,7 +2,8 @@
 !> (--output PATH: the result file instead of &output file, as for veslide).
 !> A single case (no &sweep list): one grid distributed over the ranks (FFTW's MPI transforms,
 !> rows of every field per rank), solved together and written collectively (parallel HDF5) into
-!> the file a serial run writes. A study: rank r runs the speed chains (seed, eccentricity, angle, pressure) whose index is r modulo the
+!> the file a serial run writes. A study: rank r runs the speed chains (seed, temperature,
+!> eccentricity, angle, pressure) whose index is r modulo the
 !> number of ranks, each warm-started along speed as in a serial study, into a rank file next to
 !> the output; when every rank has finished, rank 0 joins the rank files into the study file
 !> (veslide_study's merge: the same /summary and /ensemble as a serial run), publishes it as a
@@ -64,7 +65,7 @@ program veslide_batch
     end do
     if (len(input) == 0) call die(usage)
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
-    call read_config(input, cfg, error)
+    call read_config(input, cfg, error, surface_statistics=rank == 0)   ! a height file read whole once
     if (allocated(error)) call die(error%message)
     if (output_given) cfg%output%file = output
     out = cfg%output%file
@@ -106,7 +107,7 @@ program veslide_batch
         call MPI_Finalize(); stop 1, quiet=.true.
     end if
     if (rank == 0) then
-        call read_config(input, cfg, error)          ! the study's own values (run_study changes its copy)
+        call read_config(input, cfg, error, surface_statistics=.false.)   ! the study's own values
         if (output_given .and. .not. allocated(error)) cfg%output%file = output
         if (.not. allocated(error)) call merge_study_parts(cfg, tmp, parts, error)
         if (.not. allocated(error)) call commit_output(tmp, out, overwrite .or. cfg%output%overwrite, error)

@@ -158,7 +158,7 @@ contains
         real(dp), allocatable :: rows(:, :), rows4(:, :), cols(:), clip_rows(:), pts(:, :)
         integer :: nb, ny, nclip
         integer(i8) :: nact, cnt(1)
-        logical :: restart, reuse
+        logical :: restart, restarted, reuse
 
         ny = self%ny
         nb = self%ks%n2
@@ -226,6 +226,7 @@ contains
             rz = rz - mz*sr
             beta = 0.0_dp
             if (.not. restart .and. rz_old > 0.0_dp) beta = rz/rz_old
+            restarted = restart                 ! this direction is the projected residual alone
             rz_old = rz; restart = .false.
 
             ! pass 3: direction v = (z - mz) + beta (v - mv) on the contact set, zero outside
@@ -239,8 +240,8 @@ contains
             self%pairs = self%pairs + 0.5_dp
             if (.not. (vkv > 0.0_dp) .or. .not. (rv > 0.0_dp)) then
                 ! no descent along v (round-off, or a direction without energy): restart from
-                ! the preconditioned residual
-                if (restart) exit
+                ! the preconditioned residual; the end when that has none either
+                if (restarted) exit
                 restart = .true.; call fill(self%v, 0.0_dp)
                 call gap_from_transform(a)
                 cycle

@@ -50,9 +50,11 @@ int veslide_lock(const char *path)
         return -1;
     }
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-        int busy = (errno == EWOULDBLOCK);
+        int e = errno;
         close(fd);
-        return busy ? -2 : -1;
+        if (e == EWOULDBLOCK) return -2;
+        last_errno = e;
+        return -1;
     }
     return fd;
 }

@@ -98,11 +98,13 @@ contains
         allocate (plan%chains(size(plan%seeds)*size(eccs)*size(alphas)*size(pressures)*size(temps)))
         plan%nparam = merge(7, 6, cfg%material%shift /= 'none')
         k = 0
+        ! seeds outermost (the ensemble's rows), then temperatures (each temperature's kernels built
+        ! once per seed), then the surface's spectrum and the load
         do is = 1, size(plan%seeds)
-            do ie = 1, size(eccs)
-                do ia = 1, size(alphas)
-                    do ip = 1, size(pressures)
-                        do it = 1, size(temps)
+            do it = 1, size(temps)
+                do ie = 1, size(eccs)
+                    do ia = 1, size(alphas)
+                        do ip = 1, size(pressures)
                             k = k + 1
                             plan%chains(k) = study_chain_t(plan%seeds(is), eccs(ie), alphas(ia), pressures(ip), &
                                                            temps(it), (k - 1)*size(plan%speeds) + 1)

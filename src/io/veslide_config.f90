@@ -20,6 +20,7 @@ module veslide_config
     use veslide_config_sweep, only: sweep_config_t, read_sweep_config
     use veslide_config_output, only: output_config_t, read_output_config
     use veslide_topography, only: topography_info_t, topography_info, edge_jump_limit
+    use veslide_material, only: shift_factor
     implicit none
     private
     public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config
@@ -74,10 +75,13 @@ contains
     end subroutine read_text_file
 
     !> Read and check a namelist file
-    subroutine read_config(path, cfg, error)
+    subroutine read_config(path, cfg, error, surface_statistics)
         character(len=*), intent(in) :: path
         type(config_t), intent(out) :: cfg
         type(error_t), allocatable, intent(out) :: error
+        !> read a height file whole for its edge statistics (warnings); .false. on the processes
+        !> of a distributed run that do not print (default .true.)
+        logical, intent(in), optional :: surface_statistics
         type(group_text_t), allocatable :: groups(:)
 
         cfg%path = path
@@ -94,7 +98,7 @@ contains
         if (allocated(error)) return
         call read_sweep_config(cfg%sweep, get_group(groups, 'sweep'), path, error); if (allocated(error)) return
         call read_output_config(cfg%output, get_group(groups, 'output'), path, error); if (allocated(error)) return
-        call complete_config(cfg, error)
+        call complete_config(cfg, error, surface_statistics)
     end subroutine read_config
 
     !> Every default, for programs that build cases in code (benchmarks, scenes, tests): set what
@@ -118,9 +122,10 @@ contains
     end subroutine default_config
 
     !> Defaults that depend on other groups, and the checks across groups
-    subroutine complete_config(cfg, error)
+    subroutine complete_config(cfg, error, surface_statistics)
         type(config_t), intent(inout) :: cfg
         type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: surface_statistics
         character(len=:), allocatable :: p
         real(dp) :: nyq
         integer :: k
@@ -129,7 +134,7 @@ contains
         if (cfg%surface%kind /= 'file') then
             call default_lengths(cfg, 0.01_dp)
         else
-            call file_grid(cfg, error); if (allocated(error)) return
+            call file_grid(cfg, error, surface_statistics); if (allocated(error)) return
         end if
         select case (cfg%surface%kind)
         case ('self_affine')
@@ -163,6 +168,11 @@ contains
         call require(error, size(cfg%sweep%temperatures) == 0 .or. cfg%material%shift /= 'none', p, 'sweep', &
                      'temperatures_c', "", "only with a &material shift ('wlf' or 'arrhenius') and its reference")
         if (allocated(error)) return
+        call check_shift(cfg%material%temperature_c, 'material', 'temperature_c')
+        do k = 1, size(cfg%sweep%temperatures)
+            call check_shift(cfg%sweep%temperatures(k), 'sweep', 'temperatures_c('//str(k)//')')
+        end do
+        if (allocated(error)) return
         if (cfg%material%shift == 'wlf') then
             do k = 1, size(cfg%sweep%temperatures)
                 call require(error, cfg%sweep%temperatures(k) - cfg%material%reference_temperature_c > &
@@ -175,19 +185,54 @@ contains
         if (cfg%sweep%n_seeds > 0) cfg%sweep%seeds = [(cfg%surface%seed + k, k = 0, cfg%sweep%n_seeds - 1)]
         if (cfg%sweep%is_study() .and. .not. cfg%output%fields_given) cfg%output%fields = .false.
         call collect_warnings(cfg)
+    contains
+        subroutine check_shift(t_c, group, var)
+            real(dp), intent(in) :: t_c
+            character(len=*), intent(in) :: group, var
+            call check_shift_range(cfg, t_c, group, var, error)
+        end subroutine check_shift
     end subroutine complete_config
+
+    !> The shifted times at temperature `t_c` within the range the input accepts for a time
+    !> (1e-300 to 1e15 s; a_T overflows near WLF's divergence and near 0 K)
+    subroutine check_shift_range(cfg, t_c, group, var, error)
+        type(config_t), intent(in) :: cfg
+        real(dp), intent(in) :: t_c
+        character(len=*), intent(in) :: group, var
+        type(error_t), allocatable, intent(inout) :: error
+        real(dp) :: a, lo, hi
+        if (allocated(error) .or. cfg%material%shift == 'none') return
+        associate (m => cfg%material)
+            if (m%shift == 'wlf') then
+                if (.not. t_c - m%reference_temperature_c > -m%wlf_c2_k) return   ! refused with its own message
+            end if
+            a = shift_factor(m%shift, t_c, m%reference_temperature_c, m%wlf_c1, m%wlf_c2_k, m%activation_energy_j_mol)
+            select case (m%model)
+            case ('one_term')
+                lo = m%tau_s; hi = m%tau_s
+            case ('creep', 'relaxation')
+                lo = minval(m%prony_time_s); hi = maxval(m%prony_time_s)
+            case default
+                return
+            end select
+            if (.not. (a*hi <= 1.0e15_dp .and. a*lo >= 1.0e-300_dp)) call fatal_error(error, "veslide: "//cfg%path// &
+                ": &"//group//" "//var//" = "//str(t_c)//" shifts the material's times by a_T = "//str(a)// &
+                " beyond 1e-300 to 1e15 s (closer to where the "//m%shift//" law diverges than the material allows)")
+        end associate
+    end subroutine check_shift_range
 
     !> A height file fixes the grid: its points, and its sides from its attributes; &grid may
     !> repeat them but not contradict them (a file is never resampled silently: the Python
     !> package's `veslide.topography` resamples). A file whose opposite edges jump gets a warning.
-    subroutine file_grid(cfg, error)
+    subroutine file_grid(cfg, error, statistics)
         type(config_t), intent(inout) :: cfg
         type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: statistics
         type(topography_info_t) :: info
         character(len=:), allocatable :: p, what
         real(dp), parameter :: same = 1.0e-9_dp
         p = cfg%path
-        call topography_info(cfg%surface%file, cfg%surface%dataset, info, error)
+        call topography_info(cfg%surface%file, cfg%surface%dataset, info, error, statistics)
         call add_context(error, "veslide: "//p//": &surface ")
         if (allocated(error)) return
         what = " disagrees with the height file '"//cfg%surface%file//"' ("//str(info%nx)//" x "//str(info%ny)// &

@@ -86,7 +86,7 @@ contains
             call fatal_error(error, "veslide: another veslide run is writing &output file '"//path// &
                 "' (it holds '"//path//".lock'); wait for it or choose another output"); return
         else if (lock < 0) then
-            call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: cannot create '"// &
+            call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: cannot create or lock '"// &
                              path//".lock' in its directory: "//last_system_error()); return
         end if
         if (path_kind(tmp) == PATH_MISSING) then

@@ -32,11 +32,13 @@ module veslide_topography
 contains
 
     !> The shape, sides, preparation record and edge statistics of dataset `dataset` in `file`,
-    !> reading the heights a block of rows at a time (the memory of 64 rows)
-    subroutine topography_info(file, dataset, info, error)
+    !> reading the heights a block of rows at a time (the memory of 64 rows); without the
+    !> statistics (`statistics` = .false.) only the metadata are read
+    subroutine topography_info(file, dataset, info, error, statistics)
         character(len=*), intent(in) :: file, dataset
         type(topography_info_t), intent(out) :: info
         type(error_t), allocatable, intent(out) :: error
+        logical, intent(in), optional :: statistics
         type(h5file_t) :: f
         character(len=:), allocatable :: at
         at = "file '"//file//"': "
@@ -51,6 +53,11 @@ contains
             call f%read_attr_text(dataset, 'preparation', info%preparation, error)
             if (allocated(error)) then
                 error%message = at//"attribute 'preparation' is not a text"; return
+            end if
+        end if
+        if (present(statistics)) then
+            if (.not. statistics) then
+                call f%close(); return
             end if
         end if
         call edge_statistics(error)
@@ -74,10 +81,10 @@ contains
         subroutine edge_statistics(error)
             type(error_t), allocatable, intent(inout) :: error
             real(dp), allocatable :: b(:, :), first(:), last(:)
-            real(dp) :: s1, s2, sx, sy, jx, jy, n
+            real(dp) :: s1, s2, sx, sy, jx, jy, n, ref
             integer :: j0, m, nx, ny
             nx = info%nx; ny = info%ny
-            s1 = 0; s2 = 0; sx = 0; sy = 0; jx = 0
+            s1 = 0.0_dp; s2 = 0.0_dp; sx = 0.0_dp; sy = 0.0_dp; jx = 0.0_dp; ref = 0.0_dp
             allocate (first(nx), last(nx))
             do j0 = 0, ny - 1, block_rows
                 m = min(block_rows, ny - j0)
@@ -87,9 +94,11 @@ contains
                 if (.not. all(ieee_is_finite(b))) then
                     call fatal_error(error, at//"dataset '"//dataset//"' contains NaN or infinite heights"); return
                 end if
-                if (j0 == 0) first = b(:, 1)
+                if (j0 == 0) then
+                    first = b(:, 1); ref = b(1, 1)   ! moments about a height of the scan: no cancellation
+                end if
                 if (j0 > 0) sy = sy + sum((b(:, 1) - last)**2)
-                s1 = s1 + sum(b); s2 = s2 + sum(b**2)
+                s1 = s1 + sum(b - ref); s2 = s2 + sum((b - ref)**2)
                 if (nx > 1) sx = sx + sum((b(2:, :) - b(:nx - 1, :))**2)
                 if (m > 1) sy = sy + sum((b(:, 2:) - b(:, :m - 1))**2)
                 if (nx > 1) jx = jx + sum((b(nx, :) - b(1, :))**2)

@@ -103,7 +103,9 @@ contains
                 shx = (shx + 1.0_dp)*x2/real(k*(k - 1), dp)
             end do
             shx = shx*x
-            s = ((kappa - 1.0_dp)*sinh(x) + shx)/(kappa*cosh(x) + 2.0_dp*t*t + 0.5_dp*(1.0_dp + kappa*kappa))
+            ! kappa - 1 = 2 (1 - 2 nu), exact as nu -> 1/2
+            s = (2.0_dp*(1.0_dp - 2.0_dp*poisson)*sinh(x) + shx)/(kappa*cosh(x) + 2.0_dp*t*t + &
+                                                                 0.5_dp*(1.0_dp + kappa*kappa))
         else
             s = (kappa*th - x*sech)/(kappa + (2.0_dp*t*t + 0.5_dp*(1.0_dp + kappa*kappa))*sech)
         end if
