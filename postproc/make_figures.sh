@@ -3,7 +3,7 @@
 # one's wall time, the machine's 1-minute load before and after, and the thread count in
 # results/paper/runtimes.txt), then draws the figures into docs/figures/paper/ (PNG at 300 dpi,
 # PDF and SVG of each).
-#   bash postproc/make_figures.sh            all studies (~10 min on 1 thread), then the figures
+#   bash postproc/make_figures.sh            all studies (~7 min on 1 idle thread), then the figures
 #   bash postproc/make_figures.sh --plot     only redraw from existing results
 #   bash postproc/make_figures.sh --quick    small versions of every study (inputs/quick/: 128^2,
 #                                            2 seeds, 7 speeds) into results/quick/, every figure
