@@ -531,6 +531,14 @@ contains
                        cfg, error)
         if (allocated(error)) return
         call check(error, cfg%material%temperature_c == 20.0_dp, "the test temperature defaults to the reference")
+        if (allocated(error)) return
+        ! a test temperature the sweep replaces, a base without a layer: one warning each
+        call read_text('s9', m//"shift = 'arrhenius', reference_temperature_c = 20, activation_energy_j_mol = 1e5,"// &
+                       " temperature_c = 30, base = 'frictionless' / &sweep temperatures_c = 20, 40 /", cfg, error)
+        if (allocated(error)) return
+        call check(error, size(cfg%warnings) == 2, "two warnings"); if (allocated(error)) return
+        call check(error, index(cfg%warnings(1)%text, "replaced by the &sweep temperatures_c") > 0 .and. &
+                   index(cfg%warnings(2)%text, "the solid is a half-space") > 0, "the warnings' texts")
     end subroutine test_material_shift
 
     subroutine test_grid_absurd(error)

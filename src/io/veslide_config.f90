@@ -258,6 +258,8 @@ contains
         end if
         if (cfg%grid%lx_m == 0.0_dp) cfg%grid%lx_m = info%lx_m
         if (cfg%grid%ly_m == 0.0_dp) cfg%grid%ly_m = info%ly_m
+        ! only the side along y known (&grid ly_m, or the attribute length_y_m): square cells
+        if (cfg%grid%lx_m == 0.0_dp .and. cfg%grid%ly_m > 0.0_dp) cfg%grid%lx_m = cfg%grid%ly_m*cfg%grid%nx/cfg%grid%ny
         if (cfg%grid%lx_m == 0.0_dp) then
             call fatal_error(error, "veslide: "//p//": &surface file '"//cfg%surface%file//"': the cell side is"// &
                 " unknown: set &grid lx_m or the dataset's attribute length_x_m"); return
@@ -285,6 +287,11 @@ contains
                       " has no times to shift, every temperature gives the same solution")
         if (size(cfg%sweep%speeds) > 0 .and. cfg%motion%speed_m_s /= 0.0_dp) &
             call warn("&motion speed_m_s = "//str(cfg%motion%speed_m_s)//" is replaced by the &sweep speeds")
+        if (size(cfg%sweep%temperatures) > 0 .and. cfg%material%temperature_c /= cfg%material%reference_temperature_c) &
+            call warn("&material temperature_c = "//str(cfg%material%temperature_c)//" is replaced by the"// &
+                      " &sweep temperatures_c")
+        if (cfg%material%thickness_m == 0.0_dp .and. cfg%material%base /= 'bonded') &
+            call warn("&material base = '"//cfg%material%base//"' without a thickness_m: the solid is a half-space")
         if (cfg%surface%kind == 'file') then
             if (jumps(1)) call warn(edge_text('x', 'rows', 1))
             if (jumps(2)) call warn(edge_text('y', 'columns', 2))
