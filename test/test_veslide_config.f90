@@ -493,6 +493,13 @@ contains
         if (allocated(error)) return
         call expect_message('long8', "&solver method = '"//repeat('p', 1100)//"' /", &
                             [character(len=40) :: "&solver method is longer than 1023"], error)
+        if (allocated(error)) return
+        ! blanks that run past the buffer before more text: the read alone would keep 'pdr'
+        call expect_message('long9', "&solver method = 'pdr"//repeat(' ', 1030)//"x' /", &
+                            [character(len=40) :: "&solver method is longer than 1023"], error)
+        if (allocated(error)) return
+        call expect_message('long10', "&surface kind = 'file', file = 'a"//repeat(' ', 1030)//"b.h5' /", &
+                            [character(len=40) :: "&surface file is longer than 1023"], error)
     end subroutine test_overlong_choices
 
     !> A shift law needs its constants and a reference; constants of another law, a temperature

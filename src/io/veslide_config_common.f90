@@ -405,13 +405,52 @@ contains
         end do
     end subroutine check_list
 
-    !> A text read into a buffer of max_text characters must not have filled it (truncated)
-    subroutine check_text_length(error, text, path, group, var)
+    !> A text read into a buffer of max_text + 1 characters must not have filled it, and its value
+    !> as written in the group's `body` (the last assignment of `var`, quotes undone) must not be
+    !> longer than max_text either: a value whose blanks run past the buffer before more text is
+    !> cut by the read to what fits, which the buffer alone cannot tell
+    subroutine check_text_length(error, text, path, group, var, body)
         type(error_t), allocatable, intent(inout) :: error
-        character(len=*), intent(in) :: text, path, group, var
+        character(len=*), intent(in) :: text, path, group, var, body
         if (allocated(error)) return
-        if (len_trim(text) >= len(text)) call fatal_error(error, "veslide: "//path//": &"//group//" "//var// &
-            " is longer than "//str(len(text) - 1)//" characters")
+        if (len_trim(text) >= len(text) .or. written_length(body, var) > len(text) - 1) &
+            call fatal_error(error, "veslide: "//path//": &"//group//" "//var//" is longer than "// &
+                             str(len(text) - 1)//" characters")
     end subroutine check_text_length
+
+    !> The length of the quoted text last assigned to `var` in a group body (a doubled quote
+    !> counts once); 0 when it is not assigned a quoted text
+    pure integer function written_length(body, var) result(n)
+        character(len=*), intent(in) :: body, var
+        integer, allocatable :: starts(:)
+        integer :: k, i, e
+        character(len=1) :: q
+        n = 0
+        call assignment_starts(body, starts)
+        do k = 1, size(starts)
+            e = index(body(starts(k):), '=') + starts(k) - 1
+            if (lower(trim(adjustl(body(starts(k):e - 1)))) /= lower(var)) cycle
+            i = e + 1
+            do while (i <= len(body))
+                if (body(i:i) /= ' ' .and. iachar(body(i:i)) >= 32) exit
+                i = i + 1
+            end do
+            if (i > len(body)) exit
+            q = body(i:i)
+            if (q /= '"' .and. q /= "'") cycle
+            n = 0; i = i + 1
+            do while (i <= len(body))
+                if (body(i:i) == q) then
+                    if (i < len(body)) then
+                        if (body(i + 1:i + 1) == q) then       ! a doubled quote: one character
+                            n = n + 1; i = i + 2; cycle
+                        end if
+                    end if
+                    exit
+                end if
+                n = n + 1; i = i + 1
+            end do
+        end do
+    end function written_length
 
 end module veslide_config_common

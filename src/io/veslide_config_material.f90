@@ -74,9 +74,9 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'material', g%body, names, kinds, try, error); return
         end if
-        call check_text_length(error, model, path, 'material', 'model')
-        call check_text_length(error, shift, path, 'material', 'shift')
-        call check_text_length(error, base, path, 'material', 'base'); if (allocated(error)) return
+        call check_text_length(error, model, path, 'material', 'model', g%body)
+        call check_text_length(error, shift, path, 'material', 'shift', g%body)
+        call check_text_length(error, base, path, 'material', 'base', g%body); if (allocated(error)) return
         self%thickness_m = thickness_m; self%base = trim(base)
         call require(error, thickness_m == 0.0_dp .or. finite_in(thickness_m, 1.0e-12_dp, 1.0e3_dp), path, &
                      'material', 'thickness_m', str(thickness_m), "0 (a half-space) or 1e-12 to 1e3 [m]")

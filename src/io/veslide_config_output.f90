@@ -38,7 +38,7 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'output', g%body, names, kinds, try, error); return
         end if
-        call check_text_length(error, file, path, 'output', 'file'); if (allocated(error)) return
+        call check_text_length(error, file, path, 'output', 'file', g%body); if (allocated(error)) return
         self%file = trim(file); self%fields = fields; self%overwrite = overwrite
         ! given when a read with the opposite default gives the same value
         fields = .not. self%fields

@@ -63,10 +63,10 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'solver', g%body, names, kinds, try, error); return
         end if
-        call check_text_length(error, method, path, 'solver', 'method')
-        call check_text_length(error, kernel, path, 'solver', 'kernel')
-        call check_text_length(error, fft_planner, path, 'solver', 'fft_planner')
-        call check_text_length(error, device, path, 'solver', 'device'); if (allocated(error)) return
+        call check_text_length(error, method, path, 'solver', 'method', g%body)
+        call check_text_length(error, kernel, path, 'solver', 'kernel', g%body)
+        call check_text_length(error, fft_planner, path, 'solver', 'fft_planner', g%body)
+        call check_text_length(error, device, path, 'solver', 'device', g%body); if (allocated(error)) return
         self%method = trim(method); self%tolerance = tolerance; self%max_iterations = max_iterations
         self%kernel = trim(kernel); self%alias_tol = alias_tol; self%alias_max = alias_max
         self%fft_planner = trim(fft_planner); self%threads = threads

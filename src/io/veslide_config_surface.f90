@@ -67,10 +67,10 @@ contains
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'surface', g%body, names, kinds, try, error); return
         end if
-        call check_text_length(error, kind, path, 'surface', 'kind')
-        call check_text_length(error, scale_to, path, 'surface', 'scale_to')
-        call check_text_length(error, file, path, 'surface', 'file')
-        call check_text_length(error, dataset, path, 'surface', 'dataset'); if (allocated(error)) return
+        call check_text_length(error, kind, path, 'surface', 'kind', g%body)
+        call check_text_length(error, scale_to, path, 'surface', 'scale_to', g%body)
+        call check_text_length(error, file, path, 'surface', 'file', g%body)
+        call check_text_length(error, dataset, path, 'surface', 'dataset', g%body); if (allocated(error)) return
         self%kind = trim(kind); self%seed = seed; self%hurst = hurst; self%eccentricity = eccentricity
         self%alpha_deg = alpha_deg; self%k_low = k_low; self%k_roll = k_roll
         self%k_cut_given = .not. is_unset(k_cut)
