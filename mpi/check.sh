@@ -29,7 +29,7 @@ done
 (cd "$root" && fpm build --profile release >/dev/null)
 serial=$(cd "$root" && fpm run --profile release veslide --runner echo 2>/dev/null | tail -1)
 (cd "$root" && OMP_NUM_THREADS=1 "$serial" "$work/serial.nml" --quiet)
-for np in 2 3; do
+for np in 2 3 5; do      # 5 ranks: more ranks than the 4 chains, one rank has none
     rm -f "$work/mpi.h5"
     bash "$root/mpi/run.sh" -n "$np" "$work/study.nml" --quiet
     if ls "$work"/mpi.h5.rank* >/dev/null 2>&1; then echo "mpi check: rank files left behind"; exit 1; fi

@@ -488,7 +488,7 @@ contains
         character(len=64), allocatable :: columns(:), pcols(:), units(:)
         logical, allocatable :: is_int(:), pint(:)
         integer(i8), allocatable :: table(:, :), rows(:, :)
-        integer :: k, i, ncol, kcase
+        integer :: k, i, ncol, kcase, first_part
         logical, allocatable :: seen(:)
         character(len=16) :: tag
         call plan_study(cfg, plan)
@@ -498,9 +498,13 @@ contains
                                   preparation=cfg%surface%preparation); if (allocated(error)) return
         do k = 1, size(parts)
             call src%open(trim(parts(k)), 'r', error); if (allocated(error)) return
+            if (.not. src%exists('/summary')) then       ! a rank with no chain (more ranks than chains)
+                call src%close(); cycle
+            end if
             call src%read_table('/summary', pcols, pint, rows, error)
             if (allocated(error)) return
             if (.not. allocated(table)) then
+                first_part = k
                 ncol = size(pcols)
                 columns = pcols; is_int = pint
                 allocate (table(ncol, plan%ncase))
@@ -544,7 +548,7 @@ contains
             character(len=64), allocatable, intent(out) :: units(:)
             allocate (units(size(columns)))
             units = '-'
-            call src%open(trim(parts(1)), 'r', error); if (allocated(error)) return
+            call src%open(trim(parts(first_part)), 'r', error); if (allocated(error)) return
             call src%read_attr_text_list('/summary', 'units', units, error)
             call src%close()
         end subroutine units_of
