@@ -7,7 +7,7 @@
 !> procedures that append to a `results_t` list: forces and friction (`add_force_quantities`),
 !> the solver report (`add_solver_quantities`). A new output scalar is one `add` line.
 module veslide_quantities
-    use veslide_kinds, only: dp, pi
+    use veslide_kinds, only: dp, pi, radians
     use veslide_contact, only: contact_state_t
     implicit none
     private
@@ -141,7 +141,7 @@ contains
         type(results_t), intent(inout) :: r
         real(dp), intent(in) :: force_pa(2), slope_force_pa(2), velocity_m_s(2), direction_deg, p_mean
         real(dp) :: vhat(2), lat(2)
-        vhat = [cos(direction_deg*pi/180.0_dp), sin(direction_deg*pi/180.0_dp)]
+        vhat = [cos(radians(direction_deg)), sin(radians(direction_deg))]
         lat = [-vhat(2), vhat(1)]
         call r%add('friction_force_pa', -dot_product(force_pa, vhat), 'Pa')
         call r%add('friction_coefficient', -dot_product(force_pa, vhat)/p_mean, '-')

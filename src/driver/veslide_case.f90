@@ -1,7 +1,7 @@
 !> One case from a configuration: surface, material, kernel, contact problem, solve, derived
 !> quantities, and its results (the list the output, the study rows and the summary read).
 module veslide_case
-    use veslide_kinds, only: dp, i8, pi
+    use veslide_kinds, only: dp, i8, pi, radians
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
     use veslide_strings, only: str
@@ -77,7 +77,7 @@ contains
     pure function velocity_of(cfg) result(v)
         type(config_t), intent(in) :: cfg
         real(dp) :: v(2), th
-        th = cfg%motion%direction_deg*pi/180.0_dp
+        th = radians(cfg%motion%direction_deg)
         v = cfg%motion%speed_m_s*[cos(th), sin(th)]
     end function velocity_of
 
@@ -123,13 +123,13 @@ contains
             select case (s%kind)
             case ('self_affine')
                 q0 = grid%q0()
-                psd = psd_t(hurst=s%hurst, eccentricity=s%eccentricity, alpha_rad=s%alpha_deg*pi/180.0_dp, &
+                psd = psd_t(hurst=s%hurst, eccentricity=s%eccentricity, alpha_rad=radians(s%alpha_deg), &
                             q_low=s%k_low*q0, q_roll=s%k_roll*q0, q_cut=s%k_cut*q0)
                 call random_surface(grid, psd, s%seed, s%rms_slope, s%rms_height_m, h, error, &
                                     realised=s%scale_to == 'realised')
                 call add_context(error, "veslide: "//cfg%path//": &surface: ")
             case ('cosine')
-                call cosine_surface(grid, s%amplitude_m, s%wavelength_m, s%direction_deg*pi/180.0_dp, h)
+                call cosine_surface(grid, s%amplitude_m, s%wavelength_m, radians(s%direction_deg), h)
             case ('bisinusoid')
                 call bisinusoid_surface(grid, s%amplitude_m, s%wavelength_m, h)
             case ('paraboloid')

@@ -5,7 +5,7 @@
 !> Every group is optional (defaults apply); every value is range-checked, and a failure is an
 !> `error_t` whose message names the file, the group, the variable and the allowed range.
 module veslide_config
-    use veslide_kinds, only: dp, pi
+    use veslide_kinds, only: dp, radians
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_strings, only: str
     use veslide_system, only: missing_reason
@@ -337,7 +337,7 @@ contains
     pure logical function periodic_wave(cfg) result(ok)
         type(config_t), intent(in) :: cfg
         real(dp) :: kx, ky, th
-        th = cfg%surface%direction_deg*pi/180.0_dp
+        th = radians(cfg%surface%direction_deg)
         kx = cfg%grid%lx_m*cos(th)/cfg%surface%wavelength_m
         ky = cfg%grid%ly_m*sin(th)/cfg%surface%wavelength_m
         if (cfg%surface%kind == 'bisinusoid') then
