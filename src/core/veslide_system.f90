@@ -11,7 +11,7 @@ module veslide_system
     public :: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, PATH_OTHER
     public :: lock_file, unlock_file, LOCK_BUSY, ignore_file_size_signal, last_system_error, missing_reason
     public :: available_memory_bytes, peak_memory_bytes, resident_memory_bytes, exit_now, prefer_passive_wait
-    public :: use_threads
+    public :: use_threads, rename_file, link_file, remove_file, process_id
 
     integer, parameter :: PATH_MISSING = -1, PATH_REGULAR = 0, PATH_DIRECTORY = 1, PATH_OTHER = 2
     !> lock_file's result when another process holds the lock
@@ -22,6 +22,21 @@ module veslide_system
             import :: c_int, c_char
             character(kind=c_char), intent(in) :: path(*)
         end function c_path_kind
+        integer(c_int) function c_rename(old, new) bind(c, name='rename')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: old(*), new(*)
+        end function c_rename
+        integer(c_int) function c_link(old, new) bind(c, name='link')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: old(*), new(*)
+        end function c_link
+        integer(c_int) function c_unlink(path) bind(c, name='unlink')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: path(*)
+        end function c_unlink
+        integer(c_int) function c_getpid() bind(c, name='getpid')
+            import :: c_int
+        end function c_getpid
         subroutine c_last_error(buf, n) bind(c, name='veslide_last_error')
             import :: c_char, c_int
             character(kind=c_char), intent(out) :: buf(*)
@@ -73,6 +88,30 @@ contains
         integer, intent(in) :: n
         !$ if (n > 0) call omp_set_num_threads(n)
     end subroutine use_threads
+
+    !> POSIX rename(2): replace `new` by `old` in one step; .true. when done
+    logical function rename_file(old, new) result(ok)
+        character(len=*), intent(in) :: old, new
+        ok = c_rename(old//c_null_char, new//c_null_char) == 0
+    end function rename_file
+
+    !> POSIX link(2): `new` names the file `old` names, never replacing an existing `new`
+    logical function link_file(old, new) result(ok)
+        character(len=*), intent(in) :: old, new
+        ok = c_link(old//c_null_char, new//c_null_char) == 0
+    end function link_file
+
+    !> POSIX unlink(2), whose failure (a missing file) the callers do not need
+    subroutine remove_file(path)
+        character(len=*), intent(in) :: path
+        integer(c_int) :: stat
+        stat = c_unlink(path//c_null_char)
+    end subroutine remove_file
+
+    !> The process id (POSIX getpid), for names unique to this run
+    integer function process_id() result(pid)
+        pid = int(c_getpid())
+    end function process_id
 
     !> PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY or PATH_OTHER (FIFO, device, socket)
     integer function path_kind(path) result(kind)

@@ -7,7 +7,6 @@
 !> run removes its part file and leaves any earlier result untouched; a killed study leaves its
 !> part file, from which the same command resumes.
 module veslide_output
-    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error
     use veslide_hdf5, only: h5file_t, hdf5_library_version
@@ -15,7 +14,7 @@ module veslide_output
     use veslide_device, only: device_enabled, device_emulated, device_count, device_info_t, device_info
     use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
     use veslide_system, only: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, lock_file, unlock_file, LOCK_BUSY, &
-                              last_system_error
+                              last_system_error, rename_file, link_file, remove_file, process_id
     implicit none
     private
     public :: prepare_output, release_output, commit_output, discard_output, write_provenance, process_id, &
@@ -24,30 +23,9 @@ module veslide_output
     !> How a 2-D field is laid out, for readers in other languages
     character(len=*), parameter :: field_layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
 
-    interface
-        integer(c_int) function c_rename(old, new) bind(c, name='rename')
-            import :: c_int, c_char
-            character(kind=c_char), intent(in) :: old(*), new(*)
-        end function c_rename
-        integer(c_int) function c_link(old, new) bind(c, name='link')
-            import :: c_int, c_char
-            character(kind=c_char), intent(in) :: old(*), new(*)
-        end function c_link
-        integer(c_int) function c_unlink(path) bind(c, name='unlink')
-            import :: c_int, c_char
-            character(kind=c_char), intent(in) :: path(*)
-        end function c_unlink
-        integer(c_int) function c_getpid() bind(c, name='getpid')
-            import :: c_int
-        end function c_getpid
-    end interface
 
 contains
 
-    !> The process id (POSIX getpid), for names unique to this run
-    integer function process_id() result(pid)
-        pid = int(c_getpid())
-    end function process_id
 
     !> Check that the result can be written, before any work, and take the output: refuses an
     !> existing file unless `overwrite` (and anything but a regular file always), and refuses while
@@ -106,9 +84,8 @@ contains
     subroutine release_output(lock, path)
         integer, intent(inout) :: lock
         character(len=*), intent(in) :: path
-        integer(c_int) :: stat
         if (lock < 0) return
-        stat = c_unlink(path//'.lock'//c_null_char)
+        call remove_file(path//'.lock')
         call unlock_file(lock)
         lock = -1
     end subroutine release_output
@@ -119,29 +96,27 @@ contains
         character(len=*), intent(in) :: tmp, path
         logical, intent(in) :: overwrite
         type(error_t), allocatable, intent(out) :: error
-        integer(c_int) :: stat
         if (path_kind(path) /= PATH_MISSING .and. path_kind(path) /= PATH_REGULAR) then
             call fatal_error(error, "veslide: &output file '"//path//"' is no longer a regular file; the result"// &
                 " stays in '"//tmp//"'"); return
         end if
         if (overwrite) then
-            if (c_rename(tmp//c_null_char, path//c_null_char) /= 0) &
+            if (.not. rename_file(tmp, path)) &
                 call fatal_error(error, "veslide: cannot rename '"//tmp//"' to '"//path//"'")
             return
         end if
-        if (c_link(tmp//c_null_char, path//c_null_char) /= 0) then
+        if (.not. link_file(tmp, path)) then
             call fatal_error(error, "veslide: &output file '"//path//"' cannot be published (it appeared while"// &
                 " this run worked, or the directory refuses links); the result stays in '"//tmp//"'")
             return
         end if
-        stat = c_unlink(tmp//c_null_char)
+        call remove_file(tmp)
     end subroutine commit_output
 
     !> Remove a temporary file, if present
     subroutine discard_output(tmp)
         character(len=*), intent(in) :: tmp
-        integer(c_int) :: stat
-        stat = c_unlink(tmp//c_null_char)
+        call remove_file(tmp)
     end subroutine discard_output
 
     !> Root attributes of provenance, and the input text as /input/namelist. A single case
