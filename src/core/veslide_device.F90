@@ -13,6 +13,7 @@ module veslide_device
                                            c_associated
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error
+    use veslide_strings, only: c_text
     implicit none
     private
     public :: device_enabled, device_emulated, device_count, device_select, device_info_t, device_info, &
@@ -334,21 +335,7 @@ contains
 #endif
     end subroutine device_profile
 
-#ifdef VESLIDE_CUDA
-    !> A NUL-terminated C string as Fortran text
-    function c_text(s) result(t)
-        character(kind=c_char), intent(in) :: s(:)
-        character(len=:), allocatable :: t
-        integer :: n
-        n = 0
-        do while (n < size(s))
-            if (s(n + 1) == c_null_char) exit
-            n = n + 1
-        end do
-        allocate (character(len=n) :: t)
-        t = transfer(s(1:n), t)
-    end function c_text
-#else
+#ifndef VESLIDE_CUDA
     subroutine no_device(error, where)
         type(error_t), allocatable, intent(out) :: error
         character(len=*), intent(in) :: where

@@ -1,11 +1,11 @@
 !> Text helpers: numbers as short strings for messages, lower case, the index of a name in a
 !> table of names (the library's enumerations), and C strings (null-terminated, from C libraries)
 module veslide_strings
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_char, c_size_t, c_associated, c_f_pointer
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_char, c_size_t, c_associated, c_f_pointer, c_null_char
     use veslide_kinds, only: dp, i8
     implicit none
     private
-    public :: str, lower, name_index, c_strlen, c_string
+    public :: str, lower, name_index, c_strlen, c_string, c_text
 
     interface
         !> strlen(3) of a null-terminated C string
@@ -85,5 +85,20 @@ contains
             s(k:k) = chars(k)
         end do
     end function c_string
+
+    !> The text a C function wrote into the character buffer `s`, up to its null (or the whole
+    !> buffer when it has none)
+    pure function c_text(s) result(t)
+        character(kind=c_char), intent(in) :: s(:)
+        character(len=:), allocatable :: t
+        integer :: n
+        n = 0
+        do while (n < size(s))
+            if (s(n + 1) == c_null_char) exit
+            n = n + 1
+        end do
+        allocate (character(len=n) :: t)
+        t = transfer(s(1:n), t)
+    end function c_text
 
 end module veslide_strings

@@ -6,6 +6,7 @@ module veslide_system
     use, intrinsic :: iso_c_binding, only: c_int, c_long_long, c_char, c_null_char
     !$ use omp_lib, only: omp_set_num_threads
     use veslide_kinds, only: i8
+    use veslide_strings, only: c_text
     implicit none
     private
     public :: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, PATH_OTHER
@@ -131,13 +132,8 @@ contains
     function last_system_error() result(reason)
         character(len=:), allocatable :: reason
         character(kind=c_char) :: buf(256)
-        integer :: k
         call c_last_error(buf, int(size(buf), c_int))
-        reason = ''
-        do k = 1, size(buf)
-            if (buf(k) == c_null_char) exit
-            reason = reason//buf(k)
-        end do
+        reason = c_text(buf)
     end function last_system_error
 
     !> Why `path` cannot be opened for reading, in the system's words ('No such file or
