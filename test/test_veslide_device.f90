@@ -35,6 +35,7 @@ module test_veslide_device
     use veslide_config, only: config_t
     use veslide_case, only: case_t, run_case
     use veslide_scenes, only: hard_case_count, hard_case
+    use test_veslide_hard, only: check_friction_sign
     use veslide_analysis, only: contact_area_fraction
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: solve_case
@@ -550,7 +551,6 @@ contains
         type(config_t) :: cfg
         type(case_t) :: c
         character(len=:), allocatable :: name
-        real(dp) :: fric
         integer :: k, n, pairs
         n = merge(32, 64, device_emulated())
         pairs = 0
@@ -563,13 +563,7 @@ contains
             end if
             call check(error, c%state%device == 'gpu', name//": not on the device"); if (allocated(error)) return
             call check(error, c%state%converged, name//": not converged"); if (allocated(error)) return
-            fric = -c%force_pa(1)/cfg%load%mean_pressure_pa
-            if (cfg%motion%speed_m_s == 0.0_dp) then
-                call check(error, fric == 0.0_dp, name//": friction at rest")
-            else
-                call check(error, fric > 0.0_dp, name//": friction must resist the motion")
-            end if
-            if (allocated(error)) return
+            call check_friction_sign(cfg, c, name, error); if (allocated(error)) return
             pairs = pairs + c%state%operator_applications
         end do
         call report("FFT pairs over the hard cases", real(pairs, dp))

@@ -10,7 +10,7 @@ module test_veslide_hard
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     implicit none
     private
-    public :: collect_hard
+    public :: collect_hard, check_friction_sign
 
     integer, parameter :: n = 64
 
@@ -41,7 +41,6 @@ contains
         type(config_t) :: cfg
         type(case_t) :: c
         character(len=:), allocatable :: name
-        real(dp) :: fric
         integer :: k, its
         its = 0
         do k = first, last
@@ -52,17 +51,26 @@ contains
             end if
             call check(error, c%state%converged .and. c%state%residual <= cfg%solver%tolerance, name//": not converged")
             if (allocated(error)) return
-            fric = -c%force_pa(1)/cfg%load%mean_pressure_pa
-            if (cfg%motion%speed_m_s == 0.0_dp) then
-                call check(error, fric == 0.0_dp, name//": friction at rest")
-            else
-                call check(error, fric > 0.0_dp, name//": friction must resist the motion")
-            end if
-            if (allocated(error)) return
+            call check_friction_sign(cfg, c, name, error); if (allocated(error)) return
             its = max(its, c%state%operator_applications)
         end do
         call report("max FFT pairs", real(its, dp))
     end subroutine run_cases
+
+    !> A hard case's friction (v along x): zero at rest, resisting the motion when sliding
+    subroutine check_friction_sign(cfg, c, name, error)
+        type(config_t), intent(in) :: cfg
+        type(case_t), intent(in) :: c
+        character(len=*), intent(in) :: name
+        type(error_t), allocatable, intent(out) :: error
+        real(dp) :: fric
+        fric = -c%force_pa(1)/cfg%load%mean_pressure_pa
+        if (cfg%motion%speed_m_s == 0.0_dp) then
+            call check(error, fric == 0.0_dp, name//": friction at rest")
+        else
+            call check(error, fric > 0.0_dp, name//": friction must resist the motion")
+        end if
+    end subroutine check_friction_sign
 
     subroutine test_r11(error)
         type(error_t), allocatable, intent(out) :: error
