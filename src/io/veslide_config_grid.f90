@@ -46,7 +46,8 @@ contains
                      str(lx_m), "1e-9 to 1e3 [m], or 0 for the default (0.01, or the file's length_m)")
         call require(error, ly_m == 0.0_dp .or. finite_in(ly_m, 1.0e-9_dp, 1.0e3_dp), path, 'grid', 'ly_m', &
                      str(ly_m), "1e-9 to 1e3 [m], or 0 for lx_m*ny/nx")
-        ! given when a read from another default gives the same value
+        ! given when a read from another default gives the same value (an integer has no value
+        ! to mark 'unset' that an input could not also give, unlike k_cut's NaN)
         nx = -1; ny = -1
         read (lines, nml=grid, iostat=stat, iomsg=msg)
         self%nx_given = nx == self%nx; self%ny_given = ny == self%ny

@@ -127,11 +127,12 @@ contains
         integer(i8) :: dims(7)
         integer :: rank
         logical :: is_double
-        character(len=:), allocatable :: at
+        character(len=:), allocatable :: at, why
         at = "file '"//file//"': "
         nx = 0; ny = 0
-        if (len(missing_reason(file)) > 0) then
-            call fatal_error(error, at//missing_reason(file)); return
+        why = missing_reason(file)
+        if (len(why) > 0) then
+            call fatal_error(error, at//why); return
         end if
         call f%open(file, 'r', error)
         if (allocated(error)) then
