@@ -3,15 +3,19 @@
 !> Runs the case or the study a namelist describes and writes its HDF5 result; see README.md.
 program veslide_main
     use, intrinsic :: iso_fortran_env, only: stderr => error_unit, stdout => output_unit
-    use veslide_error, only: error_t
+    use veslide_error, only: error_t, exit_status
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
-    use veslide_quantities, only: results_t
-    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, summary_width, case_memory
-    use veslide_memory, only: format_gib, device_estimate_bytes
+    use veslide_quantities, only: results_t, case_results
+    use veslide_case_data, only: case_spec_t
+    use veslide_case_spec, only: case_spec_of
+    use veslide_case, only: case_t, run_case
+    use veslide_case_file, only: write_case
+    use veslide_summary, only: summary_lines, summary_width
+    use veslide_memory, only: format_gib, device_estimate_bytes, case_memory
     use veslide_system, only: available_memory_bytes
     use veslide_kinds, only: i8, dp
-    use veslide_study, only: run_study, study_progress_t
+    use veslide_study, only: run_study, study_progress_t, plan_study, study_plan_t
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_version, only: version_string
     use veslide_system, only: ignore_file_size_signal, exit_now, prefer_passive_wait
@@ -20,6 +24,7 @@ program veslide_main
     use veslide_device, only: device_enabled, device_info_t, device_info, device_memory
     implicit none
     type(config_t) :: cfg
+    type(case_spec_t) :: spec
     type(case_t) :: c
     type(error_t), allocatable :: error
     character(len=:), allocatable :: input, output, tmp, arg, device
@@ -75,11 +80,15 @@ program veslide_main
         call usage(); call die("veslide: no input file")
     end if
 
+    ! the input, and the options that override it: the configuration is not written after this
     call read_config(input, cfg, error)
-    if (allocated(error)) call die(error%message)
+    if (allocated(error)) call fail(error)
     if (len(device) > 0) cfg%solver%device = device     ! --device overrides &solver device
-    if (memory_only) call print_memory()
     if (output_given) cfg%output%file = output
+    if (overwrite) cfg%output%overwrite = .true.
+    call case_spec_of(cfg, spec, error)
+    if (allocated(error)) call fail(error)
+    if (memory_only) call print_memory()
     if (.not. quiet) then
         do i = 1, size(cfg%warnings)
             write (stderr, '(a)') cfg%warnings(i)%text
@@ -88,9 +97,8 @@ program veslide_main
         if (device_enabled .and. cfg%solver%device == 'auto' .and. .not. gpu_visible()) &
             write (stderr, '(a)') "veslide: this build has GPU support but no GPU is visible here: solving on the CPU"
     end if
-    if (overwrite) cfg%output%overwrite = .true.
     call prepare_output(cfg%output%file, cfg%output%overwrite, tmp, lock, error)
-    if (allocated(error)) call die(error%message)
+    if (allocated(error)) call fail(error)
 
     if (cfg%sweep%is_study()) then
         block
@@ -105,10 +113,10 @@ program veslide_main
             end if
             if (allocated(error)) then
                 if (.not. resuming) call discard_output(tmp)
-                call die(error%message)
+                call fail(error)
             end if
             call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
-            if (allocated(error)) call die(error%message)
+            if (allocated(error)) call fail(error)
             call release_output(lock, cfg%output%file)
             if (.not. quiet) write (stdout, '(a)') "veslide: study written to "//cfg%output%file
             if (nfail > 0) then
@@ -120,21 +128,22 @@ program veslide_main
         end block
     end if
     if (quiet) then
-        call run_case(cfg, c, error)
+        call run_case(spec, c, error)
     else
-        call run_case(cfg, c, error, progress=print_solver_progress)
+        call run_case(spec, c, error, progress=print_solver_progress)
     end if
     if (allocated(error)) then
-        call discard_output(tmp); call die(error%message)
+        call discard_output(tmp); call fail(error)
     end if
-    call write_case(tmp, cfg, c, error)
+    call write_case(tmp, c, error)
     if (allocated(error)) then
         call discard_output(tmp)
-        call die("veslide: &output file '"//cfg%output%file//"' could not be written (disk full, file-size"// &
-                 " limit or I/O error; nothing was published): "//error%message)
+        error%message = "veslide: &output file '"//cfg%output%file//"' could not be written (disk full,"// &
+                        " file-size limit or I/O error; nothing was published): "//error%message
+        call fail(error)
     end if
     call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
-    if (allocated(error)) call die(error%message)
+    if (allocated(error)) call fail(error)
     call release_output(lock, cfg%output%file)
 
     if (.not. quiet) call summary()
@@ -155,23 +164,36 @@ contains
         call get_command_argument(k, a)
     end function argument
 
-    !> One line on stderr and exit status 1 (no backtrace; library exit handlers skipped, since
-    !> after a failed write HDF5's own may crash)
-    subroutine die(message)
+    !> One line on stderr and exit status `status` (default 1: a bad command line); no backtrace,
+    !> library exit handlers skipped, since after a failed write HDF5's own may crash
+    subroutine die(message, status)
         character(len=*), intent(in) :: message
+        integer, intent(in), optional :: status
         write (stderr, '(a)') message
         if (allocated(cfg%output%file)) call release_output(lock, cfg%output%file)
+        if (present(status)) call exit_now(status)
         call exit_now(1)
     end subroutine die
+
+    !> Stop on `error`: its message, and the exit status of its category (1 input, 3 I/O, 4 numerical)
+    subroutine fail(error)
+        type(error_t), intent(in) :: error
+        call die(error%message, exit_status(error))
+    end subroutine fail
 
     !> --memory: the estimate of the run's peak memory, per process on `processes` processes (the
     !> memory a job must request; refused runs are refused on this estimate), then stop
     subroutine print_memory()
         integer(i8) :: estimate, available, on_device
+        type(study_plan_t) :: plan
         type(device_info_t) :: info
         real(dp) :: free_b, total_b
-        call case_memory(cfg, estimate, error, processes, on_device)
-        if (allocated(error)) call die(error%message)
+        if (cfg%sweep%is_study()) then
+            call plan_study(cfg, plan)
+            call case_memory(spec, estimate, processes, on_device, speeds=plan%speeds)
+        else
+            call case_memory(spec, estimate, processes, on_device)
+        end if
         available = available_memory_bytes()
         if (processes > 1) then
             write (stdout, '(a,i0,a,i0,a,i0,a)') cfg%path//": grid ", cfg%grid%nx, " x ", cfg%grid%ny, " on ", &
@@ -189,14 +211,8 @@ contains
             if (.not. allocated(error) .and. free_b >= 0) write (stdout, '(a)') "free on the "//info%name// &
                 " here and now: "//format_gib(int(free_b, i8))//" of "//format_gib(int(total_b, i8))
         else if (cfg%solver%method /= 'pk' .and. processes == 1) then
-            block
-                character(len=:), allocatable :: keep
-                keep = cfg%solver%device
-                cfg%solver%device = 'gpu'
-                write (stdout, '(a)') "solved on a GPU (&solver device = 'gpu', gpu/build.sh) it would need about "// &
-                    format_gib(device_estimate_bytes(cfg))//" of device memory"
-                cfg%solver%device = keep
-            end block
+            write (stdout, '(a)') "solved on a GPU (&solver device = 'gpu', gpu/build.sh) it would need about "// &
+                format_gib(device_estimate_bytes(spec))//" of device memory"
         end if
         stop
     end subroutine print_memory
@@ -208,8 +224,9 @@ contains
             "  --device: where the solve runs (overrides &solver device): 'auto' a GPU when this build has", &
             "  GPU support and one is visible, 'cpu', or 'gpu' (refused when there is none).", &
             "  Solves the steady sliding contact (or the &sweep study) the namelist describes and writes", &
-            "  an HDF5 file (default &output file). Exit status: 0 converged, 1 bad input or I/O error,", &
-            "  2 solved but not converged (the file is written, /scalars/converged = 0)."
+            "  an HDF5 file (default &output file). Exit status: 0 converged, 1 bad input, 2 solved but not", &
+            "  converged (the file is written, /scalars/converged = 0), 3 a file could not be read or written,", &
+            "  4 the numbers broke down (a discrete kernel that is not positive definite, an overflow)."
     end subroutine usage
 
     !> One line per finished case of a study, with the time left at the mean pace so far
@@ -241,8 +258,8 @@ contains
     subroutine summary()
         type(results_t) :: r
         character(len=summary_width), allocatable :: lines(:)
-        call case_results(cfg, c, r)
-        lines = summary_lines(cfg, c, r)
+        call case_results(c, r)
+        lines = summary_lines(c, r, cfg%output%file)
         do i = 1, size(lines)
             write (stdout, '(a)') trim(lines(i))
         end do

@@ -19,7 +19,8 @@ program veslide_bench
     use veslide_median, only: median
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
-    use veslide_case, only: case_t, run_case, write_case
+    use veslide_case, only: case_t, run_case
+    use veslide_case_file, only: write_case
     use veslide_output, only: prepare_output, release_output, commit_output
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION, &
@@ -195,7 +196,7 @@ contains
             end do
             c%solve_seconds = median(t)
             call prepare_output(cfg%output%file, .true., tmp, lock, error); call check(error)
-            call write_case(tmp, cfg, c, error); call check(error)
+            call write_case(tmp, c, error); call check(error)
             call commit_output(tmp, cfg%output%file, .true., error); call check(error)
             call release_output(lock, cfg%output%file)
             write (stdout, '("| ",i0," | ",f8.3," | ",f8.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f8.5," | ",f8.5," |")') &

@@ -1,15 +1,23 @@
 !> One case end to end: the output contract (paths, units, types), the results list (names unique,
 !> units everywhere, the same values as the file), and refusals that name the input
 module test_veslide_case
-    use veslide_kinds, only: dp, i8
+    use veslide_kinds, only: dp, i8, pi
     use veslide_strings, only: str
     use veslide_material, only: layer_factor, BASE_BONDED, BASE_FRICTIONLESS
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t
     use veslide_hdf5, only: h5file_t
     use veslide_output, only: prepare_output, release_output, commit_output
-    use veslide_quantities, only: results_t
-    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, summary_width
+    use veslide_quantities, only: results_t, case_results, field_names, field_units, field_layout, &
+                                  case_field
+    use veslide_case, only: case_t, run_case, case_grid, build_surface, build_kernel
+    use veslide_case_data, only: case_spec_t
+    use veslide_case_spec, only: case_spec_of
+    use veslide_memory, only: memory_estimate_bytes
+    use veslide_contact, only: contact_problem_t, new_contact_problem_moving
+    use veslide_solver, only: auto_method, planned_methods
+    use veslide_solver_options, only: SOLVER_AUTO, SOLVER_PDR, SOLVER_DR
+    use veslide_case_file, only: write_case
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: unique_name
     use test_veslide_config, only: read_text
@@ -27,10 +35,12 @@ contains
             new_unittest("friction-sign-and-lateral-direction", test_friction_sign), &
             new_unittest("persson-equals-the-solve-in-full-contact", test_persson_full_contact), &
             new_unittest("approach-is-hertz-plus-the-lattice-term", test_approach_hertz), &
-            new_unittest("summary-names-long-paths-whole", test_summary_long_paths), &
             new_unittest("temperature-is-a-speed-scale", test_temperature_superposition), &
             new_unittest("layer-single-wave-in-full-contact", test_layer_single_wave), &
-            new_unittest("layer-thick-is-the-half-space", test_layer_thick) &
+            new_unittest("layer-thick-is-the-half-space", test_layer_thick), &
+            new_unittest("specification-resolved-from-the-input", test_spec_resolved), &
+            new_unittest("memory-sized-for-the-method-auto-runs", test_memory_auto_rule), &
+            new_unittest("fields-written-as-catalogued", test_field_catalogue) &
             ]
     end subroutine collect_case
 
@@ -51,7 +61,7 @@ contains
         if (allocated(error)) return
         call prepare_output(cfg%output%file, .false., tmp, lock, error); if (allocated(error)) return
         call run_case(cfg, c, error); if (allocated(error)) return
-        call write_case(tmp, cfg, c, error); if (allocated(error)) return
+        call write_case(tmp, c, error); if (allocated(error)) return
         call commit_output(tmp, out, .false., error); if (allocated(error)) return
         call release_output(lock, out)
         paths = [character(len=40) :: '/scalars/contact_area_fraction', '/scalars/mean_separation_m', &
@@ -88,7 +98,7 @@ contains
                        " &analysis anisotropy = .true., patches = .true. /", cfg, error)
         if (allocated(error)) return
         call run_case(cfg, c, error); if (allocated(error)) return
-        call case_results(cfg, c, r)
+        call case_results(c, r)
         do i = 1, r%n
             call check(error, len(r%scalars(i)%units) > 0, r%scalars(i)%name//" has no units")
             if (allocated(error)) return
@@ -113,7 +123,7 @@ contains
                        " &motion speed_m_s = 0.05, direction_deg = 90 /", cfg, error)
         if (allocated(error)) return
         call run_case(cfg, c, error); if (allocated(error)) return
-        call case_results(cfg, c, r)
+        call case_results(c, r)
         call check(error, r%get('friction_coefficient') > 0.0_dp, "friction must resist the motion")
         if (allocated(error)) return
         call check(error, r%get('friction_coefficient'), -c%force_pa(2)/cfg%load%mean_pressure_pa, "friction = -F_y/p", &
@@ -141,7 +151,7 @@ contains
                            " &analysis persson = .true. /", cfg, error)
             if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
-            call case_results(cfg, c, r)
+            call case_results(c, r)
             call check(error, r%get('contact_area_fraction'), 1.0_dp, "full contact", abs=0.0_dp)
             if (allocated(error)) return
             call check(error, r%get('persson_contact_area_fraction'), 1.0_dp, "theory: full contact", abs=1.0e-12_dp)
@@ -181,7 +191,7 @@ contains
                            trim(text)//" / &solver fft_planner = 'estimate' / &output fields = .false. /", cfg, error)
             if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
-            call case_results(cfg, c, r)
+            call case_results(c, r)
             f = loads(k)*l**2
             a = (3.0_dp*f*radius/(4.0_dp*estar))**(1.0_dp/3.0_dp)
             expected = a**2/radius + f*lattice/(pi*estar*l)
@@ -191,26 +201,6 @@ contains
         end do
         call check(error, approach(2) > approach(1), "the approach grows with the load")
     end subroutine test_approach_hertz
-
-    !> The summary's first line names the input and the output whole, however long (it was cut
-    !> at 120 characters)
-    subroutine test_summary_long_paths(error)
-        type(error_t), allocatable, intent(out) :: error
-        type(config_t) :: cfg
-        type(case_t) :: c
-        type(results_t) :: r
-        character(len=summary_width), allocatable :: lines(:)
-        character(len=:), allocatable :: out
-        out = '/tmp/'//repeat('o', 250)//'/'//repeat('p', 250)//'.h5'
-        call read_text('summary', "&grid nx = 16, ny = 16 / &surface k_cut = 4 / &solver fft_planner='estimate' /"// &
-                       " &output file = '"//out//"' /", cfg, error)
-        if (allocated(error)) return
-        call run_case(cfg, c, error); if (allocated(error)) return
-        call case_results(cfg, c, r)
-        lines = summary_lines(cfg, c, r)
-        call check(error, index(lines(1), cfg%path) > 0 .and. index(lines(1), out) > 0, &
-                   "the header lacks a path: "//trim(lines(1)))
-    end subroutine test_summary_long_paths
 
     !> Time-temperature superposition: the material at T slides at v as the master curve at
     !> T_ref slides at a_T v (E*(w, T) = E*(a_T w, T_ref)); WLF with the universal constants at
@@ -242,14 +232,14 @@ contains
             character(len=32) :: v
             call read_text('tts1', base//shift//" &motion speed_m_s = 0.1 /", cfg, error); if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
-            call case_results(cfg, c, r)
+            call case_results(c, r)
             f_t = r%get('friction_coefficient'); area_t = r%get('contact_area_fraction'); a_out = r%get('shift_factor')
             call check(error, a_out, a, "shift factor recorded", rel=1.0e-14_dp); if (allocated(error)) return
             write (v, '(es24.17)') 0.1_dp*a
             call read_text('tts2', base//"/ &motion speed_m_s = "//trim(v)//" /", cfg, error)
             if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
-            call case_results(cfg, c, r)
+            call case_results(c, r)
             call check(error, f_t, r%get('friction_coefficient'), "friction at T against a_T v at T_ref", rel=1.0e-9_dp)
             if (allocated(error)) return
             call check(error, area_t, r%get('contact_area_fraction'), "area at T against a_T v at T_ref", rel=1.0e-9_dp)
@@ -282,7 +272,7 @@ contains
             call read_text('wave0', base_text//" &material model = 'one_term', poisson = "//str(nu)//" /", cfg, error)
             if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
-            call case_results(cfg, c, r)
+            call case_results(c, r)
             call check(error, r%get('contact_area_fraction'), 1.0_dp, "full contact", abs=0.0_dp); if (allocated(error)) return
             f0 = r%get('friction_coefficient'); l0 = r%get('lateral_force_ratio')
             write (text, '(es24.17)') t/q
@@ -290,7 +280,7 @@ contains
                            ", thickness_m = "//trim(text)//", base = '"//base//"' /", cfg, error)
             if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
-            call case_results(cfg, c, r)
+            call case_results(c, r)
             s = layer_factor(t, nu, id)
             call report(base//": friction, rel. error", abs(r%get('friction_coefficient')*s/f0 - 1.0_dp))
             call report(base//": lateral, rel. error", abs(r%get('lateral_force_ratio')*s/l0 - 1.0_dp))
@@ -314,12 +304,12 @@ contains
             " tolerance = 1e-12 / &output fields = .false. /"
         call read_text('thick0', base//" &material model = 'one_term' /", cfg, error); if (allocated(error)) return
         call run_case(cfg, c, error); if (allocated(error)) return
-        call case_results(cfg, c, r)
+        call case_results(c, r)
         a0 = r%get('contact_area_fraction'); f0 = r%get('friction_coefficient'); g0 = r%get('mean_separation_m')
         call read_text('thick1', base//" &material model = 'one_term', thickness_m = 0.031830988618379 /", cfg, error)
         if (allocated(error)) return
         call run_case(cfg, c, error); if (allocated(error)) return
-        call case_results(cfg, c, r)
+        call case_results(c, r)
         call report("area, rel. difference", abs(r%get('contact_area_fraction')/a0 - 1.0_dp))
         call report("friction, rel. difference", abs(r%get('friction_coefficient')/f0 - 1.0_dp))
         call report("mean separation, rel. difference", abs(r%get('mean_separation_m')/g0 - 1.0_dp))
@@ -327,5 +317,115 @@ contains
         call check(error, r%get('friction_coefficient'), f0, "friction", rel=1.0e-12_dp); if (allocated(error)) return
         call check(error, r%get('mean_separation_m'), g0, "mean separation", rel=1.0e-12_dp)
     end subroutine test_layer_thick
+
+
+    !> The specification holds the input in SI units and radians, the solid at its temperature
+    !> (times multiplied by a_T), the velocity from speed and direction, and the solver's ids
+    subroutine test_spec_resolved(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_spec_t) :: spec
+        real(dp) :: a, v(2)
+        call read_text('spec', "&grid nx = 32, ny = 16, lx_m = 0.02 / &surface alpha_deg = 30, eccentricity = 0.5, k_cut = 4 /"// &
+            " &material model = 'one_term', tau_s = 0.01, shift = 'wlf', temperature_c = 30,"// &
+            " reference_temperature_c = 20, wlf_c1 = 8.86, wlf_c2_k = 101.6 / &motion speed_m_s = 0.2,"// &
+            " direction_deg = 60 / &solver method = 'pdr', kernel = 'galerkin' /", cfg, error)
+        if (allocated(error)) return
+        call case_spec_of(cfg, spec, error); if (allocated(error)) return
+        a = 10.0_dp**(-8.86_dp*10.0_dp/(101.6_dp + 10.0_dp))
+        v = 0.2_dp*[cos(pi/3), sin(pi/3)]
+        call check(error, spec%nx == 32 .and. spec%ny == 16 .and. spec%lx_m == 0.02_dp .and. spec%ly_m == 0.01_dp, &
+                   "the grid"); if (allocated(error)) return
+        call check(error, spec%surface%alpha_rad, pi/6, "alpha in radians", rel=1.0e-15_dp); if (allocated(error)) return
+        call check(error, spec%material%shift_factor, a, "the WLF shift factor", rel=1.0e-13_dp)
+        if (allocated(error)) return
+        call check(error, spec%material%solid%time_s(1), a*0.01_dp, "tau shifted to 30 C", rel=1.0e-13_dp)
+        if (allocated(error)) return
+        call check(error, norm2(spec%velocity() - v) <= 1.0e-15_dp*0.2_dp, "the velocity vector")
+        if (allocated(error)) return
+        call check(error, spec%solver%method == SOLVER_PDR .and. spec%kernel_name() == 'galerkin', "method and kernel")
+    end subroutine test_spec_resolved
+
+    !> 'auto' is sized for the method the solver module will run: on 256^2 a viscoelastic solid
+    !> whose Einf/E0 keeps the operator's spread under the threshold runs pdr and is sized as pdr;
+    !> one with Einf/E0 = 1000 may run dr (it does at this speed) and is sized for the larger of
+    !> the two; an elastic solid runs bccg
+    subroutine test_memory_auto_rule(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), parameter :: scene = "&grid nx = 256, ny = 256 / &surface k_cut = 8 /"// &
+            " &motion speed_m_s = 0.05 / &solver fft_planner = 'estimate', method = '"
+        type(config_t) :: cfg
+        type(case_spec_t) :: spec
+        type(case_t) :: c
+        type(contact_problem_t) :: problem
+        integer(i8) :: auto_b, named(3)
+        integer, allocatable :: planned(:)
+        integer :: k, ran
+        character(len=*), parameter :: solids(3) = [character(len=60) :: &
+            "&material model = 'one_term', ratio = 11 /", "&material model = 'one_term', ratio = 1000 /", &
+            "&material model = 'elastic' /"]
+        character(len=4), parameter :: methods(3) = ['pdr ', 'dr  ', 'bccg']
+        do k = 1, 3
+            call read_text('memrule', scene//trim(methods(k))//"' / "//trim(solids(k)), cfg, error)
+            if (allocated(error)) return
+            call case_spec_of(cfg, spec, error); if (allocated(error)) return
+            named(k) = memory_estimate_bytes(spec)
+            call read_text('memrule', scene//"auto' / "//trim(solids(k)), cfg, error); if (allocated(error)) return
+            call case_spec_of(cfg, spec, error); if (allocated(error)) return
+            auto_b = memory_estimate_bytes(spec)
+            ! the method auto takes once the kernel is built is among those it was sized for
+            c%spec = spec
+            call case_grid(spec, c%grid, error); if (allocated(error)) return
+            call build_surface(spec, c%h, error); if (allocated(error)) return
+            call build_kernel(spec, c%grid, c%kernel, c%kernel_seconds, error); if (allocated(error)) return
+            call new_contact_problem_moving(problem, c%kernel, c%h, spec%mean_pressure_pa, error)
+            if (allocated(error)) return
+            ran = auto_method(problem)
+            call problem%release(c%kernel, c%h)
+            planned = planned_methods(SOLVER_AUTO, .not. (k < 3), c%grid%cells(), &
+                                      spec%material%solid%einf_pa/spec%material%solid%e0_pa)
+            call check(error, any(planned == ran), "auto ran a method it was not sized for")
+            if (allocated(error)) return
+            if (k == 2) then
+                call check(error, ran == SOLVER_DR .and. auto_b >= named(1) .and. auto_b >= named(2), &
+                           "Einf/E0 = 1000: not sized for the larger of pdr and dr")
+            else
+                call check(error, auto_b == named(k), "auto not sized as "//trim(methods(k)))
+            end if
+            if (allocated(error)) return
+        end do
+        call check(error, named(2) > named(1), "dr (Anderson history) needs more than pdr")
+    end subroutine test_memory_auto_rule
+
+    !> /fields holds the catalogue's fields, each with its units and layout, shaped (nx, ny)
+    subroutine test_field_catalogue(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t), target :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out, units, layout
+        real(dp) :: x(16, 8)
+        integer :: k, u
+        out = unique_name('catalogue.h5')
+        call read_text('catalogue', "&grid nx = 16, ny = 8 / &surface k_cut = 4 / &solver fft_planner='estimate' /", &
+                       cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call write_case(out, c, error); if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        do k = 1, size(field_names)
+            associate (name => '/fields/'//trim(field_names(k)))
+                call check(error, f%exists(name), "missing "//name); if (allocated(error)) exit
+                call f%read_attr_text(name, 'units', units, error); if (allocated(error)) exit
+                call f%read_attr_text(name, 'layout', layout, error); if (allocated(error)) exit
+                call f%read_r2(name, x, error); if (allocated(error)) exit
+                call check(error, units == trim(field_units(k)) .and. layout == field_layout .and. &
+                           all(x == case_field(c, k)), "field "//name//" is not as catalogued")
+                if (allocated(error)) exit
+            end associate
+        end do
+        call f%close()
+        open (newunit=u, file=out); close (u, status='delete')
+    end subroutine test_field_catalogue
 
 end module test_veslide_case

@@ -2,7 +2,7 @@
 !> operations the solvers use (apply, impulse response, resolvent) against brute-force sums
 module test_veslide_kernel
     use veslide_kinds, only: dp, pi
-    use veslide_error, only: error_t
+    use veslide_error, only: error_t, ERROR_NUMERICAL, exit_status
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_arrays, only: carray_t
@@ -24,6 +24,7 @@ contains
             new_unittest("kernel-hermitian", test_kernel_hermitian), &
             new_unittest("collocation-alias-loses-definiteness", test_definiteness, should_fail=.true., &
                          expect="not positive definite"), &
+            new_unittest("lost-definiteness-is-a-numerical-error", test_definiteness_category), &
             new_unittest("galerkin-stays-definite", test_galerkin_definite), &
             new_unittest("apply-equals-influence-sum", test_apply_sum), &
             new_unittest("resolvent-inverts-i-plus-gamma-k", test_resolvent), &
@@ -70,6 +71,17 @@ contains
         type(kernel_t) :: k
         call oblique_kernel(KERNEL_COLLOCATION_ALIAS, k, error)
     end subroutine test_definiteness
+
+    !> That failure is of the numbers, not of the input or a file: the programs exit with 4
+    subroutine test_definiteness_category(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(kernel_t) :: k
+        type(error_t), allocatable :: e
+        call oblique_kernel(KERNEL_COLLOCATION_ALIAS, k, e)
+        call check(error, allocated(e), "collocation-alias kept its definiteness"); if (allocated(error)) return
+        call check(error, e%category == ERROR_NUMERICAL .and. exit_status(e) == 4, &
+                   "lost definiteness is not a numerical error (exit status 4)")
+    end subroutine test_definiteness_category
 
     !> Einf/E0 = 1000, 32^2, v tau/L = 1 at 15 degrees: the case where collocation-alias fails
     subroutine oblique_kernel(variant, k, error)

@@ -3,7 +3,8 @@
 module test_veslide_postproc
     use veslide_error, only: fatal_error
     use veslide_config, only: config_t, read_config
-    use veslide_case, only: case_t, run_case, write_case
+    use veslide_case, only: case_t, run_case
+    use veslide_case_file, only: write_case
     use veslide_study, only: run_study
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name, write_text
@@ -73,7 +74,7 @@ contains
             call read_config(dir//'/'//name//'.nml', cfg, error); if (allocated(error)) return
             cfg%output%fields = fields
             call run_case(cfg, c, error); if (allocated(error)) return
-            call write_case(dir//'/'//name//'.h5', cfg, c, error)
+            call write_case(dir//'/'//name//'.h5', c, error)
         end subroutine single
 
         !> whether a line of the text file `path` contains `text`

@@ -5,7 +5,10 @@ module test_veslide_topography
     use veslide_kinds, only: dp
     use veslide_config, only: config_t
     use veslide_hdf5, only: h5file_t
-    use veslide_case, only: build_surface, case_t, run_case, write_case
+    use veslide_case, only: build_surface, case_t, run_case
+    use veslide_case_file, only: write_case
+    use veslide_case_data, only: case_spec_t
+    use veslide_case_spec, only: case_spec_of
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name
     use test_veslide_config, only: read_text, expect_words
@@ -60,6 +63,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         character(len=*), intent(in), optional :: extra
         character(len=:), allocatable :: h5, more
+        type(case_spec_t) :: spec
         integer :: u
         h5 = unique_name(tag//'.h5')
         more = ''
@@ -67,7 +71,8 @@ contains
         call write_heights(h5, h, lx, error); if (allocated(error)) return
         call read_text(tag, "&surface kind='file', file='"//h5//"' "//more//" /", cfg, error)
         if (allocated(error)) return
-        call build_surface(cfg, hout, error)
+        call case_spec_of(cfg, spec, error)
+        if (.not. allocated(error)) call build_surface(spec, hout, error)
         open (newunit=u, file=h5); close (u, status='delete')
     end subroutine surface_from
 
@@ -101,12 +106,14 @@ contains
         real(dp) :: h(8, 6)
         real(dp), allocatable :: hout(:, :)
         character(len=:), allocatable :: h5
+        type(case_spec_t) :: spec
         integer :: u
         call random_number(h)
         h5 = unique_name('hrect.h5')
         call write_heights(h5, h, 2.0e-3_dp, error, ly=1.0e-3_dp); if (allocated(error)) return
         call read_text('hrect', "&surface kind='file', file='"//h5//"' /", cfg, error); if (allocated(error)) return
-        call build_surface(cfg, hout, error)
+        call case_spec_of(cfg, spec, error)
+        if (.not. allocated(error)) call build_surface(spec, hout, error)
         open (newunit=u, file=h5); close (u, status='delete')
         if (allocated(error)) return
         call check(error, all(shape(hout) == [8, 6]) .and. all(hout == h), "heights changed on the way")
@@ -216,7 +223,7 @@ contains
         out = unique_name('hprep-out.h5')
         call read_text('hprep', "&surface kind='file', file='"//h5//"' / &solver fft_planner = 'estimate' /", cfg, error)
         if (.not. allocated(error)) call run_case(cfg, c, error)
-        if (.not. allocated(error)) call write_case(out, cfg, c, error)
+        if (.not. allocated(error)) call write_case(out, c, error)
         open (newunit=u, file=h5); close (u, status='delete')
         if (allocated(error)) return
         call check(error, cfg%surface%preparation == '{"detrend": "plane"}', "preparation: "//cfg%surface%preparation)

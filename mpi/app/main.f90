@@ -11,13 +11,15 @@
 program veslide_batch
     use, intrinsic :: iso_fortran_env, only: stderr => error_unit, stdout => output_unit
     use mpi_f08
-    use veslide_error, only: error_t
+    use veslide_error, only: error_t, exit_status
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
     use veslide_study, only: run_study, merge_study_parts, study_progress_t
     use veslide_device, only: device_enabled, device_count, device_select
-    use veslide_case, only: case_t, run_case, write_case, case_results, summary_lines, summary_width
-    use veslide_quantities, only: results_t
+    use veslide_case, only: case_t, run_case
+    use veslide_case_file, only: write_case
+    use veslide_quantities, only: results_t, case_results
+    use veslide_summary, only: summary_lines, summary_width
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_system, only: ignore_file_size_signal
     use veslide_version, only: version_string
@@ -66,7 +68,7 @@ program veslide_batch
     if (len(input) == 0) call die(usage)
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
     call read_config(input, cfg, error, surface_statistics=rank == 0)   ! a height file read whole once
-    if (allocated(error)) call die(error%message)
+    if (allocated(error)) call die(error%message, exit_status(error))
     if (output_given) cfg%output%file = output
     out = cfg%output%file
     status = 0
@@ -107,13 +109,11 @@ program veslide_batch
         call MPI_Finalize(); stop 1, quiet=.true.
     end if
     if (rank == 0) then
-        call read_config(input, cfg, error, surface_statistics=.false.)   ! the study's own values
-        if (output_given .and. .not. allocated(error)) cfg%output%file = output
-        if (.not. allocated(error)) call merge_study_parts(cfg, tmp, parts, error)
+        call merge_study_parts(cfg, tmp, parts, error)
         if (.not. allocated(error)) call commit_output(tmp, out, overwrite .or. cfg%output%overwrite, error)
         if (allocated(error)) then
             write (stderr, '(a)') error%message
-            call discard_output(tmp); status = 1
+            call discard_output(tmp); status = exit_status(error)
             call release_output(lock, out)
         else
             call release_output(lock, out)
@@ -127,7 +127,7 @@ program veslide_batch
     end if
     call MPI_Bcast(status, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
     call MPI_Finalize()
-    if (status /= 0) stop 1, quiet=.true.
+    if (status /= 0) stop status, quiet=.true.
     if (total > 0 .and. rank == 0) stop 2, quiet=.true.   ! a controlled exit: the message is printed above
 
 contains
@@ -152,22 +152,23 @@ contains
         else
             call run_case(cfg, c, error, comm=MPI_COMM_WORLD%MPI_VAL, node_ranks=node_ranks)
         end if
-        if (.not. allocated(error)) call write_case(tmp, cfg, c, error)
+        if (.not. allocated(error)) call write_case(tmp, c, error)
         if (allocated(error)) then          ! every rank holds the same verdict
             if (rank == 0) then
                 write (stderr, '(a)') error%message
                 call discard_output(tmp); call release_output(lock, out)
             end if
-            call MPI_Finalize(); stop 1, quiet=.true.
+            status = exit_status(error)
+            call MPI_Finalize(); stop status, quiet=.true.
         end if
-        call case_results(cfg, c, r)        ! (collective)
+        call case_results(c, r)        ! (collective)
         if (rank == 0) then
             call commit_output(tmp, out, overwrite .or. cfg%output%overwrite, error)
             call release_output(lock, out)
             if (allocated(error)) then
-                write (stderr, '(a)') error%message; status = 1
+                write (stderr, '(a)') error%message; status = exit_status(error)
             else if (.not. quiet) then
-                lines = summary_lines(cfg, c, r)
+                lines = summary_lines(c, r, out)
                 do i = 1, size(lines)
                     write (stdout, '(a)') trim(lines(i))
                 end do
@@ -178,7 +179,7 @@ contains
         end if
         call MPI_Bcast(status, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
         call MPI_Finalize()
-        if (status /= 0) stop 1, quiet=.true.
+        if (status /= 0) stop status, quiet=.true.
         if (.not. c%state%converged) stop 2, quiet=.true.
         stop
     end subroutine distributed_case
@@ -219,11 +220,14 @@ contains
     end function error_text
 
     !> A refusal before any work: one line (from rank 0), no MPI_Abort noise
-    subroutine die(message)
+    subroutine die(message, status)
         character(len=*), intent(in) :: message
+        integer, intent(in), optional :: status      !! the exit status (default 1: a bad command line)
+        integer :: code
+        code = 1; if (present(status)) code = status
         if (rank == 0) write (stderr, '(a)') message
         call MPI_Finalize()
-        stop 1, quiet=.true.
+        stop code, quiet=.true.
     end subroutine die
 
     subroutine print_progress(info)

@@ -48,7 +48,7 @@ def test_file_size_limit_is_an_ordinary_error(tmp_path, exe):
     out = tmp_path / "out.h5"
     nml = write(tmp_path / "in.nml", SMALL.format(out=out))
     r = run(exe, nml, "--quiet", shell_prefix="ulimit -f 200; ")
-    assert r.returncode == 1, r.stderr
+    assert r.returncode == 3, r.stderr     # an I/O error (exit status 3)
     line = one_line(r.stderr)
     assert "could not be written" in line and str(out) in line
     assert not out.exists() and leftovers(tmp_path) == []
@@ -64,7 +64,7 @@ def test_full_disk_is_an_ordinary_error(tmp_path, exe):
         out = disk / "out.h5"
         nml = write(tmp_path / "in.nml", SMALL.format(out=out))
         r = run(exe, nml, "--quiet")
-        assert r.returncode == 1, r.stderr
+        assert r.returncode == 3, r.stderr
         assert "could not be written" in one_line(r.stderr)
         assert list(disk.iterdir()) == []
     finally:
@@ -173,3 +173,17 @@ def test_part_file_of_another_input_is_refused(tmp_path, exe):
     line = one_line(r.stderr)
     assert "study.h5.part" in line and "another input" in line
     assert (tmp_path / "study.h5.part").exists()                # not replaced
+
+
+def test_summary_names_long_paths_whole(tmp_path, exe):
+    """The summary's first line names the input and the output whole, however long (it was cut
+    at 120 characters); the program prints it (app/veslide_summary.f90)."""
+    deep = tmp_path / ("o" * 120) / ("p" * 120)
+    deep.mkdir(parents=True)
+    out = deep / ("q" * 200 + ".h5")
+    nml = write(tmp_path / ("n" * 200 + ".nml"), "&grid nx = 16, ny = 16 / &surface k_cut = 4 /\n"
+                "&solver fft_planner = 'estimate' / &output file = '%s' /\n" % out)
+    r = run(exe, nml)
+    assert r.returncode == 0, r.stderr
+    first = r.stdout.splitlines()[0]
+    assert str(nml) in first and str(out) in first, first

@@ -73,7 +73,7 @@
 module veslide_persson
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use veslide_kinds, only: dp, i8, two_pi
-    use veslide_error, only: error_t, fatal_error
+    use veslide_error, only: error_t, fatal_error, ERROR_NUMERICAL
     use veslide_grid, only: grid_t
     use veslide_kernel, only: kernel_t
     implicit none
@@ -233,7 +233,8 @@ contains
             res%lateral_force_ratio = (-f(1)*vhat(2) + f(2)*vhat(1))/p_mean_pa
         end if
         if (.not. (ieee_is_finite(cum) .and. all(ieee_is_finite(f)))) then
-            call fatal_error(error, here//"non-finite result (overflow): check the units of hk and p_mean_pa")
+            call fatal_error(error, here//"non-finite result (overflow): check the units of hk and p_mean_pa", &
+                             ERROR_NUMERICAL)
             return
         end if
 

@@ -3,19 +3,39 @@
 !> and the printed summary all read.
 !>
 !> A scalar is a `quantity_t` (name, units, value, integer or real, axial angle or not); arrays
-!> (tensors, polar samples) are `array_t`. The definitions of derived quantities live here, as
-!> procedures that append to a `results_t` list: forces and friction (`add_force_quantities`),
-!> the solver report (`add_solver_quantities`). A new output scalar is one `add` line.
+!> (tensors, polar samples) are `array_t`. The catalogue of a case is `case_results`, in output
+!> order; the definitions of derived quantities live here too, as procedures that append to a
+!> `results_t` list: forces and friction (`add_force_quantities`), the solver report
+!> (`add_solver_quantities`). A new output scalar is one `add` line in `case_results`.
+!>
+!> The 2-D fields of a case have a catalogue of their own (`field_names`, `field_units`,
+!> `field_layout`, and `case_field` for the array of each): the HDF5 writer loops over it, and
+!> the Python reader lists what the file's /fields group holds.
 module veslide_quantities
     use veslide_kinds, only: dp, pi, radians
     use veslide_contact, only: contact_state_t
+    use veslide_case_data, only: case_t
+    use veslide_fields, only: field_rms, field_max, field_mean
+    use veslide_collective, only: global_max
+    use veslide_system, only: peak_memory_bytes
+    use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation
+    use veslide_anisotropy, only: m2_of_theta
     implicit none
     private
     public :: quantity_t, array_t, results_t, add_force_quantities, add_solver_quantities, axial_of
+    public :: case_results, field_names, field_units, field_layout, case_field
     public :: AXIAL_NONE, AXIAL_HALF_TURN, AXIAL_SYMMETRIC
 
     !> How an angle averages over seeds: not an angle, an axis in [0, pi), an axis in (-pi/2, pi/2]
     integer, parameter :: AXIAL_NONE = 0, AXIAL_HALF_TURN = 1, AXIAL_SYMMETRIC = 2
+
+    !> The fields of a case, in the order they are written under /fields: the name (the HDF5
+    !> dataset's), its units; `case_field` gives the array of each
+    character(len=*), parameter :: field_names(4) = [character(len=14) :: 'height_m', 'pressure_pa', &
+                                                     'displacement_m', 'gap_m']
+    character(len=*), parameter :: field_units(4) = [character(len=2) :: 'm', 'Pa', 'm', 'm']
+    !> How a 2-D field is laid out, for readers in other languages (each field's `layout` attribute)
+    character(len=*), parameter :: field_layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
 
     type :: quantity_t
         character(len=:), allocatable :: name    !! HDF5 name under /scalars and /summary column
@@ -168,5 +188,115 @@ contains
         call r%add('load_error', state%load_error, '-')
         call r%add('tolerance', tolerance, '-')
     end subroutine add_solver_quantities
+
+    !> The results of a case, in output order: every scalar with its units, and the arrays
+    subroutine case_results(c, r)
+        type(case_t), intent(in) :: c
+        type(results_t), intent(out) :: r
+        real(dp) :: along, across, d, peak
+        integer :: j
+        associate (solid => c%spec%material%solid)
+        call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g, c%grid), '-')
+        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p, c%grid), '-')
+        call r%add('mean_separation_m', mean_separation(c%state%g, c%grid), 'm')
+        call r%add('rms_height_m', field_rms(c%grid, c%h), 'm')
+        call r%add('max_pressure_pa', field_max(c%grid, c%state%p), 'Pa')
+        call r%add('mean_pressure_pa', c%spec%mean_pressure_pa, 'Pa')
+        ! the rigid-body approach since first contact: g = w - h + D with mean w = 0 gives
+        ! D = h_max at first touch and D = h_mean + d under load (d: the solver's mean gap)
+        call r%add('approach_m', field_max(c%grid, c%h) - field_mean(c%grid, c%h) - c%state%approach_m, 'm')
+        call add_solver_quantities(r, c%state, c%spec%solver%tolerance)
+        call r%add('length_x_m', c%grid%lx_m, 'm')
+        call r%add('length_y_m', c%grid%ly_m, 'm')
+        call r%add('nx', real(c%grid%nx, dp), '-', is_integer=.true.)
+        call r%add('ny', real(c%grid%ny, dp), '-', is_integer=.true.)
+        call r%add('contact_modulus_pa', solid%e0_pa/(1.0_dp - solid%poisson**2), 'Pa')
+        if (solid%thickness_m > 0.0_dp) call r%add('layer_thickness_m', solid%thickness_m, 'm')
+        if (c%spec%material%shifted) then
+            call r%add('temperature_c', c%spec%material%temperature_c, 'degC')
+            call r%add('shift_factor', c%spec%material%shift_factor, '-')
+        end if
+        call r%add('speed_m_s', norm2(c%spec%velocity()), 'm/s')
+        call r%add('velocity_direction_deg', c%spec%direction_deg, 'degree')
+        call add_force_quantities(r, c%force_pa, c%slope_force_pa, c%spec%velocity(), c%spec%direction_deg, &
+                                  c%spec%mean_pressure_pa)
+        call r%add('kernel_alias_error', c%kernel%alias_error, '-')
+        call r%add('kernel_alias_zones', real(c%kernel%alias_zones, dp), '-', is_integer=.true.)
+        call r%add('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
+        peak = real(peak_memory_bytes(), dp)
+        call global_max(c%grid, peak)
+        call r%add('processes', real(c%grid%ranks, dp), '-', is_integer=.true.)
+        call r%add('memory_estimate_bytes', real(c%memory_estimate_bytes, dp), 'B', is_integer=.true.)
+        call r%add('memory_peak_bytes', peak, 'B', is_integer=.true.)
+        call r%add('surface_seconds', c%surface_seconds, 's')
+        call r%add('kernel_seconds', c%kernel_seconds, 's')
+        call r%add('solve_seconds', c%solve_seconds, 's')
+        if (c%have_anisotropy) then
+            call r%add('gamma_s', c%gamma_s, '-'); call r%add('gamma_d', c%gamma_d, '-')
+            call r%add('theta_s_rad', c%theta_s, 'rad'); call r%add('theta_d_rad', c%theta_d, 'rad')
+            call r%add('sigma1', c%sigma1, '-'); call r%add('sigma2', c%sigma2, '-')
+            call r%add('phi_rad', c%phi, 'rad')
+            block
+                real(dp) :: theta(c%spec%analysis%n_theta)
+                theta = [(pi*(j - 1)/c%spec%analysis%n_theta, j = 1, c%spec%analysis%n_theta)]
+                call r%add_array('/anisotropy/band_q_per_m', c%band_q, '1/m')
+                call r%add_array('/anisotropy/band_zeta', [c%spec%analysis%zeta1, c%spec%analysis%zeta2], '-')
+                call r%add_array('/anisotropy/surface_tensor', reshape(c%m_surface, [4]), '-', &
+                                 layout='[M11, M21, M12, M22]')
+                call r%add_array('/anisotropy/deformed_tensor', reshape(c%m_deformed, [4]), '-', &
+                                 layout='[M11, M21, M12, M22]')
+                call r%add_array('/anisotropy/theta_rad', theta, 'rad')
+                call r%add_array('/anisotropy/m2_surface', m2_of_theta(c%m_surface, theta), '-')
+                call r%add_array('/anisotropy/mu2_deformed', m2_of_theta(c%m_deformed, theta), '-')
+            end block
+        end if
+        if (c%have_patches) then
+            call r%add('patch_count', real(c%patches%count, dp), '-', is_integer=.true.)
+            call r%add('patch_mean_area_fraction', c%patches%mean_area_fraction, '-')
+            call r%add('patch_gamma', c%patches%gamma, '-')
+            call r%add('patch_theta_rad', c%patches%theta, 'rad')
+            call r%add('percolates_x', merge(1.0_dp, 0.0_dp, c%percolates_x), '-', is_integer=.true.)
+            call r%add('percolates_y', merge(1.0_dp, 0.0_dp, c%percolates_y), '-', is_integer=.true.)
+            ! along and across v when v lies on a grid axis; -1 (undefined) otherwise
+            d = modulo(c%spec%direction_deg, 180.0_dp)
+            along = -1.0_dp; across = -1.0_dp
+            if (d < 1.0e-9_dp .or. d > 180.0_dp - 1.0e-9_dp) then
+                along = merge(1.0_dp, 0.0_dp, c%percolates_x); across = merge(1.0_dp, 0.0_dp, c%percolates_y)
+            else if (abs(d - 90.0_dp) < 1.0e-9_dp) then
+                along = merge(1.0_dp, 0.0_dp, c%percolates_y); across = merge(1.0_dp, 0.0_dp, c%percolates_x)
+            end if
+            call r%add('percolates_along_v', along, '-', is_integer=.true.)
+            call r%add('percolates_across_v', across, '-', is_integer=.true.)
+            call r%add_array('/patches/orientation_tensor', reshape(c%patches%orientation, [4]), '-', &
+                             layout='[G11, G21, G12, G22]')
+        end if
+        if (c%have_persson) then
+            call r%add('persson_contact_area_fraction', c%persson%contact_area_fraction, '-')
+            call r%add('persson_friction_coefficient', c%persson%friction_coefficient, '-')
+            call r%add('persson_lateral_force_ratio', c%persson%lateral_force_ratio, '-')
+            call r%add_array('/persson/q_per_m', c%persson%q_per_m, '1/m')
+            call r%add_array('/persson/area_fraction', c%persson%area_fraction, '-')
+        end if
+        call r%trim()
+        end associate
+    end subroutine case_results
+
+    !> The array of field k of `field_names` (heights, pressure, displacement, gap); a view of the
+    !> case's own array (for as long as `c` is)
+    function case_field(c, k) result(x)
+        type(case_t), intent(in), target :: c
+        integer, intent(in) :: k
+        real(dp), pointer, contiguous :: x(:, :)
+        select case (k)
+        case (1)
+            x => c%h
+        case (2)
+            x => c%state%p
+        case (3)
+            x => c%state%u
+        case default
+            x => c%state%g
+        end select
+    end function case_field
 
 end module veslide_quantities

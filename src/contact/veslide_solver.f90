@@ -30,8 +30,8 @@ module veslide_solver
     use veslide_threads, only: restore_threads
     implicit none
     private
-    public :: solve_contact, auto_method, pdr_min_cells, default_anderson_memory, solve_on_device, gpu_visible, &
-              check_device_choice, auto_takes_device
+    public :: solve_contact, auto_method, planned_methods, pdr_min_cells, pdr_max_spread, default_anderson_memory, &
+              solve_on_device, gpu_visible, check_device_choice, auto_takes_device
 
     !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (256^2: there pdr took
     !> 0.56 of dr's time over the 16 hard cases it is chosen for, though more on contacts near
@@ -210,14 +210,45 @@ contains
     !> The method 'auto' takes for a problem (see the module's header)
     integer function auto_method(problem) result(method)
         type(contact_problem_t), intent(in) :: problem
-        if (problem%kernel%symmetric) then
+        real(dp) :: spread
+        spread = 1.0_dp        ! (the spread is measured only where the rule reads it)
+        if (.not. problem%kernel%symmetric .and. problem%kernel%grid%cells() >= pdr_min_cells) &
+            spread = problem%kernel%modulus_spread()
+        method = auto_rule(problem%kernel%symmetric, problem%kernel%grid%cells(), spread)
+    end function auto_method
+
+    !> The rule of 'auto' for a kernel that is `symmetric` or not, on `cells` cells, whose modulus
+    !> spread is `spread`
+    pure integer function auto_rule(symmetric, cells, spread) result(method)
+        logical, intent(in) :: symmetric
+        real(dp), intent(in) :: cells
+        real(dp), intent(in) :: spread
+        if (symmetric) then
             method = SOLVER_BCCG
-        else if (problem%kernel%grid%cells() >= pdr_min_cells .and. &
-                 problem%kernel%modulus_spread() <= pdr_max_spread) then
+        else if (cells >= pdr_min_cells .and. spread <= pdr_max_spread) then
             method = SOLVER_PDR
         else
             method = SOLVER_DR
         end if
-    end function auto_method
+    end function auto_rule
+
+    !> The methods a solve may run, known before its kernel is built (to size its memory): `method`
+    !> itself, or for 'auto' what its rule takes for a kernel `symmetric` or not on `cells` cells
+    !> whose spread is at most `spread_bound` (Einf/E0 for the spectral kernel of a viscoelastic
+    !> solid; huge() when unknown): one method, or both pdr and dr when the bound does not decide
+    pure function planned_methods(method, symmetric, cells, spread_bound) result(methods)
+        integer, intent(in) :: method
+        logical, intent(in) :: symmetric
+        real(dp), intent(in) :: cells
+        real(dp), intent(in) :: spread_bound
+        integer, allocatable :: methods(:)
+        if (method /= SOLVER_AUTO) then
+            methods = [method]
+        else if (auto_rule(symmetric, cells, spread_bound) /= auto_rule(symmetric, cells, 1.0_dp)) then
+            methods = [auto_rule(symmetric, cells, 1.0_dp), auto_rule(symmetric, cells, spread_bound)]
+        else
+            methods = [auto_rule(symmetric, cells, spread_bound)]
+        end if
+    end function planned_methods
 
 end module veslide_solver

@@ -12,12 +12,13 @@
 !> history of memory m, 5 by default); pdr 41 (bccg's fields with M = |K|, the resolvent's
 !> constant part; y, z and f live in the state's p, g and u, K is the kernel's own, borrowed),
 !> and 16 + 8 m more when Anderson mixes its steps (m > 0; by default it does not); Polonsky-Keer
-!> 16 (t and one influence column). `auto` is taken as bccg for a symmetric kernel and as pdr
-!> from 256^2 cells up (dr below). Surface generation is transient (16 for its
+!> 16 (t and one influence column). Surface generation is transient (16 for its
 !> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
 !> kernels hold 32 while they are summed. Analyses after the solve:
 !> slope force 8, patches 32, Persson 24. A study adds one kernel per speed (8 each), the previous
-!> speed's p and g (16) and the case's copies of heights and kernel (16).
+!> speed's p and g (16) and the case's copies of heights and kernel (16). The method is the one
+!> veslide_solver will run (`planned_methods`: for 'auto' the same rule, the largest of pdr and
+!> dr when the material's Einf/E0 does not decide the operator's spread before it is built).
 !>
 !> A solve on the device (veslide_device) holds its solver's arrays there, not on the host: the
 !> host keeps the case (heights, kernel, FFT buffers for the analyses, p, u, g) and the device
@@ -29,12 +30,19 @@
 !> in single precision); plus cuFFT's work area (at most 8, one for both plans, `cufft_work`).
 module veslide_memory
     use veslide_kinds, only: dp, i8
-    use veslide_config, only: config_t
-    use veslide_solver, only: pdr_min_cells, default_anderson_memory
-    use veslide_solver_options, only: SOLVER_DR, SOLVER_PDR
+    use veslide_error, only: error_t, fatal_error, add_context
+    use veslide_strings, only: str
+    use veslide_case_data, only: case_spec_t
+    use veslide_kernel, only: KERNEL_SPECTRAL
+    use veslide_solver, only: planned_methods, default_anderson_memory, auto_takes_device, check_device_choice
+    use veslide_solver_options, only: SOLVER_PK, SOLVER_BCCG, SOLVER_DR, SOLVER_PDR, DEVICE_GPU, DEVICE_AUTO, &
+                                      device_names
+    use veslide_device, only: device_info_t, device_info, device_memory
+    use veslide_system, only: available_memory_bytes
     implicit none
     private
-    public :: memory_estimate_bytes, device_estimate_bytes, format_gib
+    public :: memory_estimate_bytes, device_estimate_bytes, format_gib, size_and_check_memory, case_memory, &
+              case_on_device
 
     !> Libraries, FFTW plans, HDF5 buffers and the program itself [bytes]
     integer(i8), parameter :: fixed_bytes = 16_i8*1024*1024
@@ -45,29 +53,31 @@ module veslide_memory
 
 contains
 
-    !> Peak memory of the case or study of `cfg` on its grid [bytes]; with `ranks`, of one of that
-    !> many processes sharing the grid (its rows, plus FFTW's MPI transposes: one more complex
-    !> half-spectrum of its share, 8 bytes per cell)
-    !> With `device`, a case solved on the device: the host's share (its solver's arrays are there)
-    pure integer(i8) function memory_estimate_bytes(cfg, ranks, device) result(bytes)
-        type(config_t), intent(in) :: cfg
+    !> Peak memory of the case `spec` on its grid [bytes]; of a study when its `speeds` are given
+    !> (one kernel held per speed); with `ranks`, of one of that many processes sharing the grid
+    !> (its rows, plus FFTW's MPI transposes: one more complex half-spectrum of its share, 8 bytes
+    !> per cell). With `device`, a case solved on the device: the host's share (its solver's
+    !> arrays are there)
+    pure integer(i8) function memory_estimate_bytes(spec, ranks, device, speeds) result(bytes)
+        type(case_spec_t), intent(in) :: spec
         integer, intent(in), optional :: ranks
         logical, intent(in), optional :: device
+        real(dp), intent(in), optional :: speeds(:)
         real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
-        n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
+        n = real(spec%nx, dp)*real(spec%ny, dp)
         solve = 8 + 8 + 16 + 24
         ! per solver: pk 16, bccg 36, dr 40 + 8 m, pdr 41 (+ 16 + 8 m with mixing)
-        solver = solver_bytes(cfg, [16.0_dp, 36.0_dp, 40.0_dp, 41.0_dp])
+        solver = solver_bytes(spec, [16.0_dp, 36.0_dp, 40.0_dp, 41.0_dp], speeds)
         if (present(device)) then
             if (device) solver = 0
         end if
         analysis = 8
-        if (cfg%analysis%patches) analysis = analysis + 32
-        if (cfg%analysis%persson) analysis = analysis + 24
+        if (spec%analysis%patches) analysis = analysis + 32
+        if (spec%analysis%persson) analysis = analysis + 24
         kernel_build = 8 + 16
-        if (cfg%solver%kernel == 'collocation-alias' .or. cfg%solver%kernel == 'galerkin') kernel_build = 8 + 32
+        if (spec%kernel_name() == 'collocation-alias' .or. spec%kernel_name() == 'galerkin') kernel_build = 8 + 32
         study = 0
-        if (cfg%sweep%is_study()) study = 8*max(1, size(cfg%sweep%speeds)) + 16 + 16
+        if (present(speeds)) study = 8*max(1, size(speeds)) + 16 + 16
         per_cell = solve + max(solver, analysis, kernel_build, 16.0_dp) + study
         if (present(ranks)) then
             if (ranks > 1) then
@@ -76,59 +86,149 @@ contains
             end if
         end if
         bytes = fixed_bytes + int(per_cell*n, i8)
-
     end function memory_estimate_bytes
 
-    !> Device memory a solve of the case of `cfg` holds at its peak [bytes] (veslide_device: what
-    !> the heading lists), the method 'auto' takes as veslide_solver does
-    pure integer(i8) function device_estimate_bytes(cfg) result(bytes)
-        type(config_t), intent(in) :: cfg
+    !> Device memory a solve of the case `spec` (a study of its `speeds`) holds at its peak
+    !> [bytes] (veslide_device: what the heading lists)
+    pure integer(i8) function device_estimate_bytes(spec, speeds) result(bytes)
+        type(case_spec_t), intent(in) :: spec
+        real(dp), intent(in), optional :: speeds(:)
         real(dp) :: n, per_cell
-        n = real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp)
+        n = real(spec%nx, dp)*real(spec%ny, dp)
         ! per solver: bccg 29 (pk does not run there: bccg's), dr 40 + 8 m, pdr 37 (+ 16 + 8 m)
-        per_cell = 8 + 8 + 16 + 24 + solver_bytes(cfg, [29.0_dp, 29.0_dp, 40.0_dp, 37.0_dp]) + cufft_work
+        per_cell = 8 + 8 + 16 + 24 + solver_bytes(spec, [29.0_dp, 29.0_dp, 40.0_dp, 37.0_dp], speeds) + cufft_work
         bytes = device_fixed_bytes + int(per_cell*n, i8)
     end function device_estimate_bytes
 
-    !> The bytes per cell of the solver the case of `cfg` runs, 'auto' taken as veslide_solver takes
-    !> it (bccg for a symmetric kernel, pdr from pdr_min_cells cells, dr below), from the fixed
-    !> parts `base` = [pk, bccg, dr, pdr]: dr adds 8 m for its Anderson history, pdr 16 + 8 m when
-    !> it mixes (m > 0)
-    pure real(dp) function solver_bytes(cfg, base) result(b)
-        type(config_t), intent(in) :: cfg
+    !> The bytes per cell of the solver the case `spec` runs (the largest of those veslide_solver
+    !> may run, `planned_methods`), from the fixed parts `base` = [pk, bccg, dr, pdr]: dr adds 8 m
+    !> for its Anderson history, pdr 16 + 8 m when it mixes (m > 0). The kernel is symmetric for
+    !> an elastic solid or a solid at rest (every speed of a study 0).
+    pure real(dp) function solver_bytes(spec, base, speeds) result(b)
+        type(case_spec_t), intent(in) :: spec
         real(dp), intent(in) :: base(4)
+        real(dp), intent(in), optional :: speeds(:)
+        integer, allocatable :: methods(:)
         logical :: symmetric
-        symmetric = cfg%material%model == 'elastic' .or. (cfg%motion%speed_m_s == 0.0_dp .and. &
-                                                          size(cfg%sweep%speeds) == 0)
-        select case (cfg%solver%method)
-        case ('pk')
-            b = base(1)
-        case ('bccg')
-            b = base(2)
-        case ('dr')
-            b = dr()
-        case ('pdr')
-            b = pdr()
-        case default
-            if (symmetric) then
-                b = base(2)
-            else if (real(cfg%grid%nx, dp)*real(cfg%grid%ny, dp) >= real(pdr_min_cells, dp)) then
-                b = pdr()
-            else
-                b = dr()
-            end if
-        end select
-    contains
-        pure real(dp) function dr()
-            dr = base(3) + 8*default_anderson_memory(SOLVER_DR, cfg%solver%anderson_memory)
-        end function dr
-        pure real(dp) function pdr()
-            integer :: m
-            m = default_anderson_memory(SOLVER_PDR, cfg%solver%anderson_memory)
-            pdr = base(4)
-            if (m > 0) pdr = pdr + 16 + 8*m
-        end function pdr
+        real(dp) :: bound
+        integer :: k, m
+        symmetric = spec%material%model == 'elastic' .or. spec%speed_m_s == 0.0_dp
+        if (present(speeds)) symmetric = spec%material%model == 'elastic' .or. all(speeds == 0.0_dp)
+        ! the operator's spread is at most Einf/E0 for the spectral kernel; unknown for the others
+        bound = huge(1.0_dp)
+        if (spec%kernel_variant == KERNEL_SPECTRAL .and. spec%material%solid%e0_pa > 0.0_dp) &
+            bound = spec%material%solid%einf_pa/spec%material%solid%e0_pa
+        methods = planned_methods(spec%solver%method, symmetric, real(spec%nx, dp)*real(spec%ny, dp), bound)
+        b = 0
+        do k = 1, size(methods)
+            select case (methods(k))
+            case (SOLVER_PK)
+                b = max(b, base(1))
+            case (SOLVER_BCCG)
+                b = max(b, base(2))
+            case (SOLVER_DR)
+                b = max(b, base(3) + 8*default_anderson_memory(SOLVER_DR, spec%solver%anderson_memory))
+            case (SOLVER_PDR)
+                m = default_anderson_memory(SOLVER_PDR, spec%solver%anderson_memory)
+                b = max(b, base(4) + merge(16 + 8*m, 0, m > 0))
+            end select
+        end do
     end function solver_bytes
+
+    !> Will the case `spec` be solved on the device (on `ranks` processes: never shared)?
+    logical function case_on_device(spec, ranks) result(yes)
+        type(case_spec_t), intent(in) :: spec
+        integer, intent(in), optional :: ranks
+        yes = .false.
+        if (present(ranks)) then
+            if (ranks > 1) return
+        end if
+        select case (spec%solver%device)
+        case (DEVICE_GPU)
+            yes = spec%solver%method /= SOLVER_PK          ! (what it does not run is refused at the solve)
+        case (DEVICE_AUTO)
+            yes = auto_takes_device(spec%solver%method, spec%solver%anderson_memory, .false.)
+        end select
+    end function case_on_device
+
+    !> The memory the case `spec` (a study of its `speeds`) will need, per process when `ranks`
+    !> processes share its grid [bytes], before anything is allocated; with `device_estimate`, what
+    !> a solve on the device holds there (0: the case is solved on the CPU)
+    subroutine case_memory(spec, estimate, ranks, device_estimate, speeds)
+        type(case_spec_t), intent(in) :: spec
+        integer(i8), intent(out) :: estimate
+        integer, intent(in), optional :: ranks
+        integer(i8), intent(out), optional :: device_estimate
+        real(dp), intent(in), optional :: speeds(:)
+        logical :: device
+        if (present(device_estimate)) device_estimate = 0
+        device = case_on_device(spec, ranks)
+        estimate = memory_estimate_bytes(spec, ranks, device, speeds)
+        if (device .and. present(device_estimate)) device_estimate = device_estimate_bytes(spec, speeds)
+    end subroutine case_memory
+
+    !> Before anything is allocated: the memory the run will need against what the process may
+    !> use; refused in one line naming &grid nx, ny (or the height file) when it does not fit.
+    !> Returns the estimate. On a grid shared by `ranks` processes, `node_ranks` of them on this
+    !> machine, the estimate is one process's share and the memory free on the machine is shared
+    !> among those. A case solved on the device is refused, in the same way, when the device's
+    !> estimate (`device_estimate`, 0 for a case on the CPU) exceeds the device's free memory. A
+    !> study passes its `speeds`.
+    subroutine size_and_check_memory(spec, estimate, error, ranks, node_ranks, device_estimate, speeds)
+        type(case_spec_t), intent(in) :: spec
+        integer(i8), intent(out) :: estimate
+        type(error_t), allocatable, intent(out) :: error
+        integer, intent(in), optional :: ranks, node_ranks
+        integer(i8), intent(out), optional :: device_estimate
+        real(dp), intent(in), optional :: speeds(:)
+        integer(i8) :: available, dev
+        integer :: ranks_, node_ranks_
+        character(len=:), allocatable :: what, who
+        ranks_ = 1; if (present(ranks)) ranks_ = max(1, ranks)
+        node_ranks_ = 1; if (present(node_ranks)) node_ranks_ = max(1, node_ranks)
+        estimate = 0
+        if (present(device_estimate)) device_estimate = 0
+        call check_device_choice(spec%solver%device, error)
+        call add_context(error, "veslide: "//spec%input_path//": ")
+        if (allocated(error)) return
+        what = "&grid nx, ny = "
+        if (spec%surface%kind == 'file') what = "&surface file '"//spec%surface%file//"' of "
+        call case_memory(spec, estimate, ranks_, dev, speeds)
+        if (present(device_estimate)) device_estimate = dev
+        if (dev > 0) then
+            call check_device_memory(spec, dev, error); if (allocated(error)) return
+        end if
+        available = available_memory_bytes()
+        if (available >= 0) available = available/node_ranks_
+        if (available >= 0 .and. estimate > available) then
+            what = what//str(spec%nx)//" x "//str(spec%ny)
+            who = "this process (free memory, ulimit and cgroup limits)"
+            if (ranks_ > 1) then
+                what = what//" on "//str(ranks_)//" processes"
+                who = "each of the "//str(node_ranks_)//" processes on this machine (its share of the free memory,"// &
+                      " ulimit and cgroup limits)"
+            end if
+            call fatal_error(error, "veslide: "//spec%input_path//": "//what//" needs about "//format_gib(estimate)// &
+                " of memory per process, and "//format_gib(available)//" is available to "//who// &
+                ": choose a smaller &grid nx, ny, use more processes, or run where more memory is free")
+        end if
+    end subroutine size_and_check_memory
+
+    !> The device estimate `dev` against the device's free memory (refused in one line naming both)
+    subroutine check_device_memory(spec, dev, error)
+        type(case_spec_t), intent(in) :: spec
+        integer(i8), intent(in) :: dev
+        type(error_t), allocatable, intent(out) :: error
+        type(device_info_t) :: info
+        real(dp) :: free_b, total_b
+        call device_memory(free_b, total_b, error); if (allocated(error)) return
+        if (free_b < 0.0_dp .or. real(dev, dp) <= free_b) return
+        call device_info(info, error); if (allocated(error)) return
+        call fatal_error(error, "veslide: "//spec%input_path//": &grid nx, ny = "//str(spec%nx)//" x "// &
+            str(spec%ny)//" needs about "//format_gib(dev)//" of device memory, and "// &
+            format_gib(int(free_b, i8))//" is free on the "//info%name//" (of "//format_gib(int(total_b, i8))// &
+            "): choose a smaller &grid nx, ny, a device with more memory, or &solver device = 'cpu'")
+    end subroutine check_device_memory
 
     !> "12.34 GiB"
     pure function format_gib(bytes) result(s)

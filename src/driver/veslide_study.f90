@@ -1,8 +1,10 @@
 !> Parameter studies: every combination of the &sweep lists in one run.
 !>
-!> The study is enumerated up front as a list of speed chains (seed x eccentricity x angle x
-!> pressure, seed-major), each run through its speeds in the order given, warm-started along
-!> speed; then one loop over the chains (all of them, or one rank's share) and one row writer.
+!> The study is enumerated up front as a list of speed chains (seed x temperature x eccentricity
+!> x angle x pressure, seed-major), each run through its speeds in the order given, warm-started
+!> along speed; then one loop over the chains (all of them, or one rank's share) and one row
+!> writer. Each case is a specification of its own (`chain_spec`: the input's, with the chain's
+!> values and the speed set on a copy); the configuration is only read.
 !> Each surface is generated once per (seed, eccentricity, angle), each speed's kernel built once.
 !> Every finished case is written at once under /cases/NNNNNN with its parameters and appended as
 !> a row of /summary (case, seed, parameters, every scalar of the case; int64 where integer), then
@@ -11,25 +13,28 @@
 !> supplies: the library never prints. Rank files of a distributed study are joined by
 !> `merge_study_parts`, with the same row and ensemble code.
 module veslide_study
-    use veslide_kinds, only: dp, i8, pi
-    use veslide_error, only: error_t, fatal_error
+    use veslide_kinds, only: dp, i8, pi, radians
+    use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
     use veslide_config, only: config_t
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: kernel_t
-    use veslide_material, only: material_t
+    use veslide_case_data, only: case_spec_t, material_spec_t
+    use veslide_case_spec, only: case_spec_of, resolve_material
+    use veslide_memory, only: size_and_check_memory
     use veslide_hdf5, only: h5file_t
     use veslide_output, only: write_provenance, discard_output
     use veslide_system, only: path_kind, PATH_REGULAR, use_threads
     use veslide_version, only: version_string
     use veslide_quantities, only: results_t, axial_of, AXIAL_NONE, AXIAL_HALF_TURN
-    use veslide_case, only: case_t, build_surface, build_material, build_kernel, case_grid, solve_prepared, &
-                            case_results, write_case_group, size_and_check_memory
+    use veslide_quantities, only: case_results
+    use veslide_case_file, only: write_case_group
+    use veslide_case, only: case_t, build_surface, build_kernel, case_grid, solve_prepared
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
-              seed_statistics, write_ensemble
+              seed_statistics, write_ensemble, chain_spec, param_names, param_units
 
     !> The parameter columns that lead every /summary row; temperature_c (the 7th) in the studies
     !> of a material with a temperature shift (whose temperature may be swept). The attribute
@@ -126,11 +131,28 @@ contains
         end function list_or
     end subroutine plan_study
 
+    !> The specification of the case of `chain` at `speed`: the study's input `base` with the
+    !> chain's seed, spectrum, load and solid (`mat`, resolved at its temperature)
+    pure function chain_spec(base, chain, mat, speed) result(spec)
+        type(case_spec_t), intent(in) :: base
+        type(study_chain_t), intent(in) :: chain
+        type(material_spec_t), intent(in) :: mat
+        real(dp), intent(in) :: speed
+        type(case_spec_t) :: spec
+        spec = base
+        spec%surface%seed = chain%seed
+        spec%surface%eccentricity = chain%eccentricity
+        spec%surface%alpha_rad = radians(chain%alpha_deg)
+        spec%mean_pressure_pa = chain%pressure_pa
+        spec%material = mat
+        spec%speed_m_s = speed
+    end function chain_spec
+
     !> Run the study of `cfg` into the (temporary) HDF5 file `path`; `nfail` counts cases that
     !> did not converge. `part` = [rank, nranks] runs only the chains whose index is rank modulo
     !> nranks, with global case numbers (a rank file of a distributed study: no /ensemble).
     subroutine run_study(cfg, path, nfail, error, progress, part, stop_after)
-        type(config_t), intent(inout) :: cfg
+        type(config_t), intent(in) :: cfg
         character(len=*), intent(in) :: path
         integer, intent(out) :: nfail
         type(error_t), allocatable, intent(out) :: error
@@ -146,7 +168,8 @@ contains
         integer(i8), allocatable :: table(:, :)
         character(len=64), allocatable :: columns(:), units(:)
         logical, allocatable :: is_int(:)
-        type(material_t) :: mat
+        type(case_spec_t) :: base, spec
+        type(material_spec_t) :: mat
         type(fft2d_t) :: fft
         type(h5file_t) :: f
         type(case_t) :: c
@@ -167,14 +190,14 @@ contains
         call plan_study(cfg, plan)
         nmine = count([(modulo(ic - 1, nranks) == rank, ic = 1, size(plan%chains))])*size(plan%speeds)
 
-        call size_and_check_memory(cfg, estimate, error); if (allocated(error)) return
-        ! a measured topography fixes the grid and the cell size, which the kernels need
+        call case_spec_of(cfg, base, error); if (allocated(error)) return
+        call size_and_check_memory(base, estimate, error, speeds=plan%speeds); if (allocated(error)) return
         have_surface = .false.
-        if (cfg%surface%kind == 'file') then
-            call build_surface(cfg, h, error); if (allocated(error)) return
+        if (base%surface%kind == 'file') then         ! read once: every case has the same heights
+            call build_surface(base, h, error); if (allocated(error)) return
             have_surface = .true.
         end if
-        call case_grid(cfg, grid, error); if (allocated(error)) return
+        call case_grid(base, grid, error); if (allocated(error)) return
         allocate (kernels(size(plan%speeds)), kernel_seconds(size(plan%speeds)))
         kernels_temperature = huge(1.0_dp)
         allocate (done(plan%ncase)); done = .false.
@@ -186,8 +209,8 @@ contains
             call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true., &
                                   preparation=cfg%surface%preparation); if (allocated(error)) return
         end if
-        call use_threads(cfg%solver%threads)
-        call fft%init(grid%nx, grid%ny, error, planner=cfg%solver%fft_planner)
+        call use_threads(base%threads)
+        call fft%init(grid%nx, grid%ny, error, planner=base%fft_planner)
         if (allocated(error)) return
 
         t_start = wall_seconds()
@@ -200,20 +223,20 @@ contains
                 ! the material, and each speed's kernel, at the chain's temperature (built once
                 ! for a study without a temperature sweep)
                 if (chain%temperature_c /= kernels_temperature) then
-                    cfg%material%temperature_c = chain%temperature_c
-                    call build_material(cfg, mat, error); if (allocated(error)) return
+                    call resolve_material(cfg%material, chain%temperature_c, mat, error)
+                    call add_context(error, "veslide: "//cfg%path//": &material: ")
+                    if (allocated(error)) return
                     do iv = 1, size(plan%speeds)
-                        cfg%motion%speed_m_s = plan%speeds(iv)
-                        call build_kernel(cfg, grid, mat, kernels(iv), kernel_seconds(iv), error)
+                        call build_kernel(chain_spec(base, chain, mat, plan%speeds(iv)), grid, kernels(iv), &
+                                          kernel_seconds(iv), error)
                         if (allocated(error)) return
                     end do
                     kernels_temperature = chain%temperature_c
                 end if
-                cfg%surface%seed = chain%seed; cfg%surface%eccentricity = chain%eccentricity
-                cfg%surface%alpha_deg = chain%alpha_deg; cfg%load%mean_pressure_pa = chain%pressure_pa
-                if (cfg%surface%kind /= 'file' .and. .not. (have_surface .and. chain%seed == surface_seed .and. &
+                spec = chain_spec(base, chain, mat, plan%speeds(1))
+                if (spec%surface%kind /= 'file' .and. .not. (have_surface .and. chain%seed == surface_seed .and. &
                     chain%eccentricity == surface_ecc .and. chain%alpha_deg == surface_alpha)) then
-                    call build_surface(cfg, h, error); if (allocated(error)) return
+                    call build_surface(spec, h, error); if (allocated(error)) return
                     have_surface = .true.
                     surface_seed = chain%seed; surface_ecc = chain%eccentricity; surface_alpha = chain%alpha_deg
                 end if
@@ -226,19 +249,19 @@ contains
                         end if
                     end if
                     if (iv > 1 .and. .not. allocated(p_prev)) call restore_warm_start(k - 1)
-                    cfg%motion%speed_m_s = plan%speeds(iv)
-                    c%h = h; c%mat = mat; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
+                    c%spec = chain_spec(base, chain, mat, plan%speeds(iv))
+                    c%h = h; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
                     c%memory_estimate_bytes = estimate
                     t_case = wall_seconds()
                     if (iv > 1 .and. cfg%sweep%warm_start .and. allocated(p_prev)) then
-                        call solve_prepared(cfg, fft, c, error, p_init=p_prev, g_init=g_prev)
+                        call solve_prepared(fft, c, error, p_init=p_prev, g_init=g_prev)
                     else
-                        call solve_prepared(cfg, fft, c, error)
+                        call solve_prepared(fft, c, error)
                     end if
                     if (allocated(error)) return
                     p_prev = c%state%p; g_prev = c%state%g
                     if (.not. c%state%converged) nfail = nfail + 1
-                    call case_results(cfg, c, r)
+                    call case_results(c, r)
                     call write_row(k, chain, plan%speeds(iv), error); if (allocated(error)) return
                     if (iv < size(plan%speeds) .and. cfg%sweep%warm_start) then
                         call save_warm_start(k, error); if (allocated(error)) return
@@ -354,7 +377,7 @@ contains
             real(dp) :: values(7)
             integer :: j, np
             write (tag, '("/cases/",i6.6)') k
-            call write_case_group(f, trim(tag), cfg, c, error, r); if (allocated(error)) return
+            call write_case_group(f, trim(tag), c, error, r); if (allocated(error)) return
             np = plan%nparam
             values = [real(k, dp), real(chain%seed, dp), chain%eccentricity, chain%alpha_deg, chain%pressure_pa, &
                       speed, chain%temperature_c]

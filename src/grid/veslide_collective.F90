@@ -446,7 +446,7 @@ contains
         type(grid_t), intent(in) :: grid
         type(error_t), allocatable, intent(inout) :: error
 #ifdef VESLIDE_MPI
-        integer :: failed, first, n
+        integer :: failed, first, n(2)
         character(len=:), allocatable :: msg
         type(MPI_Comm) :: comm
         if (.not. grid%is_distributed()) return
@@ -455,12 +455,12 @@ contains
         call MPI_Allreduce(failed, first, 1, MPI_INTEGER, MPI_MIN, comm)
         if (first == huge(1)) return
         n = 0
-        if (grid%rank == first) n = len(error%message)
-        call MPI_Bcast(n, 1, MPI_INTEGER, first, comm)
-        allocate (character(len=n) :: msg)
+        if (grid%rank == first) n = [len(error%message), error%category]
+        call MPI_Bcast(n, 2, MPI_INTEGER, first, comm)
+        allocate (character(len=n(1)) :: msg)
         if (grid%rank == first) msg = error%message
-        call MPI_Bcast(msg, n, MPI_CHARACTER, first, comm)
-        if (.not. allocated(error)) call fatal_error(error, msg)
+        call MPI_Bcast(msg, n(1), MPI_CHARACTER, first, comm)
+        if (.not. allocated(error)) call fatal_error(error, msg, n(2))
 #endif
     end subroutine share_error
 

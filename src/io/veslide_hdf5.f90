@@ -11,7 +11,7 @@ module veslide_hdf5
     use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_int
     use hdf5
     use veslide_kinds, only: dp, i8
-    use veslide_error, only: error_t, fatal_error
+    use veslide_error, only: error_t, io_error
     use veslide_strings, only: c_string
     implicit none
     private
@@ -101,7 +101,7 @@ contains
         end select
         if (ierr /= 0) then
             self%fid = -1
-            call fatal_error(error, "veslide:hdf5:open: cannot open '"//path//"' for '"//action//"'")
+            call io_error(error, "veslide:hdf5:open: cannot open '"//path//"' for '"//action//"'")
         end if
     end subroutine h5_open
 
@@ -119,7 +119,7 @@ contains
         call h5fclose_f(self%fid, ierr)
         self%fid = -1
         if (ierr /= 0 .and. present(error)) &
-            call fatal_error(error, "veslide:hdf5:close: cannot finish writing '"//self%path//"'")
+            call io_error(error, "veslide:hdf5:close: cannot finish writing '"//self%path//"'")
     end subroutine h5_close
 
     subroutine h5_finalize(self)
@@ -156,7 +156,7 @@ contains
         if (.not. self%is_open()) return
         call h5fflush_f(self%fid, H5F_SCOPE_GLOBAL_F, ierr)
         if (ierr /= 0 .and. present(error)) &
-            call fatal_error(error, "veslide:hdf5:flush: cannot write '"//self%path//"'")
+            call io_error(error, "veslide:hdf5:flush: cannot write '"//self%path//"'")
     end subroutine h5_flush
 
     !> Remove the link `name` (a dataset or a group), if it exists
@@ -179,7 +179,7 @@ contains
         call h5pset_create_inter_group_f(lcpl, 1, ierr)
         call h5ocopy_f(src%fid, name, self%fid, dst_name, ierr, lcpl_id=lcpl)
         call h5pclose_f(lcpl, ie)
-        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:copy: cannot copy "//name//" of "//src%path// &
+        if (ierr /= 0) call io_error(error, "veslide:hdf5:copy: cannot copy "//name//" of "//src%path// &
                                         " to "//dst_name//" in "//self%path)
     end subroutine h5_copy_from
 
@@ -196,7 +196,7 @@ contains
         integer(hid_t) :: sid, lcpl, did
         integer :: ierr, ie
         if (.not. self%is_open()) then
-            call fatal_error(error, "veslide:hdf5:write: file not open for "//name); return
+            call io_error(error, "veslide:hdf5:write: file not open for "//name); return
         end if
         if (size(dims) == 0) then
             call h5screate_f(H5S_SCALAR_F, sid, ierr)
@@ -209,11 +209,11 @@ contains
         call h5pclose_f(lcpl, ie)
         call h5sclose_f(sid, ie)
         if (ierr /= 0) then
-            call fatal_error(error, "veslide:hdf5:write: cannot create "//name//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:write: cannot create "//name//" in "//self%path); return
         end if
         call h5dwrite_f(did, dtype, buf, ierr)
         call h5dclose_f(did, ie)
-        if (ierr /= 0 .or. ie /= 0) call fatal_error(error, "veslide:hdf5:write: cannot write "//name//" in "//self%path)
+        if (ierr /= 0 .or. ie /= 0) call io_error(error, "veslide:hdf5:write: cannot write "//name//" in "//self%path)
     end subroutine write_raw
 
     subroutine write_r0(self, name, value, error)
@@ -290,7 +290,7 @@ contains
         logical :: there
         call h5oopen_f(self%fid, obj, oid, ierr)
         if (ierr /= 0) then
-            call fatal_error(error, "veslide:hdf5:writeattr: no object "//obj//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:writeattr: no object "//obj//" in "//self%path); return
         end if
         if (n == 0) then
             call h5screate_f(H5S_SCALAR_F, sid, ierr)
@@ -301,7 +301,7 @@ contains
         if (there) call h5adelete_f(oid, name, ie)
         call h5acreate_f(oid, name, dtype, sid, aid, ierr)
         if (ierr == 0) call h5awrite_f(aid, dtype, buf, ierr)
-        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:writeattr: "//obj//"@"//name//" in "//self%path)
+        if (ierr /= 0) call io_error(error, "veslide:hdf5:writeattr: "//obj//"@"//name//" in "//self%path)
         call h5aclose_f(aid, ie); call h5sclose_f(sid, ie); call h5oclose_f(oid, ie)
     end subroutine attr_raw
 
@@ -377,7 +377,7 @@ contains
                              merge(H5T_STD_I64LE, H5T_NATIVE_DOUBLE, is_int(k)), ierr)
             if (ierr /= 0) then
                 call h5tclose_f(tid, ie)
-                call fatal_error(error, "veslide:hdf5:table: column '"//trim(columns(k))//"' cannot be added"// &
+                call io_error(error, "veslide:hdf5:table: column '"//trim(columns(k))//"' cannot be added"// &
                                  " (a repeated name?)"); return
             end if
         end do
@@ -430,7 +430,7 @@ contains
         end if
         if (ierr /= 0) then
             call h5tclose_f(tid, ie)
-            call fatal_error(error, "veslide:hdf5:append_row: cannot open "//name//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:append_row: cannot open "//name//" in "//self%path); return
         end if
         call h5dget_space_f(did, sid, ierr)
         call h5sget_simple_extent_dims_f(sid, dims, maxdims, ie)
@@ -444,7 +444,7 @@ contains
         if (ierr == 0) call h5dwrite_f(did, tid, c_loc(bits), ierr, mem_space_id=msid, file_space_id=sid)
         call h5sclose_f(msid, ie); call h5sclose_f(sid, ie); call h5dclose_f(did, ie); call h5tclose_f(tid, ie)
         if (ierr /= 0) then
-            call fatal_error(error, "veslide:hdf5:append_row: cannot write a row of "//name//" in "//self%path)
+            call io_error(error, "veslide:hdf5:append_row: cannot write a row of "//name//" in "//self%path)
             return
         end if
         if (created) call self%writeattr(name, 'units', units, error)
@@ -465,7 +465,7 @@ contains
         type(c_ptr) :: bufv
         call h5dopen_f(self%fid, name, did, ierr)
         if (ierr /= 0) then
-            call fatal_error(error, "veslide:hdf5:read_table: no table "//name//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:read_table: no table "//name//" in "//self%path); return
         end if
         call h5dget_type_f(did, ftid, ierr)
         call h5tget_nmembers_f(ftid, n, ierr)
@@ -486,7 +486,7 @@ contains
         bufv = c_loc(bits)
         if (dims(1) > 0) call h5dread_f(did, mtid, bufv, ierr)
         call h5tclose_f(mtid, ie); call h5tclose_f(ftid, ie); call h5dclose_f(did, ie)
-        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:read_table: cannot read "//name//" in "//self%path)
+        if (ierr /= 0) call io_error(error, "veslide:hdf5:read_table: cannot read "//name//" in "//self%path)
     end subroutine h5_read_table
 
     ! ---------------------------------------------------------------- reading
@@ -503,11 +503,11 @@ contains
         bufv = buf
         call h5dopen_f(self%fid, name, did, ierr)
         if (ierr /= 0) then
-            call fatal_error(error, "veslide:hdf5:read: no dataset "//name//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:read: no dataset "//name//" in "//self%path); return
         end if
         call h5dread_f(did, dtype, bufv, ierr)
         call h5dclose_f(did, ie)
-        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:read: cannot read "//name//" in "//self%path)
+        if (ierr /= 0) call io_error(error, "veslide:hdf5:read: cannot read "//name//" in "//self%path)
     end subroutine read_raw
 
     subroutine h5_read_r0(self, name, value, error)
@@ -561,7 +561,7 @@ contains
         if (size(value) == 0) return
         call h5dopen_f(self%fid, name, did, ierr)
         if (ierr /= 0) then
-            call fatal_error(error, "veslide:hdf5:read: no dataset "//name//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:read: no dataset "//name//" in "//self%path); return
         end if
         count = shape(value, hsize_t)
         call h5dget_space_f(did, fspace, ie)
@@ -570,7 +570,7 @@ contains
         buf = c_loc(value)
         if (ierr == 0) call h5dread_f(did, H5T_NATIVE_DOUBLE, buf, ierr, mem_space_id=mspace, file_space_id=fspace)
         call h5sclose_f(mspace, ie); call h5sclose_f(fspace, ie); call h5dclose_f(did, ie)
-        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:read: cannot read a block of "//name//" in "//self%path)
+        if (ierr /= 0) call io_error(error, "veslide:hdf5:read: cannot read a block of "//name//" in "//self%path)
     end subroutine h5_read_r2_block
 
     !> A scalar string dataset (variable-length, as write_text stores it)
@@ -635,11 +635,11 @@ contains
         bufv = buf
         call h5aopen_by_name_f(self%fid, obj, name, aid, ierr)
         if (ierr /= 0) then
-            call fatal_error(error, "veslide:hdf5:read: no attribute "//obj//"@"//name//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:read: no attribute "//obj//"@"//name//" in "//self%path); return
         end if
         call h5aread_f(aid, dtype, bufv, ierr)
         call h5aclose_f(aid, ie)
-        if (ierr /= 0) call fatal_error(error, "veslide:hdf5:read: cannot read attribute "//obj//"@"//name// &
+        if (ierr /= 0) call io_error(error, "veslide:hdf5:read: cannot read attribute "//obj//"@"//name// &
                                         " in "//self%path)
     end subroutine read_attr_raw
 
@@ -680,7 +680,7 @@ contains
         integer :: ie, k, rank
         call h5aopen_by_name_f(self%fid, obj, name, aid, ie)
         if (ie /= 0) then
-            call fatal_error(error, "veslide:hdf5:read: no attribute "//obj//"@"//name//" in "//self%path); return
+            call io_error(error, "veslide:hdf5:read: no attribute "//obj//"@"//name//" in "//self%path); return
         end if
         call h5aget_space_f(aid, sid, ie)
         call h5sget_simple_extent_ndims_f(sid, rank, ie)
@@ -688,7 +688,7 @@ contains
         if (rank == 1) call h5sget_simple_extent_dims_f(sid, dims, maxdims, ie)
         call h5sclose_f(sid, ie); call h5aclose_f(aid, ie)
         if (rank /= 1 .or. dims(1) /= size(values)) then
-            call fatal_error(error, "veslide:hdf5:read: attribute "//obj//"@"//name//" in "//self%path// &
+            call io_error(error, "veslide:hdf5:read: attribute "//obj//"@"//name//" in "//self%path// &
                              " does not hold the expected number of strings"); return
         end if
         allocate (ptrs(size(values)))

@@ -7,7 +7,7 @@ module veslide_hdf5_parallel
     use, intrinsic :: iso_c_binding, only: c_loc, c_ptr
     use hdf5
     use veslide_kinds, only: dp
-    use veslide_error, only: error_t, fatal_error
+    use veslide_error, only: error_t, io_error
     use veslide_grid, only: grid_t
     use veslide_hdf5, only: h5file_t
 #ifdef VESLIDE_MPI
@@ -36,10 +36,10 @@ contains
         f%path = path
         if (ierr /= 0) then
             f%fid = -1
-            call fatal_error(error, "veslide:hdf5:create_collective: cannot create '"//path//"'")
+            call io_error(error, "veslide:hdf5:create_collective: cannot create '"//path//"'")
         end if
 #else
-        call fatal_error(error, "veslide:hdf5:create_collective: '"//path//"' of a distributed grid needs"// &
+        call io_error(error, "veslide:hdf5:create_collective: '"//path//"' of a distributed grid needs"// &
                          " the MPI build")
         f%fid = -1
 #endif
@@ -68,7 +68,7 @@ contains
         call h5pclose_f(lcpl, ie)
         if (ierr /= 0) then
             call h5sclose_f(fspace, ie)
-            call fatal_error(error, "veslide:hdf5:write_rows: cannot create "//name//" in "//f%path); return
+            call io_error(error, "veslide:hdf5:write_rows: cannot create "//name//" in "//f%path); return
         end if
         if (grid%ny_local > 0) then
             call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, offset, count, ierr)
@@ -87,9 +87,9 @@ contains
         call h5sclose_f(mspace, ie)
         call h5sclose_f(fspace, ie)
         call h5dclose_f(did, ie)
-        if (ierr /= 0 .or. ie /= 0) call fatal_error(error, "veslide:hdf5:write_rows: cannot write "//name//" in "//f%path)
+        if (ierr /= 0 .or. ie /= 0) call io_error(error, "veslide:hdf5:write_rows: cannot write "//name//" in "//f%path)
 #else
-        call fatal_error(error, "veslide:hdf5:write_rows: "//name//" of a distributed grid needs the MPI build")
+        call io_error(error, "veslide:hdf5:write_rows: "//name//" of a distributed grid needs the MPI build")
 #endif
     end subroutine write_rows
 

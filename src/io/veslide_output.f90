@@ -8,21 +8,15 @@
 !> part file, from which the same command resumes.
 module veslide_output
     use veslide_kinds, only: dp, i8
-    use veslide_error, only: error_t, fatal_error
+    use veslide_error, only: error_t, fatal_error, io_error
     use veslide_hdf5, only: h5file_t, hdf5_library_version
-    use veslide_quantities, only: results_t
     use veslide_device, only: device_enabled, device_emulated, device_count, device_info_t, device_info
     use veslide_version, only: version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
     use veslide_system, only: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, lock_file, unlock_file, LOCK_BUSY, &
                               last_system_error, rename_file, link_file, remove_file, process_id
     implicit none
     private
-    public :: prepare_output, release_output, commit_output, discard_output, write_provenance, process_id, &
-              write_results, write_field, field_layout
-
-    !> How a 2-D field is laid out, for readers in other languages
-    character(len=*), parameter :: field_layout = "Fortran order (nx, ny): h5py shape (ny, nx), index [iy, ix]"
-
+    public :: prepare_output, release_output, commit_output, discard_output, write_provenance, process_id
 
 contains
 
@@ -64,7 +58,7 @@ contains
             call fatal_error(error, "veslide: another veslide run is writing &output file '"//path// &
                 "' (it holds '"//path//".lock'); wait for it or choose another output"); return
         else if (lock < 0) then
-            call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: cannot create or lock '"// &
+            call io_error(error, "veslide: &output file '"//path//"' cannot be written: cannot create or lock '"// &
                              path//".lock' in its directory: "//last_system_error()); return
         end if
         if (path_kind(tmp) == PATH_MISSING) then
@@ -76,7 +70,7 @@ contains
         end if
         if (stat /= 0) then
             call release_output(lock, path)
-            call fatal_error(error, "veslide: &output file '"//path//"' cannot be written: "//trim(msg)); return
+            call io_error(error, "veslide: &output file '"//path//"' cannot be written: "//trim(msg)); return
         end if
     end subroutine prepare_output
 
@@ -97,16 +91,16 @@ contains
         logical, intent(in) :: overwrite
         type(error_t), allocatable, intent(out) :: error
         if (path_kind(path) /= PATH_MISSING .and. path_kind(path) /= PATH_REGULAR) then
-            call fatal_error(error, "veslide: &output file '"//path//"' is no longer a regular file; the result"// &
+            call io_error(error, "veslide: &output file '"//path//"' is no longer a regular file; the result"// &
                 " stays in '"//tmp//"'"); return
         end if
         if (overwrite) then
             if (.not. rename_file(tmp, path)) &
-                call fatal_error(error, "veslide: cannot rename '"//tmp//"' to '"//path//"'")
+                call io_error(error, "veslide: cannot rename '"//tmp//"' to '"//path//"'")
             return
         end if
         if (.not. link_file(tmp, path)) then
-            call fatal_error(error, "veslide: &output file '"//path//"' cannot be published (it appeared while"// &
+            call io_error(error, "veslide: &output file '"//path//"' cannot be published (it appeared while"// &
                 " this run worked, or the directory refuses links); the result stays in '"//tmp//"'")
             return
         end if
@@ -188,44 +182,5 @@ contains
             t = trim(b)
         end function version_text
     end subroutine write_device_provenance
-
-    !> The scalars of `r` under PREFIX/scalars/NAME (integers as int64) and its arrays under
-    !> PREFIX/PATH, each with its `units` attribute (and `layout` where given)
-    subroutine write_results(f, prefix, r, error)
-        type(h5file_t), intent(inout) :: f
-        character(len=*), intent(in) :: prefix
-        type(results_t), intent(in) :: r
-        type(error_t), allocatable, intent(out) :: error
-        integer :: k
-        character(len=:), allocatable :: name
-        do k = 1, r%n
-            name = prefix//'/scalars/'//r%scalars(k)%name
-            if (r%scalars(k)%is_integer) then
-                call f%write(name, nint(r%scalars(k)%value, i8), error)
-            else
-                call f%write(name, r%scalars(k)%value, error)
-            end if
-            if (allocated(error)) return
-            call f%writeattr(name, 'units', r%scalars(k)%units, error); if (allocated(error)) return
-        end do
-        do k = 1, r%na
-            name = prefix//r%arrays(k)%path
-            call f%write(name, r%arrays(k)%values, error); if (allocated(error)) return
-            call f%writeattr(name, 'units', r%arrays(k)%units, error); if (allocated(error)) return
-            if (len(r%arrays(k)%layout) > 0) call f%writeattr(name, 'layout', r%arrays(k)%layout, error)
-            if (allocated(error)) return
-        end do
-    end subroutine write_results
-
-    !> A 2-D field with its units and layout
-    subroutine write_field(f, name, values, units, error)
-        type(h5file_t), intent(inout) :: f
-        character(len=*), intent(in) :: name, units
-        real(dp), intent(in) :: values(:, :)
-        type(error_t), allocatable, intent(out) :: error
-        call f%write(name, values, error); if (allocated(error)) return
-        call f%writeattr(name, 'units', units, error); if (allocated(error)) return
-        call f%writeattr(name, 'layout', field_layout, error)
-    end subroutine write_field
 
 end module veslide_output

@@ -29,7 +29,7 @@
 !>    anisotropy (1 for an elastic solid; up to Einf/E0 for a viscoelastic one in motion).
 module veslide_kernel
     use veslide_kinds, only: dp, two_pi
-    use veslide_error, only: error_t, fatal_error
+    use veslide_error, only: error_t, fatal_error, ERROR_NUMERICAL
     use veslide_strings, only: name_index
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
@@ -325,10 +325,10 @@ contains
             if (self%variant == KERNEL_COLLOCATION_ALIAS) then
                 call fatal_error(error, "veslide:kernel:new_kernel: the discrete kernel is not positive definite"// &
                     " (min Re K_d <= 0); the collocation-alias variant loses definiteness for large"// &
-                    " Einf/E0 at speed: use the 'galerkin' or 'collocation' variant")
+                    " Einf/E0 at speed: use the 'galerkin' or 'collocation' variant", ERROR_NUMERICAL)
             else
                 call fatal_error(error, "veslide:kernel:new_kernel: the discrete kernel is not positive definite"// &
-                    " (min Re K_d <= 0, or not finite)")
+                    " (min Re K_d <= 0, or not finite)", ERROR_NUMERICAL)
             end if
         end if
     end subroutine finish_kernel
