@@ -18,6 +18,7 @@ from matplotlib.ticker import MaxNLocator, ScalarFormatter
 import pandas as pd
 
 from . import topography as _topo
+from .results import parameter_columns
 
 SYMBOLS = {
     "contact_area_fraction": r"$A/A_0$",
@@ -515,8 +516,6 @@ def _table(source):
 _GROUP_FORMATS = {"eccentricity": r"$\varepsilon$ = %.3g", "alpha_deg": r"$\alpha$ = %.4g$^\circ$",
                   "pressure_pa": r"$p_0$ = %.4g Pa", "seed": "seed %d", "speed_m_s": r"$v$ = %.3g m/s",
                   "temperature_c": r"$T$ = %.4g °C"}
-# the parameters of a study's cases other than the seed (the columns /ensemble is grouped by)
-PARAMETERS = ("eccentricity", "alpha_deg", "pressure_pa", "speed_m_s", "temperature_c")
 
 
 def _format(fmt, value):
@@ -547,7 +546,7 @@ def seed_means(summary, values, name="value"):
     """An /ensemble-like DataFrame of `values` (one per row of a study's /summary, e.g. a ratio
     of two columns): per combination of the other parameters, `n_seeds` and the mean and standard
     error over the seeds as columns mean_<name>, sem_<name> (0 for a single seed)."""
-    keys = [k for k in PARAMETERS if k in summary.columns]
+    keys = [k for k in parameter_columns(summary) if k not in ("case", "seed")]
     df = summary[keys].copy()
     df[name] = np.asarray(values, dtype=float)
     out = df.groupby(keys, sort=True)[name].agg(["mean", "std", "count"]).reset_index()
@@ -581,7 +580,7 @@ def force_vs_speed(source, quantity="friction_coefficient", ax=None, *, by=None,
         quantity, units = "value", {}
     # one line per combination of the parameters other than the speed (temperature_c in the
     # studies of a material with a temperature shift)
-    params = table.attrs.get("parameters") or PARAMETERS       # the file names them (older files: ours)
+    params = parameter_columns(table)
     keys = by if by is not None else ([k for k in params if k not in ("case", "seed", "speed_m_s")
                                        and k in table.columns] + ([] if ens else ["seed"]))
     scale = _SCALE[unit] if unit else 1.0

@@ -25,15 +25,13 @@ import f90nml
 import numpy as np
 import pandas as pd
 
-from .results import Result, read
+from .results import Result, parameter_columns, read
 from .runner import ConvergenceWarning, load_params, reuse_existing, run
 
 #: The scalars analysed unless others are asked for (those a file lacks are skipped)
 DEFAULT_SCALARS = ("contact_area_fraction", "contact_area_fraction_cells", "mean_separation_m",
                    "friction_coefficient", "lateral_force_ratio")
 
-#: The parameters of a study's case (columns of /summary)
-PARAMETERS = ("seed", "eccentricity", "alpha_deg", "pressure_pa", "speed_m_s")
 
 #: Safety factors: an order observed within 0.5..2.1 on four grids or more; any other case
 SAFETY_OBSERVED, SAFETY_ASSUMED = 1.25, 3.0
@@ -133,11 +131,8 @@ class StudyRefinement:
             f["cell_m"] = f["length_x_m"] / f["nx"]
             f["converged"] = f["converged"].astype(bool)
             frames.append(f)
-        # a study of a material with a temperature shift has the column temperature_c too
-        # the parameters the file names (older files: seed .. speed_m_s, and temperature_c if present)
-        named = frames[-1].attrs.get("parameters")
-        params = (tuple(p for p in named if p != "case") if named else
-                  tuple(PARAMETERS) + (("temperature_c",) if "temperature_c" in frames[-1].columns else ()))
+        # the parameters the file names (temperature_c in a study of a material with a shift)
+        params = tuple(p for p in parameter_columns(frames[-1]) if p != "case")
         plan = frames[-1].set_index("case")[list(params)]
         for r, f in zip(results, frames):
             mine = f.set_index("case")[list(params)]

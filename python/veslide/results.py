@@ -12,7 +12,10 @@ import xarray as xr
 
 from ._h5 import open_file, published_name, python_value, retry, text, writer_alive
 
-FIELD_NAMES = ("height_m", "pressure_pa", "displacement_m", "gap_m")
+#: The parameter columns that lead a study's /summary, for files written before the program named
+#: them (veslide < 0.2.0); newer files name them in the attribute `parameters` of /summary and
+#: /ensemble (read by `parameter_columns`)
+LEGACY_PARAMETERS = ("case", "seed", "eccentricity", "alpha_deg", "pressure_pa", "speed_m_s", "temperature_c")
 _LONG_NAMES = {"height_m": "height h", "pressure_pa": "pressure p", "displacement_m": "displacement w",
                "gap_m": "gap g"}
 
@@ -66,9 +69,19 @@ def _table(ds):
     return df
 
 
+def parameter_columns(table):
+    """The columns of a study's table (/summary or /ensemble DataFrame) that identify a case, as
+    the program names them (its `parameters` attribute); for older files, those of
+    LEGACY_PARAMETERS that the table has."""
+    named = table.attrs.get("parameters")
+    if named:
+        return list(named)
+    return [p for p in LEGACY_PARAMETERS if p in table.columns]
+
+
 def _fields(g, scalars):
     """/fields as an xarray Dataset with dims (x, y): values[ix, iy], coordinates in metres."""
-    names = [n for n in FIELD_NAMES if n in g] + [n for n in g if n not in FIELD_NAMES]
+    names = list(g)          # what the program's field catalogue wrote (veslide_quantities)
     first = g[names[0]]
     ny, nx = first.shape
     lx = scalars.get("length_x_m", 1.0)
