@@ -4,6 +4,7 @@ a second writer is refused, and a killed study resumes to the result of an unint
 import os
 import signal
 import subprocess
+import sys
 import time
 
 import h5py
@@ -187,3 +188,20 @@ def test_summary_names_long_paths_whole(tmp_path, exe):
     assert r.returncode == 0, r.stderr
     first = r.stdout.splitlines()[0]
     assert str(nml) in first and str(out) in first, first
+
+
+def test_write_error_in_python(tmp_path, exe):
+    """Exit status 3 (a write that failed) is `veslide.WriteError` in Python, an OSError with the
+    program's one line; nothing is published."""
+    out = tmp_path / "out.h5"
+    code = ("import resource, sys, veslide\n"
+            "resource.setrlimit(resource.RLIMIT_FSIZE, (200 * 1024, resource.RLIM_INFINITY))\n"
+            "try:\n"
+            "    veslide.run(sys.argv[1], exe=sys.argv[2], output=sys.argv[3], quiet=True)\n"
+            "except veslide.WriteError as e:\n"
+            "    print(e.returncode, isinstance(e, OSError), 'could not be written' in e.message)\n")
+    nml = write(tmp_path / "in.nml", SMALL.format(out=out))
+    r = subprocess.run([sys.executable, "-c", code, str(nml), str(exe), str(out)], capture_output=True, text=True,
+                       timeout=600)
+    assert r.stdout.split() == ["3", "True", "True"], r.stdout + r.stderr
+    assert not out.exists()

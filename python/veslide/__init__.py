@@ -14,7 +14,8 @@ Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [i
 """
 from .results import Arrays, Cases, Result, Scalars, read, read_running
 from .refinement import Refinement, StudyRefinement, convergence, refine
-from .runner import (Cancelled, ConvergenceWarning, InputError, OutputExistsError, Progress, Run, VeslideError,
+from .runner import (Cancelled, ConvergenceWarning, InputError, NumericalError, OutputExistsError, Progress, Run,
+                     VeslideError, WriteError,
                      find_executable, git_revision, namelist, run, start, write_namelist)
 from .topography import (PreparedSurface, Scan, major_axis_deg, psd_2d, psd_radial, read_topography, slope_tensor,
                          write_topography)
@@ -29,7 +30,7 @@ __all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revis
            "read_scan", "prepare_scan", "load_topography", "Scan", "PreparedSurface",
            "Material", "FitReport", "fit_prony", "shift_factor",
            "Result", "Scalars", "Arrays", "Cases", "InputError", "OutputExistsError", "VeslideError",
-           "Cancelled", "ConvergenceWarning"]
+           "Cancelled", "ConvergenceWarning", "WriteError", "NumericalError"]
 
 
 def __getattr__(name):

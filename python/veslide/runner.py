@@ -38,7 +38,7 @@ class VeslideError(RuntimeError):
 
 
 class InputError(VeslideError, ValueError):
-    """The program refused the input (exit status 1: bad input or I/O error; nothing written).
+    """The program refused the input (exit status 1: bad input; nothing written).
 
     `message` is the program's one line (a message the program printed on several lines is
     joined): `veslide: FILE: &group variable = value ...`, naming the user's namelist file, or
@@ -62,6 +62,17 @@ class OutputExistsError(InputError, FileExistsError):
 
 class Cancelled(VeslideError):
     """`Run.wait()` of a run stopped by `Run.cancel()`."""
+
+
+class WriteError(VeslideError, OSError):
+    """A file could not be written or read (exit status 3: disk full, file-size limit, an I/O
+    error; nothing published, no earlier result lost). `message` is the program's one line; the
+    same input may succeed when retried where there is room."""
+
+
+class NumericalError(VeslideError, ArithmeticError):
+    """The numbers broke down (exit status 4: a discrete kernel that is not positive definite, an
+    overflow); `message` is the program's one line, naming what to change."""
 
 
 # &group, then the variables a check names: 'nx = 0', 'foo: no such', 'file 'x.h5' exists',
@@ -287,9 +298,9 @@ def run(params, output=None, threads=None, exe=None, *, overwrite=False, reuse=T
               Which one a case used: `result.scalars.attrs['device']`; the GPU itself is in
               `result.provenance` (device_name, device_memory_bytes, cuda_*_version).
 
-    Exit status 1 raises `InputError` with the program's one-line message; exit status 2 (not
-    converged) returns the result with `result.converged` False, `result.residual`, and issues a
-    `ConvergenceWarning`. An interrupt (KeyboardInterrupt) stops the program; a study with an
+    Exit status 1 raises `InputError` with the program's one-line message, 3 `WriteError` (a file
+    could not be written), 4 `NumericalError`; exit status 2 (not converged) returns the result
+    with `result.converged` False, `result.residual`, and issues a `ConvergenceWarning`. An interrupt (KeyboardInterrupt) stops the program; a study with an
     output leaves its part file OUT.part with the finished cases (`veslide.read_running(OUT)`;
     the same call resumes it)."""
     handle = start(params, output, threads, exe, overwrite=overwrite, reuse=reuse, quiet=quiet, progress=progress,
@@ -533,6 +544,9 @@ class Run:
                     message = message.replace(self.command[1], "params dict")
                 self._error = InputError(message or "veslide refused the input (exit status 1)", 1, stderr,
                                          self.command, self._sent, file=self._source)
+            elif rc in (3, 4):
+                self._error = (WriteError if rc == 3 else NumericalError)(
+                    message or "veslide failed with exit status %d" % rc, rc, stderr, self.command, self._sent)
             elif rc not in (0, 2):
                 if stderr and self._callback is not None:
                     sys.stderr.write(stderr)
