@@ -70,7 +70,9 @@ module veslide_fftw
         final :: fft_finalize
     end type fft2d_t
 
-    logical, save :: mpi_ready = .false., wisdom_loaded = .false.
+    logical, save :: mpi_ready = .false.
+    !> the wisdom file this process imported: -1 none yet, 0 the serial one, 1 the MPI one
+    integer(c_int), save :: wisdom_loaded = -1
 
     interface
         subroutine c_free(p) bind(c, name='free')
@@ -78,15 +80,24 @@ module veslide_fftw
             type(c_ptr), value :: p
         end subroutine c_free
         !> the machine's FFTW wisdom file (veslide_wisdom.c)
-        integer(c_int) function wisdom_load() bind(c, name='veslide_wisdom_load')
+        !> (`mpi` 1: the file of a process with FFTW's MPI planners, whose wisdom holds MPI plans)
+        integer(c_int) function wisdom_load(mpi) bind(c, name='veslide_wisdom_load')
             import :: c_int
+            integer(c_int), value :: mpi
         end function wisdom_load
-        integer(c_int) function wisdom_save() bind(c, name='veslide_wisdom_save')
+        integer(c_int) function wisdom_save(mpi) bind(c, name='veslide_wisdom_save')
             import :: c_int
+            integer(c_int), value :: mpi
         end function wisdom_save
     end interface
 
 contains
+
+    !> Which wisdom file this process reads and writes: 1 once FFTW's MPI planners are registered
+    !> (their plans in its wisdom), else 0 (veslide_wisdom.c)
+    integer(c_int) function wisdom_kind() result(kind)
+        kind = merge(1_c_int, 0_c_int, mpi_ready)
+    end function wisdom_kind
 
     !> FFTW planner flag from its name: 'estimate', 'measure' or 'patient'
     integer function fft_planner_flag(name) result(flag)
@@ -144,14 +155,14 @@ contains
         call c_f_pointer(self%p_k, self%k, [nx/2 + 1, ny])
         if (isolated_) then
             call set_wisdom_aside(saved)
-        else if (flag /= FFTW_ESTIMATE .and. .not. wisdom_loaded) then
-            stat = wisdom_load(); wisdom_loaded = .true.
+        else if (flag /= FFTW_ESTIMATE .and. wisdom_loaded /= wisdom_kind()) then
+            stat = wisdom_load(wisdom_kind()); wisdom_loaded = wisdom_kind()
         end if
         call plan_blocks(planned)
         if (isolated_) then
             call restore_wisdom(saved)
         else if (flag /= FFTW_ESTIMATE) then
-            stat = wisdom_save()
+            stat = wisdom_save(wisdom_kind())
         end if
         if (.not. planned) then
             call fatal_error(error, "veslide:fftw:init: FFTW returned a null plan"); return
@@ -219,8 +230,8 @@ contains
                 call set_wisdom_aside(saved)
             else if (flag /= FFTW_ESTIMATE) then
                 ! the first process's file, shared so that every process plans alike
-                if (grid%is_root() .and. .not. wisdom_loaded) stat = wisdom_load()
-                wisdom_loaded = .true.
+                if (grid%is_root() .and. wisdom_loaded /= 1) stat = wisdom_load(1_c_int)
+                wisdom_loaded = 1
                 call fftw_mpi_broadcast_wisdom(int(grid%comm, c_int32_t))
             end if
             self%plan_r2c = fftw_mpi_plan_dft_r2c_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), self%xr, kt, &
@@ -230,8 +241,9 @@ contains
             if (isolated_) then
                 call restore_wisdom(saved)
             else if (flag /= FFTW_ESTIMATE) then
+                ! every process's part of the plan (their shares differ), kept by the first
                 call fftw_mpi_gather_wisdom(int(grid%comm, c_int32_t))
-                if (grid%is_root()) stat = wisdom_save()
+                if (grid%is_root()) stat = wisdom_save(1_c_int)
             end if
             if (.not. (c_associated(self%plan_r2c) .and. c_associated(self%plan_c2r))) then
                 call fatal_error(error, "veslide:fftw:init: FFTW returned a null MPI plan"); return
