@@ -1,4 +1,4 @@
-!> Shared set-up for the tests: a solve in a few lines, unique file names, text files
+!> Shared set-up for the tests: a problem or a solve in a few lines, unique file names, text files
 module test_support
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
@@ -12,7 +12,7 @@ module test_support
     use veslide_output, only: process_id
     implicit none
     private
-    public :: solve_case, unique_name, write_text, square_grid
+    public :: solve_case, case_problem, unique_name, write_text, square_grid
 
 contains
 
@@ -43,7 +43,6 @@ contains
         type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
         real(dp) :: v(2)
-        integer :: var
         if (present(mat)) then
             m = mat
         else
@@ -51,18 +50,37 @@ contains
             if (allocated(error)) return
         end if
         v = 0.0_dp; if (present(velocity)) v = velocity
-        var = KERNEL_SPECTRAL; if (present(variant)) var = variant
-        call fft%init(size(h, 1), size(h, 2), error, planner='estimate'); if (allocated(error)) return
-        call new_kernel(k, square_grid(h, lx, ly), m, v, var, error); if (allocated(error)) return
+        call case_problem(h, lx, ly, p_mean, m, v, problem, error, variant=variant, kernel=k, fft=fft)
+        if (allocated(error)) return
         opts%tolerance = 1.0e-12_dp; if (present(tol)) opts%tolerance = tol
         if (present(method)) opts%method = solver_method_id(method)
         if (present(device)) opts%device = device_choice_id(device)
-        call new_contact_problem(problem, k, h, p_mean, error); if (allocated(error)) return
         call solve_contact(problem, fft, opts, state, error, p_init=p_init)
         if (allocated(error)) return
         if (.not. state%converged) call fatal_error(error, "solver did not converge")
         if (present(kernel)) kernel = k
     end subroutine solve_case
+
+    !> The problem of heights h on an (lx, ly) cell against `mat` moving at `velocity`, pressed to
+    !> p_mean; when asked for, its kernel (`variant`, spectral when absent) and the transforms
+    subroutine case_problem(h, lx, ly, p_mean, mat, velocity, problem, error, variant, kernel, fft)
+        real(dp), intent(in) :: h(:, :), lx, ly, p_mean, velocity(2)
+        type(material_t), intent(in) :: mat
+        type(contact_problem_t), intent(out) :: problem
+        type(error_t), allocatable, intent(out) :: error
+        integer, intent(in), optional :: variant
+        type(kernel_t), intent(out), optional :: kernel
+        type(fft2d_t), intent(out), optional :: fft
+        type(kernel_t) :: k
+        integer :: var
+        var = KERNEL_SPECTRAL; if (present(variant)) var = variant
+        if (present(fft)) then
+            call fft%init(size(h, 1), size(h, 2), error, planner='estimate'); if (allocated(error)) return
+        end if
+        call new_kernel(k, square_grid(h, lx, ly), mat, velocity, var, error); if (allocated(error)) return
+        call new_contact_problem(problem, k, h, p_mean, error); if (allocated(error)) return
+        if (present(kernel)) kernel = k
+    end subroutine case_problem
 
     !> A file name unique to this process and tag, in the system's temporary directory
     function unique_name(tag) result(name)

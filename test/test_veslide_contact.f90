@@ -3,15 +3,16 @@ module test_veslide_contact
     use veslide_kinds, only: dp, pi
     use veslide_fftw, only: fft2d_t
     use veslide_material, only: material_t, new_elastic
-    use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
-    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
+    use veslide_kernel, only: kernel_t
+    use veslide_contact, only: contact_problem_t, contact_state_t
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, slope_force
     use veslide_quantities, only: results_t, add_force_quantities, axial_of, AXIAL_NONE, AXIAL_HALF_TURN, &
                                   AXIAL_SYMMETRIC
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
-    use test_support, only: solve_case, square_grid
+    use test_support, only: solve_case, case_problem, square_grid
     use veslide_surface, only: cosine_surface, paraboloid_surface, bisinusoid_surface
-    use reference_oracles, only: paper_solid, peak_speed, lcell, westergaard, westergaard_t
+    use reference_oracles, only: paper_solid, peak_speed, westergaard, westergaard_t
+    use solver_fixture, only: solve_full_contact
     implicit none
     private
     public :: collect_contact, collect_quantities, collect_analysis
@@ -49,11 +50,8 @@ contains
         type(contact_problem_t), intent(out) :: problem
         type(error_t), allocatable, intent(out) :: error
         type(material_t) :: m
-        type(kernel_t) :: k
         call new_elastic(m, 1.0e6_dp, 0.0_dp, error); if (allocated(error)) return
-        call new_kernel(k, square_grid(h, 1.0_dp, 1.0_dp), m, [0.0_dp, 0.0_dp], KERNEL_SPECTRAL, error)
-        if (allocated(error)) return
-        call new_contact_problem(problem, k, h, 10.0_dp, error)
+        call case_problem(h, 1.0_dp, 1.0_dp, 10.0_dp, m, [0.0_dp, 0.0_dp], problem, error)
     end subroutine elastic_problem
 
     !> A 2 x 2 candidate whose four measures are computed by hand
@@ -140,13 +138,8 @@ contains
             end do
         end do
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call solve_case(h, lcell, lcell, 5.0e6_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 2.0_dp), 0.0_dp], &
-                        kernel=k)
+        call solve_full_contact(h, m, [peak_speed(11.0_dp, 2.0_dp), 0.0_dp], 5.0e6_dp, f, s, k, fft, error)
         if (allocated(error)) return
-        call check(error, contact_area_fraction(s%p), 1.0_dp, "not in full contact", abs=0.0_dp)
-        if (allocated(error)) return
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        f = k%tangential_force(fft, s%p)
         call slope_force(k%grid, fft, s%p, h, fs)
         call report("rel. difference", maxval(abs(f - fs))/maxval(abs(f)))
         call check(error, maxval(abs(f - fs)) <= 1.0e-9_dp*maxval(abs(f)), "slope force differs in full contact")

@@ -2,19 +2,20 @@
 !> the exact full-contact forces, identities (dissipation, tan beta), limits, symmetries and the
 !> physics of steady sliding (leading flank, Hertz limits, converging friction)
 module test_veslide_solver_dr
-    use veslide_kinds, only: dp, i8, pi, two_pi
+    use veslide_kinds, only: dp, pi
     use veslide_fftw, only: fft2d_t
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, new_kernel_from_multiplier, KERNEL_SPECTRAL
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
     use veslide_solver_options, only: solver_options_t
     use veslide_solver, only: solve_contact
-    use veslide_surface, only: psd_t, random_surface, cosine_surface, cylinder_surface
+    use veslide_surface, only: cosine_surface, cylinder_surface
     use veslide_analysis, only: contact_area_fraction
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: solve_case, square_grid
-    use dense_reference, only: influence_matrix, solve_dense, dense_compare
-    use reference_oracles, only: paper_rough, paper_solid, peak_speed, full_contact_force, einf, lcell
+    use reference_oracles, only: paper_solid, peak_speed, einf, lcell
+    use solver_fixture, only: sliding_scene, mirrored, rotated, relative_difference, dense_elastic, dense_sliding, &
+                              solve_full_contact, check_full_contact_forces
     implicit none
     private
     public :: collect_solver_dr
@@ -40,55 +41,26 @@ contains
     end subroutine collect_solver_dr
 
 
+    !> The dense tests name no method: 'auto' takes bccg on the elastic scene, dr on the sliding ones
     subroutine test_dense_16_elastic(error)
         type(error_t), allocatable, intent(out) :: error
-        type(material_t) :: m
-        real(dp) :: h(16, 16)
-        call paper_rough(16, h, error); if (allocated(error)) return
-        call new_elastic(m, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
-        call dense_compare(h, m, [0.0_dp, 0.0_dp], 5.0e4_dp, error)
+        call dense_elastic(16, 5.0e4_dp, error)
     end subroutine test_dense_16_elastic
 
     subroutine test_dense_32_visco(error)
         type(error_t), allocatable, intent(out) :: error
-        type(material_t) :: m
-        real(dp) :: h(32, 32)
-        call paper_rough(32, h, error); if (allocated(error)) return
-        call paper_solid(100.0_dp, m, error); if (allocated(error)) return
-        call dense_compare(h, m, [peak_speed(100.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
+        call dense_sliding(error, ratio=100.0_dp)
     end subroutine test_dense_32_visco
 
     subroutine test_dense_32_aniso(error)
         type(error_t), allocatable, intent(out) :: error
-        type(material_t) :: m
-        real(dp) :: h(32, 32)
-        call paper_rough(32, h, error, eps=0.3_dp, alpha=pi/4); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error)
+        call dense_sliding(error, eps=0.3_dp, alpha=pi/4)
     end subroutine test_dense_32_aniso
 
     !> In full contact P(q) = H(q)/K(q) for q /= 0: the forces are known in closed form
     subroutine test_full_contact_forces(error)
         type(error_t), allocatable, intent(out) :: error
-        integer, parameter :: n = 32
-        type(material_t) :: m
-        type(kernel_t) :: k
-        type(fft2d_t) :: fft
-        type(contact_state_t) :: s
-        real(dp) :: h(n, n), f(2), fe(2)
-        call paper_rough(n, h, error); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call solve_case(h, lcell, lcell, 2.0e7_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
-                        kernel=k)
-        if (allocated(error)) return
-        call check(error, contact_area_fraction(s%p), 1.0_dp, "not in full contact", abs=0.0_dp)
-        if (allocated(error)) return
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        f = k%tangential_force(fft, s%p)
-        fe = full_contact_force(k, fft, h)
-        call report("rel. error Fx", abs(f(1) - fe(1))/abs(fe(1))); call report("rel. error Fy", abs(f(2) - fe(2))/abs(fe(1)))
-        call check(error, f(1), fe(1), "Fx", rel=1.0e-10_dp); if (allocated(error)) return
-        call check(error, f(2), fe(2), "Fy", abs=1.0e-10_dp*abs(fe(1)))
+        call check_full_contact_forces(error)
     end subroutine test_full_contact_forces
 
     !> A single wave at angle beta to v, in full contact: F is parallel to -q, F_lat/F_fric = tan beta
@@ -103,13 +75,8 @@ contains
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
         lam = lcell/sqrt(13.0_dp); beta = atan2(2.0_dp, 3.0_dp)      ! wavevector (3, 2) q0
         call cosine_surface(square_grid(h, lcell, lcell), 1.0e-5_dp, lam, beta, h)
-        call solve_case(h, lcell, lcell, 2.0e6_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 3.6_dp), 0.0_dp], &
-                        kernel=k)
+        call solve_full_contact(h, m, [peak_speed(11.0_dp, 3.6_dp), 0.0_dp], 2.0e6_dp, f, s, k, fft, error)
         if (allocated(error)) return
-        call check(error, contact_area_fraction(s%p), 1.0_dp, "not in full contact", abs=0.0_dp)
-        if (allocated(error)) return
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        f = k%tangential_force(fft, s%p)
         fric = -f(1); lat = f(2)     ! v along +x: friction opposes +x, lateral along +y
         call report("F_lat/F_fric - tan beta", abs(lat/fric) - tan(beta))
         call check(error, fric > 0.0_dp, "friction must resist the motion"); if (allocated(error)) return
@@ -124,13 +91,11 @@ contains
         type(kernel_t) :: k
         type(fft2d_t) :: fft
         type(contact_state_t) :: s
-        real(dp) :: h(n, n), f(2), fr(2), q(2), dw(n, n)
+        real(dp) :: h(n, n), v(2), f(2), fr(2), q(2), dw(n, n)
         complex(dp), allocatable :: wk(:, :)
         integer :: i, j, d
-        call paper_rough(n, h, error, eps=0.5_dp, alpha=0.5_dp); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call solve_case(h, lcell, lcell, 1.0e5_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
-                        kernel=k)
+        call sliding_scene(n, h, m, v, error, eps=0.5_dp, alpha=0.5_dp); if (allocated(error)) return
+        call solve_case(h, lcell, lcell, 1.0e5_dp, s, error, mat=m, velocity=v, kernel=k)
         if (allocated(error)) return
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         f = k%tangential_force(fft, s%p)
@@ -163,23 +128,21 @@ contains
         type(solver_options_t) :: opts
         complex(dp) :: kd(n/2 + 1, n)
         integer :: i, j
-        real(dp) :: h(n, n), f(2), v
-        call paper_rough(n, h, error); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
+        real(dp) :: h(n, n), f(2), v(2)
+        call sliding_scene(n, h, m, v, error); if (allocated(error)) return
         call new_elastic(e0, einf/11.0_dp, 0.5_dp, error); if (allocated(error)) return
         call new_elastic(ei, einf, 0.5_dp, error); if (allocated(error)) return
-        v = peak_speed(11.0_dp, 4.0_dp)
         call solve_case(h, lcell, lcell, 1.0e5_dp, s0, error, mat=e0); if (allocated(error)) return
         opts%tolerance = 1.0e-12_dp
-        call solve_case(h, lcell, lcell, 1.0e5_dp, slow, error, mat=m, velocity=[1.0e-9_dp*v, 0.0_dp], kernel=k)
+        call solve_case(h, lcell, lcell, 1.0e5_dp, slow, error, mat=m, velocity=1.0e-9_dp*v, kernel=k)
         if (allocated(error)) return
         call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
         f = k%tangential_force(fft, slow%p)
-        call report("slow: max|dp|/max p", maxval(abs(slow%p - s0%p))/maxval(s0%p)); call report("slow f", -f(1)/1.0e5_dp)
-        call check(error, maxval(abs(slow%p - s0%p))/maxval(s0%p) <= 1.0e-7_dp, "slow limit is not E0")
+        call report("slow: max|dp|/max p", relative_difference(slow%p, s0%p)); call report("slow f", -f(1)/1.0e5_dp)
+        call check(error, relative_difference(slow%p, s0%p) <= 1.0e-7_dp, "slow limit is not E0")
         if (allocated(error)) return
         call check(error, abs(f(1))/1.0e5_dp <= 1.0e-7_dp, "friction at v -> 0"); if (allocated(error)) return
-        call solve_case(h, lcell, lcell, 1.0e5_dp, fast, error, mat=m, velocity=[1.0e9_dp*v, 0.0_dp], kernel=k)
+        call solve_case(h, lcell, lcell, 1.0e5_dp, fast, error, mat=m, velocity=1.0e9_dp*v, kernel=k)
         if (allocated(error)) return
         f = k%tangential_force(fft, fast%p)
         ! v -> infinity: every mode with q.v /= 0 is glassy, but the modes with q.v = 0 (q across v)
@@ -197,8 +160,8 @@ contains
         call new_kernel_from_multiplier(klim, kl%grid, kd, [0.0_dp, 0.0_dp], error); if (allocated(error)) return
         call new_contact_problem(problem, klim, h, 1.0e5_dp, error); if (allocated(error)) return
         call solve_contact(problem, fft, opts, si, error); if (allocated(error)) return
-        call report("fast: max|dp|/max p", maxval(abs(fast%p - si%p))/maxval(si%p)); call report("fast f", -f(1)/1.0e5_dp)
-        call check(error, maxval(abs(fast%p - si%p))/maxval(si%p) <= 1.0e-7_dp, "fast limit is not the glassy solid")
+        call report("fast: max|dp|/max p", relative_difference(fast%p, si%p)); call report("fast f", -f(1)/1.0e5_dp)
+        call check(error, relative_difference(fast%p, si%p) <= 1.0e-7_dp, "fast limit is not the glassy solid")
         if (allocated(error)) return
         call check(error, abs(f(1))/1.0e5_dp <= 1.0e-7_dp, "friction at v -> infinity")
     end subroutine test_limits
@@ -209,23 +172,14 @@ contains
         integer, parameter :: n = 32
         type(material_t) :: m
         type(contact_state_t) :: s, sm
-        real(dp) :: h(n, n), hm(n, n), v
-        integer :: i
-        call paper_rough(n, h, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        v = peak_speed(11.0_dp, 4.0_dp)
-        do i = 1, n
-            hm(i, :) = h(modulo(1 - i, n) + 1, :)
-        end do
-        call solve_case(h, lcell, lcell, 1.0e5_dp, s, error, mat=m, velocity=[v, 0.0_dp], tol=1.0e-12_dp)
+        real(dp) :: h(n, n), v(2)
+        call sliding_scene(n, h, m, v, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
+        call solve_case(h, lcell, lcell, 1.0e5_dp, s, error, mat=m, velocity=v, tol=1.0e-12_dp)
         if (allocated(error)) return
-        call solve_case(hm, lcell, lcell, 1.0e5_dp, sm, error, mat=m, velocity=[-v, 0.0_dp], tol=1.0e-12_dp)
+        call solve_case(mirrored(h), lcell, lcell, 1.0e5_dp, sm, error, mat=m, velocity=[-v(1), 0.0_dp], tol=1.0e-12_dp)
         if (allocated(error)) return
-        do i = 1, n
-            hm(i, :) = s%p(modulo(1 - i, n) + 1, :)
-        end do
-        call report("max|dp|/max p", maxval(abs(sm%p - hm))/maxval(s%p))
-        call check(error, maxval(abs(sm%p - hm))/maxval(s%p) <= 1.0e-8_dp, "not mirrored")
+        call report("max|dp|/max p", relative_difference(sm%p, mirrored(s%p)))
+        call check(error, relative_difference(sm%p, mirrored(s%p)) <= 1.0e-8_dp, "not mirrored")
     end subroutine test_reverse
 
     !> Rotating surface and velocity together by 90 degrees rotates the solution
@@ -234,27 +188,14 @@ contains
         integer, parameter :: n = 32
         type(material_t) :: m
         type(contact_state_t) :: s, sr
-        real(dp) :: h(n, n), hr(n, n), v
-        integer :: i, j
-        call paper_rough(n, h, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        v = peak_speed(11.0_dp, 4.0_dp)
-        do j = 1, n
-            do i = 1, n
-                hr(i, j) = h(j, modulo(1 - i, n) + 1)
-            end do
-        end do
-        call solve_case(h, lcell, lcell, 1.0e5_dp, s, error, mat=m, velocity=[v, 0.0_dp], tol=1.0e-12_dp)
+        real(dp) :: h(n, n), v(2)
+        call sliding_scene(n, h, m, v, error, eps=0.5_dp, alpha=0.6_dp); if (allocated(error)) return
+        call solve_case(h, lcell, lcell, 1.0e5_dp, s, error, mat=m, velocity=v, tol=1.0e-12_dp)
         if (allocated(error)) return
-        call solve_case(hr, lcell, lcell, 1.0e5_dp, sr, error, mat=m, velocity=[0.0_dp, v], tol=1.0e-12_dp)
+        call solve_case(rotated(h), lcell, lcell, 1.0e5_dp, sr, error, mat=m, velocity=[0.0_dp, v(1)], tol=1.0e-12_dp)
         if (allocated(error)) return
-        do j = 1, n
-            do i = 1, n
-                hr(i, j) = s%p(j, modulo(1 - i, n) + 1)
-            end do
-        end do
-        call report("max|dp|/max p", maxval(abs(sr%p - hr))/maxval(s%p))
-        call check(error, maxval(abs(sr%p - hr))/maxval(s%p) <= 1.0e-8_dp, "not rotated")
+        call report("max|dp|/max p", relative_difference(sr%p, rotated(s%p)))
+        call check(error, relative_difference(sr%p, rotated(s%p)) <= 1.0e-8_dp, "not rotated")
     end subroutine test_rotation
 
     !> A wave crest in partial contact: the pressure centroid moves ahead of the crest (along v)

@@ -7,16 +7,14 @@ module test_veslide_solver_pdr
     use veslide_fftw, only: fft2d_t
     use veslide_material, only: material_t, new_elastic, BASE_BONDED, BASE_FRICTIONLESS
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL, KERNEL_COLLOCATION
-    use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
-    use veslide_solver_options, only: solver_options_t, solver_method_id, solver_method_names, SOLVER_PDR, &
-                                      SOLVER_DR, SOLVER_BCCG
+    use veslide_contact, only: contact_problem_t, contact_state_t
+    use veslide_solver_options, only: solver_options_t, solver_method_names, SOLVER_PDR, SOLVER_DR, SOLVER_BCCG
     use veslide_solver, only: solve_contact, auto_method
-    use veslide_analysis, only: contact_area_fraction
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
-    use test_support, only: solve_case
-    use dense_reference, only: influence_matrix, solve_dense, dense_compare
-    use reference_oracles, only: paper_rough, paper_solid, peak_speed, full_contact_force, lcell
-    use test_veslide_solver_bccg, only: fixed_spectrum_surface
+    use test_support, only: case_problem
+    use reference_oracles, only: paper_solid, peak_speed, lcell
+    use solver_fixture, only: sliding_scene, relative_difference, dense_elastic, dense_sliding, &
+                              check_full_contact_forces, compare_methods, check_flat_iterations
     implicit none
     private
     public :: collect_solver_pdr
@@ -43,44 +41,26 @@ contains
 
     subroutine test_dense_16_elastic(error)
         type(error_t), allocatable, intent(out) :: error
-        type(material_t) :: m
-        real(dp) :: h(16, 16)
-        call paper_rough(16, h, error); if (allocated(error)) return
-        call new_elastic(m, 1.0e7_dp, 0.5_dp, error); if (allocated(error)) return
-        call dense_compare(h, m, [0.0_dp, 0.0_dp], 5.0e4_dp, error, method='pdr')
+        call dense_elastic(16, 5.0e4_dp, error, method='pdr')
     end subroutine test_dense_16_elastic
 
     subroutine test_dense_32_visco(error)
         type(error_t), allocatable, intent(out) :: error
-        type(material_t) :: m
-        real(dp) :: h(32, 32)
-        call paper_rough(32, h, error); if (allocated(error)) return
-        call paper_solid(100.0_dp, m, error); if (allocated(error)) return
-        call dense_compare(h, m, [peak_speed(100.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
+        call dense_sliding(error, method='pdr', ratio=100.0_dp)
     end subroutine test_dense_32_visco
 
     subroutine test_dense_32_aniso(error)
         type(error_t), allocatable, intent(out) :: error
-        type(material_t) :: m
-        real(dp) :: h(32, 32)
-        call paper_rough(32, h, error, eps=0.3_dp, alpha=pi/4); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
+        call dense_sliding(error, method='pdr', eps=0.3_dp, alpha=pi/4)
     end subroutine test_dense_32_aniso
 
     !> A viscoelastic layer (q0 d = 0.5, so the longest waves feel the base) on both bases, sliding:
     !> pdr against the dense exact solution of the same discrete (layered) problem
     subroutine test_dense_32_layer(error)
         type(error_t), allocatable, intent(out) :: error
-        type(material_t) :: m
-        real(dp) :: h(32, 32)
         integer :: base
-        call paper_rough(32, h, error); if (allocated(error)) return
         do base = BASE_BONDED, BASE_FRICTIONLESS
-            call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-            m%thickness_m = 0.5_dp*lcell/(2.0_dp*pi); m%base = base
-            call dense_compare(h, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], 1.0e5_dp, error, method='pdr')
-            if (allocated(error)) return
+            call dense_sliding(error, method='pdr', base=base); if (allocated(error)) return
         end do
     end subroutine test_dense_32_layer
 
@@ -88,28 +68,10 @@ contains
     !> solution when it is admissible, confirms it within a few FFT pairs
     subroutine test_full_contact_forces(error)
         type(error_t), allocatable, intent(out) :: error
-        integer, parameter :: n = 32
-        type(material_t) :: m
-        type(kernel_t) :: k
-        type(fft2d_t) :: fft
         type(contact_state_t) :: s
-        real(dp) :: h(n, n), f(2), fe(2)
-        call paper_rough(n, h, error); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call solve_case(h, lcell, lcell, 2.0e7_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
-                        kernel=k, method='pdr')
-        if (allocated(error)) return
-        call check(error, contact_area_fraction(s%p), 1.0_dp, "not in full contact", abs=0.0_dp)
-        if (allocated(error)) return
+        call check_full_contact_forces(error, 'pdr', s); if (allocated(error)) return
         call report("FFT pairs", real(s%operator_applications, dp))
         call check(error, s%operator_applications <= 5, "the full-contact start was not taken")
-        if (allocated(error)) return
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        f = k%tangential_force(fft, s%p)
-        fe = full_contact_force(k, fft, h)
-        call report("rel. error Fx", abs(f(1) - fe(1))/abs(fe(1)))
-        call check(error, f(1), fe(1), "Fx", rel=1.0e-10_dp); if (allocated(error)) return
-        call check(error, f(2), fe(2), "Fy", abs=1.0e-10_dp*abs(fe(1)))
     end subroutine test_full_contact_forces
 
     !> pdr and the plain splitting agree on a rough viscoelastic contact near the loss peak, and
@@ -120,15 +82,8 @@ contains
         type(material_t) :: m
         real(dp) :: h(n, n), v(2)
         type(contact_state_t) :: s, sd
-        call paper_rough(n, h, error); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        v = [peak_speed(11.0_dp, 4.0_dp), 0.0_dp]
-        call solve_case(h, lcell, lcell, 3.2e4_dp, s, error, mat=m, velocity=v, method='pdr'); if (allocated(error)) return
-        call solve_case(h, lcell, lcell, 3.2e4_dp, sd, error, mat=m, velocity=v, method='dr'); if (allocated(error)) return
-        call report("pdr FFT pairs", real(s%operator_applications, dp))
-        call report("dr FFT pairs", real(sd%operator_applications, dp))
-        call report("max |dp|/max p", maxval(abs(s%p - sd%p))/maxval(s%p))
-        call check(error, maxval(abs(s%p - sd%p))/maxval(s%p) <= 1.0e-9_dp, "pressures differ")
+        call sliding_scene(n, h, m, v, error); if (allocated(error)) return
+        call compare_methods(h, lcell, 3.2e4_dp, 'pdr', 'dr', s, sd, error, mat=m, velocity=v)
         if (allocated(error)) return
         call check(error, s%operator_applications >= 2*s%iterations, "fewer than two FFT pairs per iteration")
     end subroutine test_matches_dr
@@ -141,9 +96,7 @@ contains
         type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
         type(contact_state_t) :: s, sw
-        call rough_problem_64(problem, k, fft, error); if (allocated(error)) return
-        opts%method = SOLVER_PDR
-        call solve_contact(problem, fft, opts, s, error); if (allocated(error)) return
+        call pdr_rough_64(problem, k, fft, opts, s, error); if (allocated(error)) return
         call solve_contact(problem, fft, opts, sw, error, p_init=s%p, g_init=s%g); if (allocated(error)) return
         call report("cold", real(s%iterations, dp)); call report("warm", real(sw%iterations, dp))
         call check(error, sw%converged .and. sw%iterations <= 2 .and. s%iterations > 10, "warm start did not help")
@@ -158,61 +111,46 @@ contains
         type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
         type(contact_state_t) :: s, sa
-        call rough_problem_64(problem, k, fft, error); if (allocated(error)) return
-        opts%method = SOLVER_PDR
-        call solve_contact(problem, fft, opts, s, error); if (allocated(error)) return
+        call pdr_rough_64(problem, k, fft, opts, s, error); if (allocated(error)) return
         opts%anderson_memory = 5
         call solve_contact(problem, fft, opts, sa, error); if (allocated(error)) return
         call report("relaxed FFT pairs", real(s%operator_applications, dp))
         call report("Anderson FFT pairs", real(sa%operator_applications, dp))
-        call report("max |dp|/max p", maxval(abs(s%p - sa%p))/maxval(s%p))
+        call report("max |dp|/max p", relative_difference(sa%p, s%p))
         call check(error, s%converged .and. sa%converged, "not converged"); if (allocated(error)) return
-        call check(error, maxval(abs(s%p - sa%p))/maxval(s%p) <= 1.0e-9_dp, "pressures differ")
+        call check(error, relative_difference(sa%p, s%p) <= 1.0e-9_dp, "pressures differ")
         if (allocated(error)) return
         call check(error, all(problem%kernel%multiplier(1.0_dp) == k%multiplier(1.0_dp)), &
                    "the kernel's multiplier changed")
     end subroutine test_mixing_agrees
 
-    !> The paper's rough surface on 64^2 cells, ratio 11 near the loss peak, 32 kPa: the problem,
-    !> its kernel `k` (a copy the problem's can be compared with) and the transforms
-    subroutine rough_problem_64(problem, k, fft, error)
+    !> The sliding scene on 64^2 cells, pressed to 32 kPa: the problem, its kernel `k` (a copy the
+    !> problem's can be compared with), the transforms, and its cold solve `s` by pdr with the
+    !> default options `opts` (but the method)
+    subroutine pdr_rough_64(problem, k, fft, opts, s, error)
         type(contact_problem_t), intent(out) :: problem
         type(kernel_t), intent(out) :: k
         type(fft2d_t), intent(out) :: fft
+        type(solver_options_t), intent(out) :: opts
+        type(contact_state_t), intent(out) :: s
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 64
         type(material_t) :: m
-        type(grid_t) :: grid
-        real(dp) :: h(n, n)
-        call paper_rough(n, h, error); if (allocated(error)) return
-        call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
-        call new_kernel(k, grid, m, [peak_speed(11.0_dp, 4.0_dp), 0.0_dp], KERNEL_SPECTRAL, error)
+        real(dp) :: h(n, n), v(2)
+        call sliding_scene(n, h, m, v, error); if (allocated(error)) return
+        call case_problem(h, lcell, lcell, 3.2e4_dp, m, v, problem, error, kernel=k, fft=fft)
         if (allocated(error)) return
-        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
-        call new_contact_problem(problem, k, h, 3.2e4_dp, error)
-    end subroutine rough_problem_64
+        opts%method = SOLVER_PDR
+        call solve_contact(problem, fft, opts, s, error)
+    end subroutine pdr_rough_64
 
-    !> The same surface on 64^2 .. 256^2 (q0 .. 16 q0), ratio 11 near the loss peak, tolerance
+    !> The same spectrum on 64^2 .. 256^2 (q0 .. 16 q0), ratio 11 near the loss peak, tolerance
     !> 1e-8: pdr's FFT pairs grow by at most 1.5 from the coarsest grid to the finest
     subroutine test_flat_iterations(error)
         type(error_t), allocatable, intent(out) :: error
-        real(dp), allocatable :: h(:, :)
         type(material_t) :: m
-        type(contact_state_t) :: s
-        integer :: k, n, pairs(3)
         call paper_solid(11.0_dp, m, error); if (allocated(error)) return
-        do k = 1, 3
-            n = 32*2**k
-            call fixed_spectrum_surface(n, 16.0_dp, h, error); if (allocated(error)) return
-            call solve_case(h, lcell, lcell, 3.2e4_dp, s, error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp], &
-                            tol=1.0e-8_dp, method='pdr')
-            if (allocated(error)) return
-            pairs(k) = s%operator_applications
-        end do
-        call report("FFT pairs 64^2", real(pairs(1), dp)); call report("128^2", real(pairs(2), dp))
-        call report("256^2", real(pairs(3), dp))
-        call check(error, pairs(3) <= 1.5_dp*pairs(1), "FFT pairs grow with the grid")
+        call check_flat_iterations(3.2e4_dp, 'pdr', error, mat=m, velocity=[peak_speed(11.0_dp, 4.0_dp), 0.0_dp])
     end subroutine test_flat_iterations
 
     !> The anisotropy measure behind 'auto': 1 for an elastic solid (spectral kernel); for a
@@ -254,15 +192,12 @@ contains
             real(dp), intent(in) :: ratio, speed
             type(error_t), allocatable, intent(out) :: error
             type(material_t) :: m
-            type(kernel_t) :: k
-            type(grid_t) :: grid
             type(contact_problem_t) :: problem
             real(dp), allocatable :: h(:, :)
             allocate (h(n, n)); h = 0.0_dp
             call paper_solid(ratio, m, error); if (allocated(error)) return
-            call new_grid(grid, n, n, lcell, lcell, error); if (allocated(error)) return
-            call new_kernel(k, grid, m, [speed, 0.0_dp], variant, error); if (allocated(error)) return
-            call new_contact_problem(problem, k, h, 1.0e4_dp, error); if (allocated(error)) return
+            call case_problem(h, lcell, lcell, 1.0e4_dp, m, [speed, 0.0_dp], problem, error, variant=variant)
+            if (allocated(error)) return
             call check(error, auto_method(problem) == method, "auto takes '"// &
                        trim(solver_method_names(auto_method(problem)))//"', expected '"// &
                        trim(solver_method_names(method))//"'")

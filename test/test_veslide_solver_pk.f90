@@ -3,11 +3,12 @@
 module test_veslide_solver_pk
     use veslide_kinds, only: dp, pi, two_pi, i8
     use veslide_contact, only: contact_state_t
-    use veslide_surface, only: cosine_surface, bisinusoid_surface, paraboloid_surface, psd_t, random_surface
+    use veslide_surface, only: bisinusoid_surface, paraboloid_surface, psd_t, random_surface
     use veslide_analysis, only: contact_area_fraction, mean_separation
     use testsuite, only: error_t, unittest_t, new_unittest, check, rel_error, report
     use test_support, only: solve_case, square_grid
-    use reference_oracles, only: westergaard_t, westergaard
+    use solver_fixture, only: mirrored, rotated, relative_difference, check_full_contact_wave, wave_h0, &
+                              westergaard_errors, check_westergaard, compare_methods, check_warm_start
     implicit none
     private
     public :: collect_solver_pk
@@ -31,35 +32,10 @@ contains
             ]
     end subroutine collect_solver_pk
 
-    !> Errors against Westergaard's solution (h = h0 cos(2 pi x/l), plane strain) on n cells
-    subroutine westergaard_errors(n, e_area, e_peak, e_gap, error)
-        integer, intent(in) :: n
-        real(dp), intent(out) :: e_area, e_peak, e_gap
-        type(error_t), allocatable, intent(out) :: error
-        real(dp), parameter :: l = 1.0_dp, h0 = 1.0e-3_dp, estar = 1.0e6_dp, p = 1000.0_dp
-        real(dp) :: h(n, 1)
-        type(contact_state_t) :: s
-        type(westergaard_t) :: w
-        call cosine_surface(square_grid(h, l, l), h0, l, 0.0_dp, h)
-        call solve_case(h, l, l, p, s, error, estar=estar); if (allocated(error)) return
-        w = westergaard(p, h0, l, estar)
-        e_area = abs(contact_area_fraction(s%p) - w%width_fraction)
-        e_peak = rel_error(maxval(s%p), w%peak_pa)
-        e_gap = rel_error(mean_separation(s%g), w%mean_gap_m)
-    end subroutine westergaard_errors
-
+    !> Westergaard's profile (ny = 1) on 1024 cells: width, peak pressure and mean gap
     subroutine test_westergaard(error)
         type(error_t), allocatable, intent(out) :: error
-        real(dp) :: ea, ep, eg
-        integer, parameter :: n = 1024
-        call westergaard_errors(n, ea, ep, eg, error); if (allocated(error)) return
-        call report("width error [cells]", ea*n); call report("peak", ep); call report("gap", eg)
-        ! the contact edge is resolved to one cell at each end: |error| <= 2/n
-        call check(error, ea <= 2.0_dp/n, "contact width off by more than two cells"); if (allocated(error)) return
-        ! measured at n = 1024: peak 8.0e-7, mean gap 3.1e-6 (second order in the cell size, see
-        ! westergaard-refinement); the bounds leave a factor ~6 for other compilers/FFT plans
-        call check(error, ep <= 5.0e-6_dp, "peak pressure"); if (allocated(error)) return
-        call check(error, eg <= 2.0e-5_dp, "mean gap")
+        call check_westergaard(error)
     end subroutine test_westergaard
 
     !> Errors fall under refinement (factor 4 in n): an asserted convergence, not a single value
@@ -78,22 +54,11 @@ contains
     !> A wave in full contact: p = p_mean + (E*|q|/2) h exactly, gap 0, for any direction
     subroutine test_full_contact_wave(error)
         type(error_t), allocatable, intent(out) :: error
-        integer, parameter :: n = 64
-        real(dp), parameter :: l = 1.0_dp, h0 = 1.0e-4_dp, estar = 1.0e6_dp
-        real(dp) :: h(n, n), lam, th, amp, p_mean
         type(contact_state_t) :: s
-        ! wavevector (3, 2) * 2 pi/l
-        lam = l/sqrt(13.0_dp); th = atan2(2.0_dp, 3.0_dp)
-        call cosine_surface(square_grid(h, l, l), h0, lam, th, h)
-        amp = 0.5_dp*estar*two_pi/lam*h0
-        p_mean = 1.5_dp*amp
-        call solve_case(h, l, l, p_mean, s, error, estar=estar); if (allocated(error)) return
-        call report("max |p - exact|/p*", maxval(abs(s%p - (p_mean + amp*h/h0)))/amp)
-        call check(error, maxval(abs(s%p - (p_mean + amp*h/h0)))/amp <= 1.0e-10_dp, &
-            "pressure differs from p_mean + p* cos(q.x)"); if (allocated(error)) return
+        call check_full_contact_wave(s, error); if (allocated(error)) return
         call check(error, contact_area_fraction(s%p), 1.0_dp, "full contact", abs=0.0_dp)
         if (allocated(error)) return
-        call check(error, abs(mean_separation(s%g)) <= 1.0e-10_dp*h0, "mean gap in full contact")
+        call check(error, abs(mean_separation(s%g)) <= 1.0e-10_dp*wave_h0, "mean gap in full contact")
     end subroutine test_full_contact_wave
 
     subroutine test_flat(error)
@@ -183,32 +148,19 @@ contains
     subroutine test_rotation_mirror(error)
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 64
-        real(dp) :: h(n, n), hr(n, n), hm(n, n), p
+        real(dp) :: h(n, n), p
         type(contact_state_t) :: s, sr, sm
-        integer :: i, j
         call rough(n, h, error); if (allocated(error)) return
-        do j = 1, n
-            do i = 1, n
-                hr(i, j) = h(j, modulo(1 - i, n) + 1)   ! rotation by +90 degrees about the origin cell
-                hm(i, j) = h(modulo(1 - i, n) + 1, j)   ! mirror x -> -x
-            end do
-        end do
         p = 100.0_dp
         call solve_case(h, 1.0_dp, 1.0_dp, p, s, error); if (allocated(error)) return
-        call solve_case(hr, 1.0_dp, 1.0_dp, p, sr, error); if (allocated(error)) return
-        call solve_case(hm, 1.0_dp, 1.0_dp, p, sm, error); if (allocated(error)) return
-        do j = 1, n
-            do i = 1, n
-                hr(i, j) = s%p(j, modulo(1 - i, n) + 1)
-                hm(i, j) = s%p(modulo(1 - i, n) + 1, j)
-            end do
-        end do
-        call report("rotation", maxval(abs(sr%p - hr))/maxval(s%p))
-        call report("mirror", maxval(abs(sm%p - hm))/maxval(s%p))
+        call solve_case(rotated(h), 1.0_dp, 1.0_dp, p, sr, error); if (allocated(error)) return
+        call solve_case(mirrored(h), 1.0_dp, 1.0_dp, p, sm, error); if (allocated(error)) return
+        call report("rotation", relative_difference(sr%p, rotated(s%p)))
+        call report("mirror", relative_difference(sm%p, mirrored(s%p)))
         ! converged to 1e-12: the fields agree to the tolerance times the condition of the problem
-        call check(error, maxval(abs(sr%p - hr))/maxval(s%p) <= 1.0e-9_dp, "rotated pressure")
+        call check(error, relative_difference(sr%p, rotated(s%p)) <= 1.0e-9_dp, "rotated pressure")
         if (allocated(error)) return
-        call check(error, maxval(abs(sm%p - hm))/maxval(s%p) <= 1.0e-9_dp, "mirrored pressure")
+        call check(error, relative_difference(sm%p, mirrored(s%p)) <= 1.0e-9_dp, "mirrored pressure")
         if (allocated(error)) return
         call check(error, mean_separation(sr%g), mean_separation(s%g), "rotated mean gap", rel=1.0e-10_dp)
     end subroutine test_rotation_mirror
@@ -225,7 +177,7 @@ contains
         call solve_case(k*h, 1.0_dp, 1.0_dp, k*100.0_dp, sk, error); if (allocated(error)) return
         call check(error, all((s%p > 0.0_dp) .eqv. (sk%p > 0.0_dp)), "contact sets differ")
         if (allocated(error)) return
-        call check(error, maxval(abs(sk%p - k*s%p))/maxval(sk%p) <= 1.0e-9_dp, "pressure scales")
+        call check(error, relative_difference(k*s%p, sk%p) <= 1.0e-9_dp, "pressure scales")
         if (allocated(error)) return
         call check(error, mean_separation(sk%g), k*mean_separation(s%g), "gap scales", rel=1.0e-10_dp)
     end subroutine test_linear_scaling
@@ -235,11 +187,8 @@ contains
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 64
         real(dp) :: h(n, n)
-        type(contact_state_t) :: s, sw
         call rough(n, h, error); if (allocated(error)) return
-        call solve_case(h, 1.0_dp, 1.0_dp, 100.0_dp, s, error); if (allocated(error)) return
-        call solve_case(h, 1.0_dp, 1.0_dp, 100.0_dp, sw, error, p_init=s%p); if (allocated(error)) return
-        call check(error, sw%iterations <= 2 .and. s%iterations > 10, "warm start did not help")
+        call check_warm_start(h, 1.0_dp, 100.0_dp, error)
     end subroutine test_warm_start
 
     !> The splitting solver and Polonsky-Keer agree on an elastic rough contact
@@ -249,11 +198,7 @@ contains
         real(dp) :: h(n, n)
         type(contact_state_t) :: s, sd
         call rough(n, h, error); if (allocated(error)) return
-        call solve_case(h, 1.0_dp, 1.0_dp, 100.0_dp, s, error, method='pk'); if (allocated(error)) return
-        call solve_case(h, 1.0_dp, 1.0_dp, 100.0_dp, sd, error, method='dr'); if (allocated(error)) return
-        call report("pk iterations", real(s%iterations, dp)); call report("dr iterations", real(sd%iterations, dp))
-        call report("max |dp|/max p", maxval(abs(s%p - sd%p))/maxval(s%p))
-        call check(error, maxval(abs(s%p - sd%p))/maxval(s%p) <= 1.0e-9_dp, "pressures differ")
+        call compare_methods(h, 1.0_dp, 100.0_dp, 'pk', 'dr', s, sd, error)
     end subroutine test_dr_matches_pk
 
 end module test_veslide_solver_pk
