@@ -41,20 +41,21 @@ contains
     end subroutine collect_solver_dr
 
 
-    !> The dense tests name no method: 'auto' takes bccg on the elastic scene, dr on the sliding ones
+    !> The dense tests of this suite run dr itself (with no method named, 'auto' took bccg on the
+    !> elastic scene)
     subroutine test_dense_16_elastic(error)
         type(error_t), allocatable, intent(out) :: error
-        call dense_elastic(16, 5.0e4_dp, error)
+        call dense_elastic(16, 5.0e4_dp, error, method='dr')
     end subroutine test_dense_16_elastic
 
     subroutine test_dense_32_visco(error)
         type(error_t), allocatable, intent(out) :: error
-        call dense_sliding(error, ratio=100.0_dp)
+        call dense_sliding(error, method='dr', ratio=100.0_dp)
     end subroutine test_dense_32_visco
 
     subroutine test_dense_32_aniso(error)
         type(error_t), allocatable, intent(out) :: error
-        call dense_sliding(error, eps=0.3_dp, alpha=pi/4)
+        call dense_sliding(error, method='dr', eps=0.3_dp, alpha=pi/4)
     end subroutine test_dense_32_aniso
 
     !> In full contact P(q) = H(q)/K(q) for q /= 0: the forces are known in closed form
