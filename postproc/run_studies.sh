@@ -7,7 +7,8 @@
 #   bash postproc/run_studies.sh cellspeed   the same at v tau/L0 = 0.1, 1, 10 (L0 and 4 L0)
 #   bash postproc/run_studies.sh persson_s   Persson's theory with S(q) = 1/2 + P^2/2, figure-4 scene
 #   bash postproc/run_studies.sh STUDY --plot    only redraw from existing results
-# OMP_NUM_THREADS defaults to 1 here (the numbers in the docs were measured so).
+# OMP_NUM_THREADS defaults to 1 here (the numbers in the docs were measured so). VESLIDE_EXE=PATH
+# runs that program (e.g. the GPU build's, `bash gpu/build.sh`) instead of this checkout's release build.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 study="${1:?usage: run_studies.sh band|cells|cellspeed|persson_s [--plot]}"
@@ -17,13 +18,18 @@ source scripts/env.sh     # .venv/bin on PATH, the HDF5 that setup.sh found (ser
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 mkdir -p "results/studies/$study" docs/figures/studies
 if [ "${2:-}" != "--plot" ]; then
-    fpm build --profile release >/dev/null
+    if [ -n "${VESLIDE_EXE:-}" ]; then
+        exe=$VESLIDE_EXE
+    else
+        fpm build --profile release >/dev/null
+        exe=$(fpm run --profile release veslide --runner echo 2>/dev/null | tail -1)
+    fi
     log="results/studies/$study/runtimes.txt"
     : > "$log"
     for nml in "inputs/studies/$study"/*.nml; do
         load0=$(cut -d' ' -f1 /proc/loadavg)
         t0=$(date +%s.%N)
-        fpm run --profile release veslide -- "$nml" --quiet
+        "$exe" "$nml" --quiet
         t1=$(date +%s.%N)
         load1=$(cut -d' ' -f1 /proc/loadavg)
         printf '%s %.1f s, load %s -> %s, OMP_NUM_THREADS=%s\n' "$(basename "$nml" .nml)" \
