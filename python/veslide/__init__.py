@@ -22,7 +22,7 @@ from .topography import (PreparedSurface, Scan, major_axis_deg, psd_2d, psd_radi
 from .topography import load as load_topography, prepare as prepare_scan, read as read_scan
 from .material import FitReport, Material, fit_prony, shift_factor
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 __all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revision", "write_topography", "read_topography", "find_executable",
            "namelist", "write_namelist", "refine", "convergence", "Refinement", "StudyRefinement",
