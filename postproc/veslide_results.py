@@ -7,6 +7,8 @@ import re
 import h5py
 import numpy as np
 
+from veslide.results import seed_statistics
+
 
 def table(path, name="/summary"):
     """A study's /summary (or /ensemble) as a dict of column name -> numpy array."""
@@ -32,24 +34,7 @@ def dimensionless_speed(path, speed_m_s):
     return np.asarray(speed_m_s) * tau / (lx / k_roll)
 
 
-# angles defined modulo pi (axes): the range their mean is reported in, as /ensemble does
-AXIAL = {"theta_s_rad": "0..pi", "theta_d_rad": "0..pi", "patch_theta_rad": "0..pi", "phi_rad": "-pi/2..pi/2"}
-
-
 def seed_stats(x, name=""):
-    """mean, standard error of the mean, min and max over seeds. Axes (AXIAL names) are averaged
-    as axial data like /ensemble: circular mean of the doubled angle, deviations wrapped into
-    (-pi/2, pi/2]; min and max are of the samples unwrapped about that mean."""
-    x = np.asarray(x, float)
-    n = len(x)
-    if name in AXIAL:
-        m = 0.5 * np.arctan2(np.sin(2 * x).sum(), np.cos(2 * x).sum())
-        if AXIAL[name] == "0..pi":
-            m = m % np.pi
-        d = x - m
-        d = d - np.pi * np.round(d / np.pi)
-    else:
-        m = x.mean()
-        d = x - m
-    se = np.sqrt((d ** 2).sum() / max(1, n - 1) / n)
-    return m, se, (m + d).min(), (m + d).max()
+    """mean, standard error of the mean, min and max over seeds, by /ensemble's rule (axes as
+    axial data): the package's veslide.results.seed_statistics."""
+    return seed_statistics(x, name)

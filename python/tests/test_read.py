@@ -141,3 +141,29 @@ def test_missing_file_names_the_running_reader(tmp_path):
     (tmp_path / "s.h5.part").write_bytes(b"")
     with pytest.raises(FileNotFoundError, match="read_running"):
         veslide.read(tmp_path / "s.h5")
+
+
+def test_seed_statistics_is_the_programs_ensemble(exe, tmp_path):
+    """veslide.results.seed_statistics (the one Python copy of the rule, used by plot.seed_means
+    and postproc) gives /ensemble's mean and standard error of every scalar, the axes averaged
+    as axial data, from the /summary rows of each combination of parameters."""
+    from conftest import params
+    from veslide.results import AXIAL, parameter_columns, seed_statistics
+    p = params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8, "eccentricity": 0.4}, material={"model": "one_term"},
+               motion={"speed_m_s": 0.05}, output={"fields": False},
+               analysis={"anisotropy": True, "zeta2": 8, "patches": True},
+               sweep={"alphas_deg": [0.0, 90.0], "n_seeds": 3})
+    r = veslide.run(p, output=tmp_path / "s.h5", exe=exe, progress=None)
+    keys = [k for k in parameter_columns(r.summary) if k not in ("case", "seed")]
+    ens = r.ensemble.set_index(keys)
+    checked = set()
+    for group, part in r.summary.groupby(keys):
+        row = ens.loc[group]
+        for name in r.summary.columns:
+            if "mean_" + name not in ens.columns or name in keys:
+                continue
+            mean, sem, _, _ = seed_statistics(part[name].to_numpy(float), name)
+            assert np.isclose(mean, row["mean_" + name], rtol=1e-13, atol=1e-300), name
+            assert np.isclose(sem, row["sem_" + name], rtol=1e-12, atol=1e-300), name
+            checked.add(name)
+    assert set(AXIAL) <= checked                  # the axes were among them

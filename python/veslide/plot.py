@@ -18,7 +18,7 @@ from matplotlib.ticker import MaxNLocator, ScalarFormatter
 import pandas as pd
 
 from . import topography as _topo
-from .results import parameter_columns
+from .results import parameter_columns, seed_statistics
 
 SYMBOLS = {
     "contact_area_fraction": r"$A/A_0$",
@@ -549,10 +549,11 @@ def seed_means(summary, values, name="value"):
     keys = [k for k in parameter_columns(summary) if k not in ("case", "seed")]
     df = summary[keys].copy()
     df[name] = np.asarray(values, dtype=float)
-    out = df.groupby(keys, sort=True)[name].agg(["mean", "std", "count"]).reset_index()
-    out = out.rename(columns={"mean": "mean_" + name, "count": "n_seeds"})
-    out["sem_" + name] = (out.pop("std") / np.sqrt(out["n_seeds"])).fillna(0.0)
-    return out
+    rows = []
+    for group, part in df.groupby(keys, sort=True):
+        mean, sem, _, _ = seed_statistics(part[name].to_numpy(), name)
+        rows.append((*(group if isinstance(group, tuple) else (group,)), mean, len(part), sem))
+    return pd.DataFrame(rows, columns=keys + ["mean_" + name, "n_seeds", "sem_" + name])
 
 
 def force_vs_speed(source, quantity="friction_coefficient", ax=None, *, by=None, errorbars=True, speed_scale=1.0,

@@ -69,6 +69,31 @@ def _table(ds):
     return df
 
 
+#: Quantities that are axes (angles modulo pi) and the range of their mean over seeds, as the
+#: program's /ensemble averages them (veslide_quantities' axial_of)
+AXIAL = {"theta_s_rad": "0..pi", "theta_d_rad": "0..pi", "patch_theta_rad": "0..pi", "phi_rad": "-pi/2..pi/2"}
+
+
+def seed_statistics(x, name=""):
+    """Mean, standard error of the mean, min and max of the values `x` of quantity `name` over
+    seeds, by the rule of the program's /ensemble: axes (AXIAL names) by the circular mean of the
+    doubled angle, deviations wrapped into (-pi/2, pi/2] (an axis scattering about 0 = pi averages
+    to 0, not pi/2); min and max are of the samples unwrapped about that mean. One seed: sem 0."""
+    x = np.asarray(x, float)
+    n = len(x)
+    if name in AXIAL:
+        m = 0.5 * np.arctan2(np.sin(2 * x).sum(), np.cos(2 * x).sum())
+        if AXIAL[name] == "0..pi":
+            m = m % np.pi
+        d = x - m
+        d = d - np.pi * np.round(d / np.pi)
+    else:
+        m = x.sum() / n
+        d = x - m
+    se = np.sqrt((d ** 2).sum() / max(1, n - 1)) / np.sqrt(n)
+    return m, se, (m + d).min(), (m + d).max()
+
+
 def parameter_columns(table):
     """The columns of a study's table (/summary or /ensemble DataFrame) that identify a case, as
     the program names them (its `parameters` attribute); for older files, those of
