@@ -170,19 +170,22 @@ for bad in "--output" "--outptu x.h5"; do
         { echo "mpi check: '$bad' not refused in one line:"; cat "$work/err.txt"; exit 1; }
 done
 echo "mpi check: a missing --output name and an unknown option refused in one line: ok"
-# measured plans (fft_planner 'measure') repeat bit for bit: a distributed case, a serial run of
-# another grid, the distributed case again, all on one fresh wisdom file (a distributed run keeps
-# its wisdom in FILE-mpi: once it replaced the serial wisdom with its own, the serial run planned
-# anew, and its file then lacked the MPI plans, so the next distributed run planned anew as well)
+# measured plans (fft_planner 'measure') repeat bit for bit: a distributed case on 3 ranks (uneven
+# shares), a serial run of another grid, the distributed case again, all on one fresh wisdom file.
+# A distributed run keeps its wisdom in FILE-mpi (once it replaced the serial wisdom with its own,
+# the serial run planned anew, and its file then lacked the MPI plans); and the first run plans
+# again from the first process's gathered wisdom, the others' own forgotten, as every later run
+# plans (before, its other processes kept what they had measured themselves: 3 of 6 first runs
+# differed from the second in their last bits)
 export VESLIDE_FFTW_WISDOM="$work/wisdom"
 rm -f "$work/wisdom" "$work/wisdom-mpi"
 printf '%s\n' "&grid nx = 48, ny = 40 / &surface k_cut = 10 / &material model = 'one_term' / &motion speed_m_s = 0.05 /" \
     "&output file = '$work/w1.h5', fields = .true. /" > "$work/w1.nml"
 sed "s#w1.h5#w2.h5#" "$work/w1.nml" > "$work/w2.nml"
 printf '%s\n' "&grid nx = 32, ny = 36 / &surface k_cut = 8 / &output file = '$work/w3.h5' /" > "$work/w3.nml"
-bash "$root/mpi/run.sh" -n 2 "$work/w1.nml" --quiet
+bash "$root/mpi/run.sh" -n 3 "$work/w1.nml" --quiet
 (cd "$root" && OMP_NUM_THREADS=1 "$serial" "$work/w3.nml" --quiet)
-bash "$root/mpi/run.sh" -n 2 "$work/w2.nml" --quiet
+bash "$root/mpi/run.sh" -n 3 "$work/w2.nml" --quiet
 unset VESLIDE_FFTW_WISDOM
 python - "$work/w1.h5" "$work/w2.h5" <<'PY'
 import sys

@@ -232,17 +232,20 @@ contains
                 ! the first process's file, shared so that every process plans alike
                 if (grid%is_root() .and. wisdom_loaded /= 1) stat = wisdom_load(1_c_int)
                 wisdom_loaded = 1
-                call fftw_mpi_broadcast_wisdom(int(grid%comm, c_int32_t))
+                call share_wisdom()
             end if
-            self%plan_r2c = fftw_mpi_plan_dft_r2c_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), self%xr, kt, &
-                                                     int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_OUT))
-            self%plan_c2r = fftw_mpi_plan_dft_c2r_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), kt, self%xr, &
-                                                     int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_IN))
+            call plan_mpi()
             if (isolated_) then
                 call restore_wisdom(saved)
             else if (flag /= FFTW_ESTIMATE) then
-                ! every process's part of the plan (their shares differ), kept by the first
+                ! every process's part of the plan (their shares differ) gathered by the first and
+                ! shared again, then planned anew from it: where a process measured a part that
+                ! the first process had measured otherwise, it now takes the first's, as every
+                ! later run (which reads the first's file) will, so the first run's bits are theirs
                 call fftw_mpi_gather_wisdom(int(grid%comm, c_int32_t))
+                call share_wisdom()
+                call fftw_destroy_plan(self%plan_r2c); call fftw_destroy_plan(self%plan_c2r)
+                call plan_mpi()
                 if (grid%is_root()) stat = wisdom_save(1_c_int)
             end if
             if (.not. (c_associated(self%plan_r2c) .and. c_associated(self%plan_c2r))) then
@@ -254,6 +257,25 @@ contains
             call fatal_error(error, "veslide:fftw:init: a distributed grid needs the MPI build (mpi/)")
 #endif
         end subroutine init_distributed
+
+#ifdef VESLIDE_MPI
+        !> The first process's wisdom made every process's (importing adds to what a process
+        !> has, where its own entries would win: the others forget theirs first)
+        subroutine share_wisdom()
+            if (.not. grid%is_root()) call fftw_forget_wisdom()
+            call fftw_mpi_broadcast_wisdom(int(grid%comm, c_int32_t))
+        end subroutine share_wisdom
+
+        !> The MPI plans of the grid, transposed (collective)
+        subroutine plan_mpi()
+            complex(c_double_complex), pointer :: kt(:, :)
+            call c_f_pointer(self%p_k, kt, [ny, grid%nq_local])
+            self%plan_r2c = fftw_mpi_plan_dft_r2c_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), self%xr, kt, &
+                                                     int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_OUT))
+            self%plan_c2r = fftw_mpi_plan_dft_c2r_2d(int(ny, c_intptr_t), int(nx, c_intptr_t), kt, self%xr, &
+                                                     int(grid%comm, c_int32_t), ior(flag, FFTW_MPI_TRANSPOSED_IN))
+        end subroutine plan_mpi
+#endif
 
     end subroutine fft_init
 
