@@ -14,7 +14,7 @@ program veslide_batch
     use veslide_error, only: error_t, exit_status
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
-    use veslide_study, only: run_study, merge_study_parts, study_progress_t
+    use veslide_study, only: run_study, merge_study_parts, study_progress_t, plan_study_transforms
     use veslide_device, only: device_enabled, device_count, device_select
     use veslide_case, only: case_t, run_case
     use veslide_case_file, only: write_case
@@ -92,6 +92,11 @@ program veslide_batch
             deallocate (error)
         end if
     end if
+    ! the study's FFT plans measured once, by rank 0, before any rank plans its own: every rank then
+    ! plans from that wisdom, as every later run does (an error is run_study's to report)
+    if (rank == 0) call plan_study_transforms(cfg, error)
+    if (allocated(error)) deallocate (error)
+    call MPI_Barrier(MPI_COMM_WORLD)
     if (quiet) then
         call run_study(cfg, mine, nfail, error, part=[rank, nranks])
     else

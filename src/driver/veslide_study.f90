@@ -34,7 +34,7 @@ module veslide_study
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
-              seed_statistics, write_ensemble, chain_spec, param_names, param_units
+              seed_statistics, write_ensemble, chain_spec, param_names, param_units, plan_study_transforms
 
     !> The parameter columns that lead every /summary row; temperature_c (the 7th) in the studies
     !> of a material with a temperature shift (whose temperature may be swept). The attribute
@@ -147,6 +147,21 @@ contains
         spec%material = mat
         spec%speed_m_s = speed
     end function chain_spec
+
+    !> The FFT plans of the study's grid, made (measured, unless &solver fft_planner = 'estimate')
+    !> and kept in the machine's wisdom file before any case runs. The first process of an MPI
+    !> study calls it before the others start: every rank then plans from the same wisdom, as every
+    !> later run does (each rank measuring its own could choose plans of other rounding)
+    subroutine plan_study_transforms(cfg, error)
+        type(config_t), intent(in) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        type(case_spec_t) :: base
+        type(fft2d_t) :: fft
+        call case_spec_of(cfg, base, error); if (allocated(error)) return
+        call use_threads(base%threads)
+        call fft%init(base%nx, base%ny, error, planner=base%fft_planner); if (allocated(error)) return
+        call fft%destroy()
+    end subroutine plan_study_transforms
 
     !> Run the study of `cfg` into the (temporary) HDF5 file `path`; `nfail` counts cases that
     !> did not converge. `part` = [rank, nranks] runs only the chains whose index is rank modulo
