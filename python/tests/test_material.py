@@ -300,3 +300,36 @@ def test_plot_draws_the_series_and_its_data(noisy_fit):
     ax, _ = vp.modulus_vs_frequency(law.at_temperature(30.0))
     np.testing.assert_allclose(ax.get_lines()[2].get_xdata(), noisy_fit[1] / vm.shift_factor(30.0, 20.0))
     plt.close(ax.figure)
+
+
+def test_the_readme_dma_example_runs(exe, tmp_path, monkeypatch):
+    """README's "A measured material" block, run as written but for its size (32^2 cells, 3 speeds,
+    2 seeds instead of 256^2, 9 and 3) on a dma.csv of isothermal sweeps at 0, 20 and 40 C made
+    from the known series: the fit, the plots and the two studies at 0 and 40 C, whose files
+    hold their temperature."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    section = text[text.index("### A measured material"):text.index("### A layered solid")]
+    block = section[section.index("```python\n") + 10:section.index("```\n", section.index("```python\n") + 10)]
+    small = (('{"grid": {"nx": 256, "ny": 256}', '{"grid": {"nx": 32, "ny": 32}, "surface": {"k_cut": 8}'),
+             ('"n_speeds": 9, "n_seeds": 3', '"n_speeds": 3, "n_seeds": 2'))
+    for old, new in small:
+        assert old in block, "the README's DMA example changed: " + old
+        block = block.replace(old, new)
+    law = dict(reference_temperature_c=20.0, shift="wlf", wlf_c1=8.86, wlf_c2_k=101.6)
+    true = vm.Material("relaxation", **{k: getattr(known_series(), k) for k in ("e0_pa", "coefficients", "times_s")},
+                       **law)
+    f = np.logspace(-1, 3, 41)
+    rows = [(t, fi, e.real, e.imag) for t in (0.0, 20.0, 40.0) for fi, e in zip(f, true.at_temperature(t).modulus(f))]
+    np.savetxt(tmp_path / "dma.csv", rows, delimiter=",", header="temperature_c,frequency_hz,e1_pa,e2_pa",
+               comments="")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("VESLIDE_EXE", str(exe))
+    exec(compile(block, "README.md: A measured material", "exec"), {})
+    import matplotlib.pyplot as plt
+    plt.close("all")
+    for t in (0, 40):
+        r = veslide.read(tmp_path / ("speeds-%gC.h5" % t))
+        assert (r.summary["temperature_c"] == t).all() and r.summary["converged"].all()
