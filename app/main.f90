@@ -188,14 +188,18 @@ contains
         type(study_plan_t) :: plan
         type(device_info_t) :: info
         real(dp) :: free_b, total_b
-        if (cfg%sweep%is_study()) then
+        if (cfg%sweep%is_study()) then        ! each rank of an MPI study solves whole cases
             call plan_study(cfg, plan)
-            call case_memory(spec, estimate, processes, on_device, speeds=plan%speeds)
+            call case_memory(spec, estimate, device_estimate=on_device, speeds=plan%speeds)
         else
             call case_memory(spec, estimate, processes, on_device)
         end if
         available = available_memory_bytes()
-        if (processes > 1) then
+        if (processes > 1 .and. cfg%sweep%is_study()) then
+            write (stdout, '(a,i0,a,i0,a,i0,a)') cfg%path//": grid ", cfg%grid%nx, " x ", cfg%grid%ny, &
+                ", a study on ", processes, " processes (MPI, mpi/run.sh; each solves whole cases): about "// &
+                format_gib(estimate)//" per process"
+        else if (processes > 1) then
             write (stdout, '(a,i0,a,i0,a,i0,a)') cfg%path//": grid ", cfg%grid%nx, " x ", cfg%grid%ny, " on ", &
                 processes, " processes (MPI, mpi/run.sh): about "//format_gib(estimate)//" per process"
         else
@@ -211,8 +215,13 @@ contains
             if (.not. allocated(error) .and. free_b >= 0) write (stdout, '(a)') "free on the "//info%name// &
                 " here and now: "//format_gib(int(free_b, i8))//" of "//format_gib(int(total_b, i8))
         else if (cfg%solver%method /= 'pk' .and. processes == 1) then
+            if (cfg%sweep%is_study()) then
+                on_device = device_estimate_bytes(spec, speeds=plan%speeds)
+            else
+                on_device = device_estimate_bytes(spec)
+            end if
             write (stdout, '(a)') "solved on a GPU (&solver device = 'gpu', gpu/build.sh) it would need about "// &
-                format_gib(device_estimate_bytes(spec))//" of device memory"
+                format_gib(on_device)//" of device memory"
         end if
         stop
     end subroutine print_memory

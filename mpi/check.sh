@@ -224,3 +224,10 @@ with h5py.File(sys.argv[1]) as a, h5py.File(sys.argv[2]) as b:
                 assert np.asarray(x).tobytes() == np.asarray(y).tobytes(), case + "/" + g + "/" + name
 print("mpi check, a study with measured plans repeats bit for bit from its first run: ok")
 PY
+# an output that cannot be written is an I/O error, exit status 3, as for veslide: a case and a study
+for nml in "$work/w1.nml" "$work/study.nml"; do
+    st=0
+    bash "$root/mpi/run.sh" -n 2 "$nml" --output /proc/veslide-check.h5 --quiet >/dev/null 2>&1 || st=$?
+    [ "$st" -eq 3 ] || { echo "mpi check: an output that cannot be written exited with $st, not 3 ($nml)"; exit 1; }
+done
+echo "mpi check: an output that cannot be written exits with 3 (a case and a study): ok"

@@ -395,6 +395,15 @@ contains
             if (allocated(error)) return
         end do
         call check(error, named(2) > named(1), "dr (Anderson history) needs more than pdr")
+        if (allocated(error)) return
+        ! a layer's factor varies across a shell of |q|: Einf/E0 = 19.5 no longer bounds the spread
+        ! (a thin bonded layer at 1 m/s runs dr), so auto is sized for the larger of pdr and dr
+        call read_text('memrule', "&grid nx = 256, ny = 256 / &surface k_cut = 8 / &motion speed_m_s = 1 /"// &
+            " &solver fft_planner = 'estimate' / &material model = 'one_term', ratio = 19.5,"// &
+            " thickness_m = 5e-5, base = 'bonded' /", cfg, error)
+        if (allocated(error)) return
+        call case_spec_of(cfg, spec, error); if (allocated(error)) return
+        call check(error, memory_estimate_bytes(spec) >= named(2), "a viscoelastic layer not sized for dr")
     end subroutine test_memory_auto_rule
 
     !> /fields holds the catalogue's fields, each with its units and layout, shaped (nx, ny)

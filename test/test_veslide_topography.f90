@@ -10,6 +10,7 @@ module test_veslide_topography
     use veslide_case_data, only: case_spec_t
     use veslide_case_spec, only: case_spec_of
     use testsuite, only: error_t, unittest_t, new_unittest, check
+    use veslide_error, only: ERROR_INPUT
     use test_support, only: unique_name
     use test_veslide_config, only: read_text, expect_words
     implicit none
@@ -29,7 +30,8 @@ contains
             new_unittest("preparation-record-kept", test_preparation), &
             new_unittest("height-file-nan", test_height_nan), &
             new_unittest("height-file-without-length", test_height_length), &
-            new_unittest("height-file-missing-dataset", test_height_missing) &
+            new_unittest("height-file-missing-dataset", test_height_missing), &
+            new_unittest("height-file-unreadable-is-an-input-error", test_height_junk) &
             ]
     end subroutine collect_topography
 
@@ -259,5 +261,22 @@ contains
         call surface_from('hmiss', h, 1.0_dp, cfg, hout, e, extra="dataset='/topo'")
         call expect_words(e, [character(len=16) :: "&surface file", "/topo"], error)
     end subroutine test_height_missing
+
+    !> A file that is not HDF5 is the input's fault (exit status 1), not a failed I/O (3, which a
+    !> batch script may retry): the HDF5 library's error is replaced by the input's
+    subroutine test_height_junk(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(error_t), allocatable :: e
+        character(len=:), allocatable :: junk
+        integer :: u
+        junk = unique_name('junk.h5')
+        open (newunit=u, file=junk, status='replace'); write (u, '(a)') 'not an HDF5 file'; close (u)
+        call read_text('hjunk', "&surface kind='file', file='"//junk//"' /", cfg, e)
+        open (newunit=u, file=junk); close (u, status='delete')
+        call check(error, allocated(e), "a junk height file was read"); if (allocated(error)) return
+        call check(error, index(e%message, "not a readable HDF5 file") > 0 .and. e%category == ERROR_INPUT, &
+                   "a junk height file: "//e%message)
+    end subroutine test_height_junk
 
 end module test_veslide_topography

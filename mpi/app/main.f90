@@ -74,9 +74,9 @@ program veslide_batch
     status = 0
     if (rank == 0) then
         call prepare_output(out, overwrite .or. cfg%output%overwrite, tmp, lock, error)
-        if (allocated(error)) status = 1
+        if (allocated(error)) status = exit_status(error)
     end if
-    call agree(status); if (status /= 0) call die(error_text())
+    call agree(status); if (status /= 0) call die(error_text(), status)
     if (.not. cfg%sweep%is_study()) call distributed_case()
     ! rank files: OUT.rankNNNN-of-RRRR.part (the count in the name keeps runs of another size apart)
     allocate (character(len=len(out) + 24) :: parts(nranks))
@@ -97,21 +97,25 @@ program veslide_batch
     if (rank == 0) call plan_study_transforms(cfg, error)
     if (allocated(error)) deallocate (error)
     call MPI_Barrier(MPI_COMM_WORLD)
+    ! (each rank solves whole cases; the ranks of one machine share its free memory)
     if (quiet) then
-        call run_study(cfg, mine, nfail, error, part=[rank, nranks])
+        call run_study(cfg, mine, nfail, error, part=[rank, nranks], node_ranks=ranks_on_this_machine())
     else
-        call run_study(cfg, mine, nfail, error, progress=print_progress, part=[rank, nranks])
+        call run_study(cfg, mine, nfail, error, progress=print_progress, part=[rank, nranks], &
+                       node_ranks=ranks_on_this_machine())
     end if
-    failed = merge(1, 0, allocated(error))
+    ! the exit status: the largest of the ranks' (1 input, 3 I/O, 4 numerical; 0 none failed)
+    failed = 0
+    if (allocated(error)) failed = exit_status(error)
     if (allocated(error)) write (stderr, '(a,i0,a)') "veslide-batch: rank ", rank, ": "//error%message
-    call MPI_Allreduce(MPI_IN_PLACE, failed, 1, MPI_INTEGER, MPI_SUM, MPI_COMM_WORLD)
+    call MPI_Allreduce(MPI_IN_PLACE, failed, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD)
     call MPI_Reduce(nfail, total, 1, MPI_INTEGER, MPI_SUM, 0, MPI_COMM_WORLD)
     if (failed > 0) then
         call discard_output(mine)
         if (rank == 0) then
             call discard_output(tmp); call release_output(lock, out)
         end if
-        call MPI_Finalize(); stop 1, quiet=.true.
+        call MPI_Finalize(); stop failed, quiet=.true.
     end if
     if (rank == 0) then
         call merge_study_parts(cfg, tmp, parts, error)
@@ -141,16 +145,13 @@ contains
     subroutine distributed_case()
         type(case_t) :: c
         type(results_t) :: r
-        type(MPI_Comm) :: node
         character(len=summary_width), allocatable :: lines(:)
         integer :: node_ranks, i, nlen
         nlen = 0; if (rank == 0) nlen = len(tmp)
         call MPI_Bcast(nlen, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
         if (rank /= 0) allocate (character(len=nlen) :: tmp)
         call MPI_Bcast(tmp, nlen, MPI_CHARACTER, 0, MPI_COMM_WORLD)
-        call MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, node)
-        call MPI_Comm_size(node, node_ranks)
-        call MPI_Comm_free(node)
+        node_ranks = ranks_on_this_machine()
         if (rank == 0 .and. .not. quiet) then      ! rank 0 reports the whole grid's state
             call run_case(cfg, c, error, comm=MPI_COMM_WORLD%MPI_VAL, node_ranks=node_ranks, &
                           progress=print_solver_progress)
@@ -213,6 +214,14 @@ contains
     end subroutine print_solver_progress
 
     !> Every rank learns whether rank 0 failed
+    !> How many of the ranks run on this machine (they share its free memory)
+    integer function ranks_on_this_machine() result(n)
+        type(MPI_Comm) :: node
+        call MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, node)
+        call MPI_Comm_size(node, n)
+        call MPI_Comm_free(node)
+    end function ranks_on_this_machine
+
     subroutine agree(flag)
         integer, intent(inout) :: flag
         call MPI_Bcast(flag, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)

@@ -205,3 +205,20 @@ def test_write_error_in_python(tmp_path, exe):
                        timeout=600)
     assert r.stdout.split() == ["3", "True", "True"], r.stdout + r.stderr
     assert not out.exists()
+
+
+def test_memory_of_a_study_on_a_gpu_counts_its_speeds(tmp_path, exe):
+    """--memory of a study at rest in &motion but swept over speeds sizes the device for the
+    solver it runs at speed, as a single case at one of those speeds is sized."""
+    base = ("&grid nx = 1024, ny = 1024 / &surface k_cut = 8 / &material model = 'one_term', ratio = 30 /\n"
+            "&output file = '%s' /\n" % (tmp_path / "x.h5"))
+    study = write(tmp_path / "study.nml", base + "&sweep speeds_m_s = 0.01, 0.1 /\n")
+    single = write(tmp_path / "single.nml", base + "&motion speed_m_s = 0.1 /\n")
+    at_rest = write(tmp_path / "rest.nml", base)
+
+    def gpu_line(nml):
+        r = run(exe, "--memory", str(nml), "--device", "cpu")
+        assert r.returncode == 0, r.stderr
+        return [l for l in r.stdout.splitlines() if "solved on a GPU" in l][0].split("about ")[1]
+
+    assert gpu_line(study) == gpu_line(single) != gpu_line(at_rest)

@@ -4,7 +4,8 @@ python -m veslide topography SCAN --out SURF.h5 [--nx N] [--ny N] [--detrend cur
 
 refine: runs one case on several grids (or reuses the files already there from the same input)
 and prints the table and the error estimate of `veslide.refine`; exit status 1 on bad input, 2
-when a solve did not converge (as the program's).
+when a solve did not converge, 3 when a file could not be written, 4 when the numbers broke down
+(as the program's).
 
 topography: reads a measured scan (any format SurfaceTopography reads), prepares it as
 `veslide.topography.prepare` does and writes the height file for `&surface kind='file'`, printing
@@ -16,7 +17,7 @@ import warnings
 import pandas as pd
 
 from .refinement import refine
-from .runner import ConvergenceWarning, InputError
+from .runner import ConvergenceWarning, InputError, NumericalError, WriteError
 
 
 def main(argv=None):
@@ -52,6 +53,9 @@ def main(argv=None):
     warnings.simplefilter("ignore", ConvergenceWarning)       # the exit status and the notes say it
     try:
         ref = refine(args.namelist, args.sizes, args.output_dir, threads=args.threads, progress=None)
+    except (WriteError, NumericalError) as e:
+        print("veslide refine: %s" % e.message, file=sys.stderr)
+        return e.returncode
     except (InputError, ValueError, FileNotFoundError, FileExistsError) as e:
         print("veslide refine: %s" % (getattr(e, "message", None) or e), file=sys.stderr)
         return 1

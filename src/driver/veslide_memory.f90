@@ -114,10 +114,11 @@ contains
         integer :: k, m
         symmetric = spec%material%model == 'elastic' .or. spec%speed_m_s == 0.0_dp
         if (present(speeds)) symmetric = spec%material%model == 'elastic' .or. all(speeds == 0.0_dp)
-        ! the operator's spread is at most Einf/E0 for the spectral kernel; unknown for the others
+        ! the operator's spread is at most Einf/E0 for the spectral kernel of a half-space; unknown
+        ! for the other variants and for a layer (whose factor varies across a shell of |q|)
         bound = huge(1.0_dp)
-        if (spec%kernel_variant == KERNEL_SPECTRAL .and. spec%material%solid%e0_pa > 0.0_dp) &
-            bound = spec%material%solid%einf_pa/spec%material%solid%e0_pa
+        if (spec%kernel_variant == KERNEL_SPECTRAL .and. spec%material%solid%thickness_m == 0.0_dp .and. &
+            spec%material%solid%e0_pa > 0.0_dp) bound = spec%material%solid%einf_pa/spec%material%solid%e0_pa
         methods = planned_methods(spec%solver%method, symmetric, real(spec%nx, dp)*real(spec%ny, dp), bound)
         b = 0
         do k = 1, size(methods)

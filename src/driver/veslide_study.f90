@@ -166,7 +166,7 @@ contains
     !> Run the study of `cfg` into the (temporary) HDF5 file `path`; `nfail` counts cases that
     !> did not converge. `part` = [rank, nranks] runs only the chains whose index is rank modulo
     !> nranks, with global case numbers (a rank file of a distributed study: no /ensemble).
-    subroutine run_study(cfg, path, nfail, error, progress, part, stop_after)
+    subroutine run_study(cfg, path, nfail, error, progress, part, stop_after, node_ranks)
         type(config_t), intent(in) :: cfg
         character(len=*), intent(in) :: path
         integer, intent(out) :: nfail
@@ -176,6 +176,8 @@ contains
         !> stop after this many new cases, leaving the part file as a killed run would (the next
         !> run resumes from it); a study that stops early writes no /ensemble
         integer, intent(in), optional :: stop_after
+        !> the processes of an MPI study on this machine, which share its free memory (default 1)
+        integer, intent(in), optional :: node_ranks
         type(study_plan_t) :: plan
         type(grid_t) :: grid
         type(kernel_t), allocatable :: kernels(:)
@@ -206,7 +208,8 @@ contains
         nmine = count([(modulo(ic - 1, nranks) == rank, ic = 1, size(plan%chains))])*size(plan%speeds)
 
         call case_spec_of(cfg, base, error); if (allocated(error)) return
-        call size_and_check_memory(base, estimate, error, speeds=plan%speeds); if (allocated(error)) return
+        call size_and_check_memory(base, estimate, error, node_ranks=node_ranks, speeds=plan%speeds)
+        if (allocated(error)) return
         have_surface = .false.
         if (base%surface%kind == 'file') then         ! read once: every case has the same heights
             call build_surface(base, h, error); if (allocated(error)) return
@@ -319,14 +322,14 @@ contains
             character(len=16) :: tag
             call f%open(path, 'rw', error)
             if (allocated(error)) then
-                error%message = "veslide: '"//path//"' is left by an earlier run but is not a readable HDF5 file:"// &
-                                " remove it to start afresh"; return
+                call fatal_error(error, "veslide: '"//path//"' is left by an earlier run but is not a readable"// &
+                                " HDF5 file: remove it to start afresh"); return
             end if
             call f%read_text('/input/namelist', text, error)
             if (.not. allocated(error)) call f%read_attr_text('/', 'veslide_version', version, error)
             if (allocated(error)) then
-                error%message = "veslide: '"//path//"' is left by an earlier run but holds no study input:"// &
-                                " remove it to start afresh"; return
+                call fatal_error(error, "veslide: '"//path//"' is left by an earlier run but holds no study input:"// &
+                                " remove it to start afresh"); return
             end if
             if (text /= cfg%text .or. version /= version_string()) then
                 call fatal_error(error, "veslide: '"//path//"' is the part file of another input or veslide version"// &

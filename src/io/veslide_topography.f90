@@ -52,7 +52,7 @@ contains
         if (f%attr_exists(dataset, 'preparation')) then
             call f%read_attr_text(dataset, 'preparation', info%preparation, error)
             if (allocated(error)) then
-                error%message = at//"attribute 'preparation' is not a text"; return
+                call fatal_error(error, at//"attribute 'preparation' is not a text"); return
             end if
         end if
         if (present(statistics)) then
@@ -70,7 +70,7 @@ contains
             if (.not. f%attr_exists(dataset, name)) return
             call f%read_attr_r0(dataset, name, length, error)
             if (allocated(error)) then
-                error%message = at//"attribute "//name//" is not a number"; return
+                call fatal_error(error, at//"attribute "//name//" is not a number"); return
             end if
             if (.not. (length > 0.0_dp .and. ieee_is_finite(length))) &
                 call fatal_error(error, at//"attribute "//name//" must be > 0 [m]")
@@ -136,7 +136,7 @@ contains
         end if
         call f%open(file, 'r', error)
         if (allocated(error)) then
-            error%message = at//"not a readable HDF5 file"; return
+            call fatal_error(error, at//"not a readable HDF5 file"); return
         end if
         call f%shape_of(dataset, dims, rank, is_double)
         if (rank < 0) then
