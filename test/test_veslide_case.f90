@@ -175,7 +175,7 @@ contains
     !> 0.06; it grows with the load (before, approach_m was the mean gap, which falls).
     subroutine test_approach_hertz(error)
         type(error_t), allocatable, intent(out) :: error
-        real(dp), parameter :: pi = 3.141592653589793_dp, lattice = -3.900264920001956_dp
+        real(dp), parameter :: lattice = -3.900264920001956_dp
         real(dp), parameter :: l = 0.01_dp, radius = 0.1_dp, estar = 1.0e6_dp/0.75_dp
         real(dp), parameter :: loads(2) = [10.0_dp, 43.4_dp]
         type(config_t) :: cfg
@@ -251,7 +251,7 @@ contains
     !> v: both force components; bonded with nu = 1/2, frictionless with nu = 0.3)
     subroutine test_layer_single_wave(error)
         type(error_t), allocatable, intent(out) :: error
-        real(dp), parameter :: q = 2.0_dp*2.0_dp*3.141592653589793_dp/0.01_dp, t = 0.7_dp
+        real(dp), parameter :: q = 2.0_dp*2.0_dp*pi/0.01_dp, t = 0.7_dp
         call one("bonded", 0.5_dp, BASE_BONDED, error); if (allocated(error)) return
         call one("frictionless", 0.3_dp, BASE_FRICTIONLESS, error)
     contains

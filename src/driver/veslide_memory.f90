@@ -35,8 +35,7 @@ module veslide_memory
     use veslide_case_data, only: case_spec_t
     use veslide_kernel, only: KERNEL_SPECTRAL
     use veslide_solver, only: planned_methods, default_anderson_memory, auto_takes_device, check_device_choice
-    use veslide_solver_options, only: SOLVER_PK, SOLVER_BCCG, SOLVER_DR, SOLVER_PDR, DEVICE_GPU, DEVICE_AUTO, &
-                                      device_names
+    use veslide_solver_options, only: SOLVER_PK, SOLVER_BCCG, SOLVER_DR, SOLVER_PDR, DEVICE_GPU, DEVICE_AUTO
     use veslide_device, only: device_info_t, device_info, device_memory
     use veslide_system, only: available_memory_bytes
     implicit none

@@ -6,7 +6,7 @@
 !> at once (parallel HDF5, `write_rows`), then the first process adds everything else, so the
 !> file is laid out as a serial one. Both paths loop over the same field catalogue.
 module veslide_case_file
-    use veslide_kinds, only: dp, i8
+    use veslide_kinds, only: i8
     use veslide_error, only: error_t
     use veslide_collective, only: share_error
     use veslide_hdf5, only: h5file_t

@@ -36,8 +36,7 @@ contains
             o%realised = s%scale_to == 'realised'
             o%amplitude_m = s%amplitude_m; o%wavelength_m = s%wavelength_m
             o%direction_rad = radians(s%direction_deg); o%radius_m = s%radius_m
-            o%file = text_or_empty(s%file); o%dataset = text_or_empty(s%dataset)
-            o%preparation = text_or_empty(s%preparation)
+            o%file = s%file; o%dataset = s%dataset; o%preparation = s%preparation
         end associate
         spec%speed_m_s = cfg%motion%speed_m_s
         spec%direction_deg = cfg%motion%direction_deg
@@ -64,13 +63,6 @@ contains
         spec%fields = cfg%output%fields
         call resolve_material(cfg%material, cfg%material%temperature_c, spec%material, error)
         call add_context(error, "veslide: "//cfg%path//": &material: ")
-    contains
-        pure function text_or_empty(t) result(s)
-            character(len=:), allocatable, intent(in) :: t
-            character(len=:), allocatable :: s
-            s = ''
-            if (allocated(t)) s = t
-        end function text_or_empty
     end subroutine case_spec_of
 
     !> The solid of &material at `temperature_c`: the master curve's times multiplied by the shift

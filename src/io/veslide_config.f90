@@ -109,7 +109,7 @@ contains
         character(len=*), intent(in) :: path
         cfg%path = path; cfg%text = ''
         cfg%surface%kind = 'self_affine'; cfg%surface%scale_to = 'realised'
-        cfg%surface%file = ''; cfg%surface%dataset = '/height_m'
+        cfg%surface%file = ''; cfg%surface%dataset = '/height_m'; cfg%surface%preparation = ''
         cfg%material%model = 'elastic'; cfg%material%shift = 'none'; cfg%material%base = 'bonded'
         allocate (cfg%material%prony_coef(0), cfg%material%prony_time_s(0))
         cfg%solver%method = 'auto'; cfg%solver%kernel = 'spectral'; cfg%solver%fft_planner = 'measure'
