@@ -21,6 +21,7 @@ from .topography import (PreparedSurface, Scan, major_axis_deg, psd_2d, psd_radi
                          write_topography)
 from .topography import load as load_topography, prepare as prepare_scan, read as read_scan
 from .material import FitReport, Material, fit_prony, shift_factor
+from ._warning import VeslideWarning
 
 __version__ = "0.3.0"
 
@@ -30,7 +31,7 @@ __all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revis
            "read_scan", "prepare_scan", "load_topography", "Scan", "PreparedSurface",
            "Material", "FitReport", "fit_prony", "shift_factor",
            "Result", "Scalars", "Arrays", "Cases", "InputError", "OutputExistsError", "VeslideError",
-           "Cancelled", "ConvergenceWarning", "WriteError", "NumericalError"]
+           "Cancelled", "ConvergenceWarning", "WriteError", "NumericalError", "VeslideWarning"]
 
 
 def __getattr__(name):
