@@ -11,13 +11,15 @@ program veslide_main
     use veslide_case_spec, only: case_spec_of
     use veslide_case, only: case_t, run_case
     use veslide_case_file, only: write_case
-    use veslide_summary, only: summary_lines, summary_width
+    use veslide_summary, only: header_lines, summary_lines, summary_width
+    use veslide_warning, only: warning_line
     use veslide_memory, only: format_gib, device_estimate_bytes, case_memory
     use veslide_system, only: available_memory_bytes
     use veslide_kinds, only: i8, dp
     use veslide_study, only: run_study, study_progress_t, plan_study, study_plan_t
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_version, only: version_string
+    use veslide_strings, only: str
     use veslide_system, only: ignore_file_size_signal, exit_now, prefer_passive_wait
     use veslide_solver_options, only: device_choice_id
     use veslide_solver, only: gpu_visible
@@ -89,16 +91,16 @@ program veslide_main
     call case_spec_of(cfg, spec, error)
     if (allocated(error)) call fail(error)
     if (memory_only) call print_memory()
-    if (.not. quiet) then
-        do i = 1, size(cfg%warnings)
-            write (stderr, '(a)') cfg%warnings(i)%text
-        end do
-        ! a GPU build where no GPU is visible runs on the CPU, and says so once
-        if (device_enabled .and. cfg%solver%device == 'auto' .and. .not. gpu_visible()) &
-            write (stderr, '(a)') "veslide: this build has GPU support but no GPU is visible here: solving on the CPU"
-    end if
+    ! warnings are part of the result: printed whatever --quiet says (and written to the file)
+    do i = 1, size(cfg%warnings)
+        write (stderr, '(a)') warning_line(cfg%warnings(i), cfg%path)
+    end do
+    ! a GPU build where no GPU is visible runs on the CPU, and says so once
+    if (.not. quiet .and. device_enabled .and. cfg%solver%device == 'auto' .and. .not. gpu_visible()) &
+        write (stderr, '(a)') "veslide: this build has GPU support but no GPU is visible here: solving on the CPU"
     call prepare_output(cfg%output%file, cfg%output%overwrite, tmp, lock, error)
     if (allocated(error)) call fail(error)
+    if (.not. quiet .and. .not. cfg%sweep%is_study()) call header()
 
     if (cfg%sweep%is_study()) then
         block
@@ -106,11 +108,7 @@ program veslide_main
             logical :: resuming
             ! a part file left by a killed run of this study is resumed, and kept if this run fails
             inquire (file=tmp, exist=resuming)
-            if (quiet) then
-                call run_study(cfg, tmp, nfail, error)
-            else
-                call run_study(cfg, tmp, nfail, error, progress=print_progress)
-            end if
+            call run_study(cfg, tmp, nfail, error, progress=print_progress)   ! (quiet: its warnings only)
             if (allocated(error)) then
                 if (.not. resuming) call discard_output(tmp)
                 call fail(error)
@@ -147,6 +145,9 @@ program veslide_main
     call release_output(lock, cfg%output%file)
 
     if (.not. quiet) call summary()
+    do i = 1, size(c%warnings)
+        if (c%warnings(i)%source /= 'input') write (stderr, '(a)') warning_line(c%warnings(i), cfg%path)
+    end do
     if (.not. c%state%converged) then
         write (stderr, '(a,es9.2,a,es9.2,a,i0,a)') "veslide: NOT CONVERGED: residual ", c%state%residual, &
             " > tolerance ", cfg%solver%tolerance, " after ", c%state%iterations, &
@@ -238,9 +239,17 @@ contains
             "  4 the numbers broke down (a discrete kernel that is not positive definite, an overflow)."
     end subroutine usage
 
-    !> One line per finished case of a study, with the time left at the mean pace so far
+    !> One line per finished case of a study, with the time left at the mean pace so far (not
+    !> with --quiet), and the case's warnings (always)
     subroutine print_progress(info)
         type(study_progress_t), intent(in) :: info
+        integer :: k
+        if (info%case_number > 0 .and. allocated(info%warnings)) then
+            do k = 1, size(info%warnings)
+                write (stderr, '(a)') warning_line(info%warnings(k), cfg%path//": case "//str(info%case_number))
+            end do
+        end if
+        if (quiet) return
         if (info%case_number == 0) then
             write (stdout, '("study resumed from its part file: ",i0," of ",i0," cases kept, ",i0," to run")') &
                 info%resumed, info%total, info%total - info%resumed
@@ -263,12 +272,22 @@ contains
         flush (stdout)
     end subroutine print_solver_progress
 
+    !> The header of a single case, before its solve
+    subroutine header()
+        character(len=summary_width), allocatable :: lines(:)
+        lines = header_lines(spec, cfg%output%file)
+        do i = 1, size(lines)
+            write (stdout, '(a)') trim(lines(i))
+        end do
+        flush (stdout)
+    end subroutine header
+
     !> The run summary, read from the case's results list
     subroutine summary()
         type(results_t) :: r
         character(len=summary_width), allocatable :: lines(:)
         call case_results(c, r)
-        lines = summary_lines(c, r, cfg%output%file)
+        lines = summary_lines(c, r)
         do i = 1, size(lines)
             write (stdout, '(a)') trim(lines(i))
         end do

@@ -5,12 +5,13 @@ module veslide_summary
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
     use veslide_version, only: version_string
-    use veslide_case_data, only: case_t
+    use veslide_case_data, only: case_t, case_spec_t
+    use veslide_validity, only: surface_band
     use veslide_quantities, only: results_t
     use veslide_device, only: device_info_t, device_info
     implicit none
     private
-    public :: summary_lines, summary_width
+    public :: header_lines, summary_lines, summary_width
 
     !> The length of a line of the run summary: two texts of the input (up to 1023 characters
     !> each, the input's and the output's paths) and the words around them, never cut
@@ -18,20 +19,31 @@ module veslide_summary
 
 contains
 
-    !> The run summary a program prints, from the case's results `r` (one line per entry)
-    function summary_lines(c, r, output) result(lines)
+    !> The header of a run, printed before it starts: the program, the input and the output, and
+    !> what is solved
+    function header_lines(spec, output) result(lines)
+        type(case_spec_t), intent(in) :: spec
+        character(len=*), intent(in) :: output      !! the result file
+        character(len=summary_width), allocatable :: lines(:)
+        character(len=summary_width) :: b
+        allocate (lines(0))
+        b = "veslide "//version_string()//": "//spec%input_path//" -> "//output
+        lines = [lines, b]
+        write (b, '(a,i0,a,i0,a,a,a,a,a,a)') "  grid ", spec%nx, " x ", spec%ny, &
+            ", surface ", spec%surface%kind, ", material ", spec%material%model, ", kernel ", spec%kernel_name()
+        lines = [lines, b]
+    end function header_lines
+
+    !> The run summary a program prints after the solve, from the case's results `r` (one line per
+    !> entry; the header, `header_lines`, is printed before the solve)
+    function summary_lines(c, r) result(lines)
         type(case_t), intent(in) :: c
         type(results_t), intent(in) :: r
-        character(len=*), intent(in) :: output      !! the result file
         character(len=summary_width), allocatable :: lines(:)
         character(len=summary_width) :: b
         real(dp) :: hrms
         hrms = r%get('rms_height_m')
         allocate (lines(0))
-        lines = [lines, b_("veslide "//version_string()//": "//c%spec%input_path//" -> "//output)]
-        write (b, '(a,i0,a,i0,a,a,a,a,a,a)') "  grid ", c%grid%nx, " x ", c%grid%ny, &
-            ", surface ", c%spec%surface%kind, ", material ", c%spec%material%model, ", kernel ", c%spec%kernel_name()
-        lines = [lines, b]
         if (c%grid%is_distributed()) then
             write (b, '(a,i0,a)') "  distributed over ", c%grid%ranks, " processes (rows of the grid)"
             lines = [lines, b]
@@ -51,10 +63,7 @@ contains
             block
                 real(dp) :: omega, td, qlo, qhi
                 call c%spec%material%solid%loss_peak(omega, td)
-                qlo = c%grid%q0(); qhi = 0.5_dp*c%grid%nx*c%grid%q0()
-                if (c%spec%surface%kind == 'self_affine') then
-                    qlo = c%spec%surface%k_low*c%grid%q0(); qhi = c%spec%surface%k_cut*c%grid%q0()
-                end if
+                call surface_band(c%spec, c%grid, qlo, qhi)
                 write (b, '(a,f6.3,a,es10.3,a)') "  loss peak             tan(delta) = ", td, " at ", omega, " rad/s"
                 lines = [lines, b]
                 write (b, '(a,es9.3,a,es9.3,a,es9.3,a)') "    met by the surface's q for speeds ", omega/qhi, " to ", &
@@ -78,15 +87,35 @@ contains
                 end if
             end block
         end if
+        if (allocated(c%warnings)) then
+            if (size(c%warnings) == 0) then
+                b = "  validity              no warnings (what is checked: docs/validity.md)"
+            else
+                write (b, '(a,i0,a)') "  validity              ", size(c%warnings), " warning(s), on stderr and in /warnings: "// &
+                    codes()
+            end if
+            lines = [lines, b]
+        end if
         write (b, '(a,f8.3,a,f8.3,a,f8.3,a)') "  time: surface ", r%get('surface_seconds'), " s, kernel ", &
             r%get('kernel_seconds'), " s, solve ", r%get('solve_seconds'), " s"
         lines = [lines, b]
     contains
-        function b_(t) result(l)
-            character(len=*), intent(in) :: t
-            character(len=summary_width) :: l
-            l = t
-        end function b_
+        !> The codes of the case's warnings, each once
+        function codes() result(t)
+            character(len=:), allocatable :: t
+            integer :: k, j
+            logical :: seen
+            t = ''
+            do k = 1, size(c%warnings)
+                seen = .false.
+                do j = 1, k - 1
+                    if (c%warnings(j)%code == c%warnings(k)%code) seen = .true.
+                end do
+                if (seen) cycle
+                if (len(t) > 0) t = t//", "
+                t = t//c%warnings(k)%code
+            end do
+        end function codes
     end function summary_lines
 
 end module veslide_summary

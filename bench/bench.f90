@@ -10,6 +10,10 @@
 !>                                 on all the machine's cores at VESLIDE_BENCH_CPU (default
 !>                                 "2048 4096"). Table on stdout, CSV into VESLIDE_BENCH_CSV
 !>                                 (default results/bench-gpu.csv)
+!>   veslide-bench validity [N [ROUNDS]]  the validity measures of a case (veslide_validity)
+!>                                 against its solve: the paper scene (tolerance 1e-8, one
+!>                                 thread) at N^2 (default 512), solve and measures timed in turn
+!>                                 (A B A B), medians and their ratio
 program veslide_bench
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit
     use veslide_kinds, only: dp, pi
@@ -35,6 +39,7 @@ program veslide_bench
                               device_peak_bytes, device_reset_peak, device_bytes_in_use, device_clock, device_check, &
                               device_profile
     use veslide_transform, only: transform_t
+    use veslide_validity, only: case_validity
     implicit none
     character(len=64) :: arg
     integer :: k, n
@@ -92,6 +97,16 @@ program veslide_bench
         end do
         if (size(sizes) == 0) sizes = [1024, 2048, 4096, 8192, 16384, 32768]
         call bench_gpu(sizes)
+    case ('validity')
+        n = 512
+        if (command_argument_count() >= 2) then
+            call get_command_argument(2, arg); read (arg, *) n
+        end if
+        k = 7
+        if (command_argument_count() >= 3) then
+            call get_command_argument(3, arg); read (arg, *) k
+        end if
+        call bench_validity(n, k)
     case ('hard')
         n = 256
         if (command_argument_count() >= 2) then
@@ -127,7 +142,8 @@ program veslide_bench
     case default
         write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | accuracy [NMAX]", &
             "                     | hard [N [memory [balance_every [ratio [factor [method [first [last]]]]]]]]", &
-            "                     | scaling elastic|visco METHOD TOL N [N ...] | iteration [N [ROUNDS]] | gpu [N ...]"
+            "                     | scaling elastic|visco METHOD TOL N [N ...] | iteration [N [ROUNDS]] | gpu [N ...]", &
+            "                     | validity [N [ROUNDS]]"
         error stop 1
     end select
 
@@ -470,6 +486,36 @@ contains
                 median(tit(:, m)/tpair), median(tfft(:, m)/tpair)
         end do
     end subroutine bench_iteration
+
+    !> The cost of the validity measures against the solve they follow: the paper scene at n^2
+    !> solved `rounds` times from cold, each solve followed by the measures (veslide_validity's
+    !> case_validity), both timed; medians and their ratio. A study's warm-started solves are
+    !> faster (0.1-0.9 s at 512^2 on one thread against a cold 0.7 s), the measures the same.
+    subroutine bench_validity(n, rounds)
+        integer, intent(in) :: n, rounds
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(fft2d_t) :: fft
+        type(error_t), allocatable :: error
+        real(dp) :: ts(rounds), tv(rounds), t0
+        integer :: r
+        call scene(n, 'visco', 'auto', 1.0e-8_dp, cfg)
+        call fft%init(n, n, error, planner='measure'); call check(error)
+        do r = 1, rounds
+            call run_case(cfg, c, error); call check(error)      ! (the measures are part of it)
+            ts(r) = c%solve_seconds
+            t0 = now()
+            call case_validity(c, fft)
+            tv(r) = now() - t0
+        end do
+        call fft%destroy()
+        write (stdout, '(a,i0,a,i0,a)') "validity measures against the solve, paper scene ", n, "^2, ", rounds, &
+            " rounds, one thread (medians)"
+        write (stdout, '(a,f9.4,a)') "  solve                                     ", median(ts), " s"
+        write (stdout, '(a,f9.5,a)') "  validity measures                         ", median(tv), " s"
+        write (stdout, '(a,f9.4,a)') "  measures / solve                          ", 100.0_dp*median(tv)/median(ts), " %"
+        write (stdout, '(a,i0)') "  warnings                                  ", size(c%warnings)
+    end subroutine bench_validity
 
     !> The paper scene (see bench_scaling) at n^2 for `solid` ('elastic' or 'visco') and `method`
     subroutine scene(n, solid, method, tol, cfg)

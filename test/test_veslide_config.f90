@@ -419,11 +419,23 @@ contains
                             [character(len=32) :: "no namelist group found"], error)
     end subroutine test_no_group
 
-    !> k_cut left at its default (64) on a 64^2 grid: the message says it is the default and what to set
+    !> k_cut left at its default follows a grid too small for 64: half the grid's Nyquist (four
+    !> cells per shortest wavelength); 64 where the grid resolves it; a k_cut given is kept
     subroutine test_default_kcut(error)
         type(error_t), allocatable, intent(out) :: error
-        call expect_message('defkcut', "&grid nx = 64, ny = 64 /", &
-                            [character(len=32) :: "k_cut = 64", "(the default)", "set &surface k_cut below 32"], error)
+        type(config_t) :: cfg
+        call read_text('defkcut', "&grid nx = 64, ny = 64 /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%surface%k_cut, 16.0_dp, "64^2: half of Nyquist 32"); if (allocated(error)) return
+        call read_text('defkcut', "&grid nx = 128, ny = 128 /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%surface%k_cut, 32.0_dp, "128^2: Nyquist 64, which 64 does not lie below")
+        if (allocated(error)) return
+        call read_text('defkcut', "&grid nx = 130, ny = 130 /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%surface%k_cut, 64.0_dp, "130^2: 64 is below Nyquist 65"); if (allocated(error)) return
+        call read_text('defkcut', "&grid nx = 64, ny = 64 / &surface k_cut = 20 /", cfg, error)
+        if (allocated(error)) return
+        call check(error, cfg%surface%k_cut, 20.0_dp, "a given k_cut"); if (allocated(error)) return
+        call expect_message('defkcut', "&grid nx = 8, ny = 8 / &surface k_roll = 5 /", &
+                            [character(len=40) :: "&surface k_roll = 5", "k_cut defaults to half of it"], error)
     end subroutine test_default_kcut
 
     subroutine test_warnings(error)

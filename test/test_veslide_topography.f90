@@ -220,6 +220,7 @@ contains
         character(len=:), allocatable :: h5, out, text
         integer :: u
         call random_number(h)
+        h = 1.0e-6_dp*h                  ! (1 um over cells of 0.25 mm: an rms slope of 0.005)
         h5 = unique_name('hprep.h5')
         call write_heights(h5, h, 2.0e-3_dp, error, preparation='{"detrend": "plane"}'); if (allocated(error)) return
         out = unique_name('hprep-out.h5')

@@ -19,7 +19,11 @@ program veslide_batch
     use veslide_case, only: case_t, run_case
     use veslide_case_file, only: write_case
     use veslide_quantities, only: results_t, case_results
-    use veslide_summary, only: summary_lines, summary_width
+    use veslide_summary, only: header_lines, summary_lines, summary_width
+    use veslide_warning, only: warning_line
+    use veslide_strings, only: str
+    use veslide_case_data, only: case_spec_t
+    use veslide_case_spec, only: case_spec_of
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_system, only: ignore_file_size_signal
     use veslide_version, only: version_string
@@ -68,7 +72,14 @@ program veslide_batch
     if (len(input) == 0) call die(usage)
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
     call read_config(input, cfg, error, surface_statistics=rank == 0)   ! a height file read whole once
+    ! (a study's ranks each read the whole height file anyway, and each writes its cases' warnings)
+    if (.not. allocated(error) .and. rank /= 0 .and. cfg%sweep%is_study()) call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message, exit_status(error))
+    if (rank == 0) then       ! warnings are part of the result: printed whatever --quiet says
+        do k = 1, size(cfg%warnings)
+            write (stderr, '(a)') warning_line(cfg%warnings(k), cfg%path)
+        end do
+    end if
     if (output_given) cfg%output%file = output
     out = cfg%output%file
     status = 0
@@ -98,12 +109,8 @@ program veslide_batch
     if (allocated(error)) deallocate (error)
     call MPI_Barrier(MPI_COMM_WORLD)
     ! (each rank solves whole cases; the ranks of one machine share its free memory)
-    if (quiet) then
-        call run_study(cfg, mine, nfail, error, part=[rank, nranks], node_ranks=ranks_on_this_machine())
-    else
-        call run_study(cfg, mine, nfail, error, progress=print_progress, part=[rank, nranks], &
-                       node_ranks=ranks_on_this_machine())
-    end if
+    call run_study(cfg, mine, nfail, error, progress=print_progress, part=[rank, nranks], &
+                   node_ranks=ranks_on_this_machine())      ! (quiet: its warnings only)
     ! the exit status: the largest of the ranks' (1 input, 3 I/O, 4 numerical; 0 none failed)
     failed = 0
     if (allocated(error)) failed = exit_status(error)
@@ -152,6 +159,19 @@ contains
         if (rank /= 0) allocate (character(len=nlen) :: tmp)
         call MPI_Bcast(tmp, nlen, MPI_CHARACTER, 0, MPI_COMM_WORLD)
         node_ranks = ranks_on_this_machine()
+        if (rank == 0 .and. .not. quiet) then
+            block
+                type(case_spec_t) :: spec
+                allocate (lines(0))
+                call case_spec_of(cfg, spec, error)
+                if (.not. allocated(error)) lines = header_lines(spec, out)
+                if (allocated(error)) deallocate (error)      ! (run_case reports it to every rank)
+                do i = 1, size(lines)
+                    write (stdout, '(a)') trim(lines(i))
+                end do
+                flush (stdout)
+            end block
+        end if
         if (rank == 0 .and. .not. quiet) then      ! rank 0 reports the whole grid's state
             call run_case(cfg, c, error, comm=MPI_COMM_WORLD%MPI_VAL, node_ranks=node_ranks, &
                           progress=print_solver_progress)
@@ -174,11 +194,14 @@ contains
             if (allocated(error)) then
                 write (stderr, '(a)') error%message; status = exit_status(error)
             else if (.not. quiet) then
-                lines = summary_lines(c, r, out)
+                lines = summary_lines(c, r)
                 do i = 1, size(lines)
                     write (stdout, '(a)') trim(lines(i))
                 end do
             end if
+            do i = 1, size(c%warnings)
+                if (c%warnings(i)%source /= 'input') write (stderr, '(a)') warning_line(c%warnings(i), cfg%path)
+            end do
             if (status == 0 .and. .not. c%state%converged) write (stderr, '(a,es9.2,a,es9.2,a,i0,a)') &
                 "veslide-batch: NOT CONVERGED: residual ", c%state%residual, " > tolerance ", cfg%solver%tolerance, &
                 " after ", c%state%iterations, " iterations (result written with /scalars/converged = 0)"
@@ -246,6 +269,13 @@ contains
 
     subroutine print_progress(info)
         type(study_progress_t), intent(in) :: info
+        integer :: j
+        if (info%case_number > 0 .and. allocated(info%warnings)) then
+            do j = 1, size(info%warnings)
+                write (stderr, '(a)') warning_line(info%warnings(j), cfg%path//": case "//str(info%case_number))
+            end do
+        end if
+        if (quiet) return
         if (info%case_number == 0) then
             write (stdout, '("rank ",i0,"/",i0,": resumed from its part file: ",i0," of ",i0, &
                 &" cases kept, ",i0," to run")') rank, nranks, info%resumed, info%total, info%total - info%resumed

@@ -36,7 +36,9 @@ def contents(path):
             if name.startswith("provenance") or any(t in name for t in TIMING):
                 return
             if isinstance(obj, h5py.Dataset):
-                items[name] = np.asarray(obj[()]).tobytes()
+                value = np.asarray(obj[()])
+                # (strings come back as Python objects, whose bytes are addresses: their values)
+                items[name] = repr(value.tolist()).encode() if value.dtype.kind == "O" else value.tobytes()
             for key, value in obj.attrs.items():
                 items[name + "@" + key] = np.asarray(value).tobytes()
         f.visititems(visit)

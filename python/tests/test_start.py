@@ -50,11 +50,25 @@ def test_cancel_midway_leaves_nothing_behind(tmp_path, monkeypatch, exe, in_memo
     assert p.cases_total == 4000 and 3 <= p.cases_done < 4000 and 0 < p.fraction < 1 and p.left_s > 0
     if not in_memory:
         assert (tmp_path / "study.h5.part").exists()
-    assert h.cancel() is True
+    assert h.cancel(keep_part=False) is True
     assert h.done and h.cancel() is False
     with pytest.raises(veslide.Cancelled):
         h.wait()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["tmp"] and list(scratch.iterdir()) == []
+
+
+def test_cancel_keeps_the_finished_cases_of_a_study(exe, tmp_path):
+    """By default a cancelled study keeps its part file with the cases it finished, which
+    read_running reads and the same call resumes; the lock goes."""
+    out = tmp_path / "study.h5"
+    h = veslide.start(long_study(), output=out, exe=exe)
+    wait_for(h, 3)
+    assert h.cancel() is True
+    with pytest.raises(veslide.Cancelled):
+        h.wait()
+    assert sorted(p.name for p in tmp_path.iterdir() if not p.name.endswith(".resume")) == ["study.h5.part"]
+    partial = veslide.read_running(out)
+    assert partial.partial and not partial.running and len(partial.summary) >= 3
 
 
 def test_progress_of_a_single_solve(tmp_path):

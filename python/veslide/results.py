@@ -11,6 +11,7 @@ import pandas as pd
 import xarray as xr
 
 from ._h5 import open_file, published_name, python_value, retry, text, writer_alive
+from ._warning import VeslideWarning
 
 #: The parameter columns that lead a study's /summary, for files written before the program named
 #: them (veslide < 0.2.0); newer files name them in the attribute `parameters` of /summary and
@@ -104,6 +105,24 @@ def parameter_columns(table):
     return [p for p in LEGACY_PARAMETERS if p in table.columns]
 
 
+def _warnings_of(g, case=None):
+    """The warnings a group's /warnings holds (veslide_case_file's write_warnings), as
+    VeslideWarning objects in the order written; [] for files before version 0.4.0."""
+    if "warnings" not in g:
+        return []
+    w = g["warnings"]
+    columns = {k: np.atleast_1d(w[k][()]) for k in ("code", "source", "text", "value", "threshold") if k in w}
+    n = len(columns.get("code", []))
+    out = []
+    for i in range(n):
+        value, threshold = float(columns["value"][i]), float(columns["threshold"][i])
+        source = text(columns["source"][i])
+        out.append(VeslideWarning(text(columns["text"][i]), text(columns["code"][i]),
+                                  value if (value or threshold) else None, threshold if (value or threshold) else None,
+                                  case=case, source=source))
+    return out
+
+
 def _fields(g, scalars):
     """/fields as an xarray Dataset with dims (x, y): values[ix, iy], coordinates in metres."""
     names = list(g)          # what the program's field catalogue wrote (veslide_quantities)
@@ -154,8 +173,10 @@ class Result:
     """A veslide result file (or one case group of a study), read with `veslide.read`.
 
     Attributes read at once: `scalars`, `summary`, `ensemble`, `input`, `input_text`,
-    `provenance`, `anisotropy`, `patches`, `persson`, `parameters`; read when first used:
-    `fields`, `cases`. `partial` is True for a part file OUT.part (a study being written or
+    `provenance`, `anisotropy`, `patches`, `persson`, `parameters`, `validity` (the validity
+    measures of a case, /validity: values, `.units`, `.attrs` with each threshold and when it
+    warns; `validity_table` as a DataFrame); read when first used: `fields`, `cases`,
+    `warnings` (a list of `veslide.VeslideWarning`). `partial` is True for a part file OUT.part (a study being written or
     interrupted), `running` when its writer was alive at reading time. `returncode`, `log` and
     `stderr` are set by `veslide.run`, `reused` when it read an earlier run's file instead.
 
@@ -208,6 +229,9 @@ class Result:
             self.anisotropy = _group_values(g["anisotropy"], Arrays) if "anisotropy" in g else None
             self.patches = _group_values(g["patches"], Arrays) if "patches" in g else None
             self.persson = _group_values(g["persson"], Arrays) if "persson" in g else None
+            self.validity = _group_values(g["validity"], Arrays) if "validity" in g else None
+            self._own_warnings = _warnings_of(g, self._case_number())
+            self._warnings = None
             self.has_fields = "fields" in g and len(g["fields"]) > 0
             self.parameters = None
             if "parameters" in g:
@@ -246,6 +270,48 @@ class Result:
                     return _fields(f[self.group]["fields"], self.scalars or {})
             self._fields = retry(load, self.partial)
         return self._fields
+
+    def _case_number(self):
+        return int(self.group.rsplit("/", 1)[-1]) if self.group.startswith("/cases/") else None
+
+    @property
+    def warnings(self):
+        """What the program found questionable, as `veslide.VeslideWarning` objects (attributes
+        code, value, threshold, text, case, source; docs/validity.md lists the codes). A case: its
+        input's warnings and its own. A study: its input's warnings, then every case's own (each
+        with `case`), read when first asked for. [] for files before version 0.4.0."""
+        if self._warnings is None:
+            out = list(self._own_warnings)
+            if self.is_study and self.summary is not None and "warnings" in self.summary:
+                n_input = len(out)
+                flagged = [int(c) for c, n in zip(self.summary["case"], self.summary["warnings"]) if n > n_input]
+
+                def load():
+                    found = []
+                    with self._open() as f:
+                        for k in flagged:
+                            g = f[self.group.rstrip("/") + "/cases/%06d" % k]
+                            found += [w for w in _warnings_of(g, k) if w.source != "input"]
+                    return found
+                out += retry(load, self.partial)
+            self._warnings = out
+        return list(self._warnings)
+
+    @property
+    def validity_table(self):
+        """The validity measures as a DataFrame indexed by name: value, units, threshold, warns
+        ('above', 'below' or 'never') and past (the value is past its threshold). A case only
+        (a study's measures are columns of its `summary`); None for files before 0.4.0."""
+        if self.validity is None:
+            return None
+        rows = []
+        for name, value in self.validity.items():
+            a = self.validity.attrs.get(name, {})
+            warns, thr = a.get("warns", "never"), a.get("threshold")
+            past = (warns == "above" and value > thr) or (warns == "below" and value < thr)
+            rows.append({"name": name, "value": value, "units": self.validity.units.get(name, ""),
+                         "threshold": thr, "warns": warns, "past": bool(past)})
+        return pd.DataFrame(rows).set_index("name")
 
     @property
     def cases(self):

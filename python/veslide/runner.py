@@ -18,6 +18,7 @@ import f90nml
 import numpy as np
 
 from ._h5 import writer_alive
+from ._warning import VeslideWarning
 from .results import read
 
 # python/veslide/runner.py -> the checkout holding fpm.toml
@@ -416,6 +417,31 @@ class Progress:
             self.fft_pairs, self.solve_s = int(m.group(5)), float(m.group(6))
 
 
+def _raised_warnings(result):
+    """The VeslideWarnings `run` raises for a result: each of a case's; for a study, each of its
+    input's, and one per warning code of its cases (naming how many cases and which)."""
+    found = result.warnings
+    if not result.is_study:
+        return found
+    out = [w for w in found if w.case is None]
+    by_code = {}
+    for w in found:
+        if w.case is not None:
+            by_code.setdefault(w.code, []).append(w)
+    total = len(result.summary) if result.summary is not None else 0
+    for code, ws in by_code.items():
+        first = ws[0]
+        if len(ws) == 1:
+            out.append(first)
+            continue
+        cases = sorted({w.case for w in ws})
+        shown = ", ".join(str(c) for c in cases[:10]) + (", ..." if len(cases) > 10 else "")
+        out.append(VeslideWarning("in %d of %d cases (%s; Result.warnings lists each): case %d: %s"
+                                  % (len(cases), total, shown, first.case, first.text), code, first.value,
+                                  first.threshold, case=tuple(cases), source=first.source))
+    return out
+
+
 # the runs started and not ended: stopped when Python exits (a study with an output keeps its part file)
 _RUNNING = weakref.WeakSet()
 
@@ -439,9 +465,11 @@ class Run:
     done       the program has ended and its result (or error) is ready
     wait(timeout=None)  the `Result` (raises what `run` raises; `TimeoutError` when the run is
                still going after `timeout` seconds; `Cancelled` after `cancel()`)
-    cancel(keep_part=False)  terminate the program, and remove what it left: its part file (not
-               one it resumed from, nor with keep_part=True), its lock, the temporary directory;
-               True if it stopped a running program
+    cancel(keep_part=True)  terminate the program and remove its lock and temporary directory;
+               a study written to a file keeps its part file OUT.part with the cases finished
+               (the same call resumes it; `veslide.read_running(OUT)` reads it) unless
+               keep_part=False, which removes it too (never one it resumed from); True if it
+               stopped a running program (since 0.4.0; before, keep_part defaulted to False)
     progress   a `Progress` (a copy: numbers for a progress bar)
     output     the lines the program printed so far (stdout)
     stderr     what it printed on stderr so far
@@ -463,6 +491,7 @@ class Run:
         self._cancelled = False
         self._keep_part = True
         self._result = self._error = self._warning = None
+        self._warned = False
         part = Path(str(output) + ".part")
         self._leftovers = [f for f in (part, Path(str(part) + ".resume"), Path(str(output) + ".lock"))
                            if not f.exists()]       # what this run may create (a part file it resumes stays)
@@ -487,6 +516,7 @@ class Run:
         self._finished.set()
         self._cancelled = False
         self._result, self._error = result, None
+        self._warned = False
         self._warning = ("veslide: %s: NOT CONVERGED (read, not run again)" % result.path
                          if result.converged is False else None)
         if progress is not None:
@@ -612,9 +642,13 @@ class Run:
         if self._warning is not None:
             warnings.warn(self._warning, ConvergenceWarning, stacklevel=_stacklevel)
             self._warning = None
+        if not self._warned and self._result is not None:
+            self._warned = True
+            for w in _raised_warnings(self._result):
+                warnings.warn(w, stacklevel=_stacklevel)
         return self._result
 
-    def cancel(self, keep_part=False):
+    def cancel(self, keep_part=True):
         if self._finished.is_set():
             return False
         self._keep_part = keep_part

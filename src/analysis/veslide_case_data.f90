@@ -20,6 +20,7 @@ module veslide_case_data
     use veslide_solver_options, only: solver_options_t
     use veslide_patches, only: patch_stats_t
     use veslide_persson, only: persson_t
+    use veslide_warning, only: warning_t, measure_t
     implicit none
     private
     public :: case_spec_t, surface_spec_t, material_spec_t, analysis_spec_t, case_t
@@ -36,6 +37,10 @@ module veslide_case_data
         real(dp) :: amplitude_m = 0.0_dp, wavelength_m = 0.0_dp, direction_rad = 0.0_dp, radius_m = 0.0_dp
         character(len=:), allocatable :: file, dataset   !! kind = 'file': the height file and dataset
         character(len=:), allocatable :: preparation     !! the file's record of its preparation ('')
+        !> kind = 'file': its edge jumps along x and y and the rms steps inside [h_rms]; the share
+        !> of the scan filled and of its slope variance the band removed (-1: not stated)
+        real(dp) :: edge_jump(2) = 0.0_dp, edge_step(2) = 0.0_dp
+        real(dp) :: filled_fraction = -1.0_dp, band_slope_removed = -1.0_dp
     end type surface_spec_t
 
     !> The solid: the model's name (for the reader), the resolved `material_t`, and the temperature
@@ -75,6 +80,8 @@ module veslide_case_data
         integer :: threads = 0                           !! OpenMP threads (0: OMP_NUM_THREADS)
         type(analysis_spec_t) :: analysis
         logical :: fields = .true.                       !! write the 2-D fields
+        !> what the input's reading found questionable (source 'input'), kept with every case
+        type(warning_t), allocatable :: warnings(:)
     contains
         procedure :: velocity => spec_velocity
         procedure :: kernel_name => spec_kernel_name
@@ -105,6 +112,9 @@ module veslide_case_data
         ! &analysis persson
         logical :: have_persson = .false.
         type(persson_t) :: persson
+        ! its validity (veslide_validity): the measures, and the warnings of its input and result
+        type(measure_t), allocatable :: validity(:)
+        type(warning_t), allocatable :: warnings(:)
     end type case_t
 
 contains

@@ -20,6 +20,7 @@ module veslide_quantities
     use veslide_system, only: peak_memory_bytes
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation
     use veslide_anisotropy, only: m2_of_theta
+    use veslide_warning, only: WARNS_NEVER
     implicit none
     private
     public :: quantity_t, array_t, results_t, add_force_quantities, add_solver_quantities, axial_of
@@ -43,6 +44,11 @@ module veslide_quantities
         real(dp) :: value = 0.0_dp
         logical :: is_integer = .false.          !! stored as a 64-bit integer
         integer :: axial = AXIAL_NONE            !! AXIAL_* : how it averages over seeds
+        !> where the case's file keeps it: 'scalars' (/scalars/NAME) or 'validity' (/validity/NAME,
+        !> with its threshold and when it warns, veslide_warning's WARNS_*)
+        character(len=:), allocatable :: group
+        real(dp) :: threshold = 0.0_dp
+        integer :: warns = WARNS_NEVER
     end type quantity_t
 
     type :: array_t
@@ -67,12 +73,15 @@ module veslide_quantities
 contains
 
     !> Append a scalar
-    pure subroutine results_add(self, name, value, units, is_integer, axial)
+    pure subroutine results_add(self, name, value, units, is_integer, axial, group, threshold, warns)
         class(results_t), intent(inout) :: self
         character(len=*), intent(in) :: name, units
         real(dp), intent(in) :: value
         logical, intent(in), optional :: is_integer
         integer, intent(in), optional :: axial
+        character(len=*), intent(in), optional :: group      !! 'scalars' (default) or 'validity'
+        real(dp), intent(in), optional :: threshold          !! a validity measure's
+        integer, intent(in), optional :: warns               !! WARNS_* (default WARNS_NEVER)
         type(quantity_t), allocatable :: tmp(:)
         if (.not. allocated(self%scalars)) allocate (self%scalars(16))
         if (self%n == size(self%scalars)) then
@@ -84,6 +93,9 @@ contains
             q%name = name; q%units = units; q%value = value
             q%is_integer = .false.; if (present(is_integer)) q%is_integer = is_integer
             q%axial = axial_of(name); if (present(axial)) q%axial = axial
+            q%group = 'scalars'; if (present(group)) q%group = group
+            q%threshold = 0.0_dp; if (present(threshold)) q%threshold = threshold
+            q%warns = WARNS_NEVER; if (present(warns)) q%warns = warns
         end associate
     end subroutine results_add
 
@@ -194,7 +206,7 @@ contains
         type(case_t), intent(in) :: c
         type(results_t), intent(out) :: r
         real(dp) :: along, across, d, peak
-        integer :: j
+        integer :: j, n_warnings
         associate (solid => c%spec%material%solid)
         call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g, c%grid), '-')
         call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p, c%grid), '-')
@@ -277,6 +289,18 @@ contains
             call r%add_array('/persson/q_per_m', c%persson%q_per_m, '1/m')
             call r%add_array('/persson/area_fraction', c%persson%area_fraction, '-')
         end if
+        ! its validity: the measures (/validity) and how many warnings it carries
+        if (allocated(c%validity)) then
+            do j = 1, size(c%validity)
+                associate (m => c%validity(j))
+                    call r%add(m%name, m%value, m%units, is_integer=m%is_integer, group='validity', &
+                               threshold=m%threshold, warns=m%warns)
+                end associate
+            end do
+        end if
+        n_warnings = 0
+        if (allocated(c%warnings)) n_warnings = size(c%warnings)
+        call r%add('warnings', real(n_warnings, dp), '-', is_integer=.true.)
         call r%trim()
         end associate
     end subroutine case_results

@@ -5,7 +5,7 @@ module veslide_strings
     use veslide_kinds, only: dp, i8
     implicit none
     private
-    public :: str, lower, name_index, c_strlen, c_string, c_text
+    public :: str, sig, lower, name_index, c_strlen, c_string, c_text
 
     interface
         !> strlen(3) of a null-terminated C string
@@ -45,6 +45,47 @@ contains
         write (buf, '(g0.6)') x
         s = trim(adjustl(buf))
     end function str_real
+
+    !> `x` to `digits` significant digits (default 3), as a reader writes it: '0.025', '2.4',
+    !> '150', '2.0e+03', '9.8e+06', '1.0e-05' (fixed notation from 1e-3 to 1e4, trailing zeros
+    !> dropped; else the exponent form with `digits` digits)
+    pure function sig(x, digits) result(s)
+        real(dp), intent(in) :: x
+        integer, intent(in), optional :: digits
+        character(len=:), allocatable :: s
+        character(len=48) :: buf, fmt
+        integer :: d, decimals, e
+        d = 3; if (present(digits)) d = max(1, min(digits, 15))
+        if (x /= x) then
+            s = 'NaN'; return
+        else if (abs(x) > huge(x)) then
+            s = merge('-Inf', ' Inf', x < 0.0_dp); s = trim(adjustl(s)); return
+        else if (x == 0.0_dp) then
+            s = '0'; return
+        end if
+        if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e4_dp) then
+            e = floor(log10(abs(x)))
+            decimals = max(0, d - 1 - e)
+            write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
+            write (buf, fmt) x
+            s = trim(adjustl(buf))
+            if (index(s, '.') > 0) then
+                do while (s(len(s):len(s)) == '0')
+                    s = s(:len(s) - 1)
+                end do
+                if (s(len(s):len(s)) == '.') s = s(:len(s) - 1)
+            end if
+            if (s(1:1) == '.') s = '0'//s
+            if (len(s) > 1) then
+                if (s(1:2) == '-.') s = '-0'//s(2:)
+            end if
+        else
+            write (fmt, '(a,i0,a,i0,a)') '(es', d + 8, '.', d - 1, 'e2)'
+            write (buf, fmt) x
+            s = trim(adjustl(buf))
+            s = lower(s)
+        end if
+    end function sig
 
     !> `s` with A-Z turned to a-z
     pure function lower(s) result(t)

@@ -26,6 +26,7 @@ module veslide_case
     use veslide_system, only: use_threads
     use veslide_case_data, only: case_spec_t, case_t
     use veslide_case_spec, only: case_spec_of
+    use veslide_validity, only: case_validity, check_surface_scale
     implicit none
     private
     public :: case_t, build_surface, build_kernel, case_grid, run_case, solve_prepared
@@ -157,6 +158,8 @@ contains
         call use_threads(spec%threads)
         call fft%init(c%grid%nx, c%grid%ny, error, planner=spec%fft_planner, grid=c%grid)
         if (allocated(error)) return
+        call check_surface_scale(spec, c%grid, fft, c%h, error)      ! (collective)
+        if (allocated(error)) return
         call build_kernel(spec, c%grid, c%kernel, c%kernel_seconds, error); if (allocated(error)) return
         call solve_prepared(fft, c, error, progress=progress)
         call share_error(c%grid, error)
@@ -189,6 +192,7 @@ contains
         c%solve_seconds = wall_seconds() - t0
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)
         call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)
+        call case_validity(c, fft)
         c%have_anisotropy = .false.; c%have_patches = .false.; c%have_persson = .false.
         if (c%spec%analysis%anisotropy) call anisotropy_analysis(fft, c)
         if (c%spec%analysis%persson) then

@@ -31,6 +31,9 @@ module veslide_study
     use veslide_quantities, only: case_results
     use veslide_case_file, only: write_case_group
     use veslide_case, only: case_t, build_surface, build_kernel, case_grid, solve_prepared
+    use veslide_case_file, only: write_warnings
+    use veslide_validity, only: check_surface_scale
+    use veslide_warning, only: warning_t
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
@@ -73,6 +76,8 @@ module veslide_study
         real(dp) :: contact_area_fraction = 0.0_dp, friction_coefficient = 0.0_dp
         integer :: operator_applications = 0
         logical :: converged = .false.
+        !> what the case's validity measures warn of (its input's warnings are the study's, said once)
+        type(warning_t), allocatable :: warnings(:)
     end type study_progress_t
 
     abstract interface
@@ -192,7 +197,7 @@ contains
         type(case_t) :: c
         type(results_t) :: r
         type(study_progress_t) :: info
-        integer :: ic, iv, k, rank, nranks, nmine, nrow
+        integer :: ic, iv, k, j, rank, nranks, nmine, nrow
         integer, allocatable :: keep(:)
         logical, allocatable :: done(:)
         integer(i8) :: surface_seed, estimate
@@ -226,10 +231,14 @@ contains
             call f%open(path, 'w', error); if (allocated(error)) return
             call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true., &
                                   preparation=cfg%surface%preparation); if (allocated(error)) return
+            call write_warnings(f, '', base%warnings, error); if (allocated(error)) return
         end if
         call use_threads(base%threads)
         call fft%init(grid%nx, grid%ny, error, planner=base%fft_planner)
         if (allocated(error)) return
+        if (have_surface) then
+            call check_surface_scale(base, grid, fft, h, error); if (allocated(error)) return
+        end if
 
         t_start = wall_seconds()
         info%total = nmine; info%resumed = count(done); info%done = info%resumed
@@ -255,6 +264,7 @@ contains
                 if (spec%surface%kind /= 'file' .and. .not. (have_surface .and. chain%seed == surface_seed .and. &
                     chain%eccentricity == surface_ecc .and. chain%alpha_deg == surface_alpha)) then
                     call build_surface(spec, h, error); if (allocated(error)) return
+                    call check_surface_scale(spec, grid, fft, h, error); if (allocated(error)) return
                     have_surface = .true.
                     surface_seed = chain%seed; surface_ecc = chain%eccentricity; surface_alpha = chain%alpha_deg
                 end if
@@ -295,6 +305,8 @@ contains
                         info%friction_coefficient = r%get('friction_coefficient')
                         info%operator_applications = c%state%operator_applications
                         info%converged = c%state%converged
+                        info%warnings = pack(c%warnings, [(c%warnings(j)%source == 'validity', j = 1, &
+                                                           size(c%warnings))])
                         call progress(info)
                     end if
                 end do
@@ -537,6 +549,7 @@ contains
         call f%open(path, 'w', error); if (allocated(error)) return
         call write_provenance(f, cfg%path, cfg%text, plan%seeds, error, study=.true., &
                                   preparation=cfg%surface%preparation); if (allocated(error)) return
+        call write_warnings(f, '', cfg%warnings, error); if (allocated(error)) return
         do k = 1, size(parts)
             call src%open(trim(parts(k)), 'r', error); if (allocated(error)) return
             if (.not. src%exists('/summary')) then       ! a rank with no chain (more ranks than chains)

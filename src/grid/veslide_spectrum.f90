@@ -21,19 +21,32 @@ contains
         real(dp), intent(out) :: m(2, 2)
         real(dp), intent(in), optional :: band(2), scale
         integer :: a, b, i, j, ij(2)
-        real(dp) :: q(2), p2, qn, cols(3, size(ak, 2)), t(3)
-        !$omp parallel do schedule(guided) private(a, i, j, ij, q, p2, qn)
+        real(dp) :: q(2), dq(2), p2, qn, cols(3, size(ak, 2)), t(3)
+        ! the wavevector and derivative wavevector of every half-spectrum row i and column j, and
+        ! the Hermitian weight of every row, made once (the same values grid%wavevector,
+        ! derivative_wavevector and hermitian_weight give entry by entry)
+        real(dp) :: qx(grid%nq()), qy(grid%ny), dqx(grid%nq()), dqy(grid%ny), w(grid%nq())
+        do i = 1, grid%nq()
+            q = grid%wavevector(i, 1); qx(i) = q(1)
+            q = grid%derivative_wavevector(i, 1); dqx(i) = q(1)
+            w(i) = grid%hermitian_weight(i)
+        end do
+        do j = 1, grid%ny
+            q = grid%wavevector(1, j); qy(j) = q(2)
+            q = grid%derivative_wavevector(1, j); dqy(j) = q(2)
+        end do
+        !$omp parallel do schedule(guided) private(a, i, j, ij, dq, p2, qn)
         do b = 1, size(ak, 2)
             cols(:, b) = 0.0_dp
             do a = 1, size(ak, 1)
                 ij = grid%spectral_index(a, b); i = ij(1); j = ij(2)
                 if (present(band)) then
-                    qn = norm2(grid%wavevector(i, j))
+                    qn = norm2([qx(i), qy(j)])
                     if (qn < band(1) .or. qn > band(2)) cycle
                 end if
-                q = grid%derivative_wavevector(i, j)
-                p2 = grid%hermitian_weight(i)*abs(ak(a, b))**2
-                cols(:, b) = cols(:, b) + [q(1)*q(1), q(2)*q(2), q(1)*q(2)]*p2
+                dq = [dqx(i), dqy(j)]
+                p2 = w(i)*abs(ak(a, b))**2
+                cols(:, b) = cols(:, b) + [dq(1)*dq(1), dq(2)*dq(2), dq(1)*dq(2)]*p2
             end do
         end do
         !$omp end parallel do

@@ -6,7 +6,7 @@
 !> at once (parallel HDF5, `write_rows`), then the first process adds everything else, so the
 !> file is laid out as a serial one. Both paths loop over the same field catalogue.
 module veslide_case_file
-    use veslide_kinds, only: i8
+    use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t
     use veslide_collective, only: share_error
     use veslide_hdf5, only: h5file_t
@@ -14,9 +14,10 @@ module veslide_case_file
     use veslide_output, only: write_provenance
     use veslide_case_data, only: case_t
     use veslide_quantities, only: results_t, case_results, field_names, field_units, field_layout, case_field
+    use veslide_warning, only: warning_t, WARNS_ABOVE, WARNS_BELOW
     implicit none
     private
-    public :: write_case, write_case_group, write_results
+    public :: write_case, write_case_group, write_results, write_warnings
 
 contains
 
@@ -87,6 +88,9 @@ contains
             call case_results(c, r_)
         end if
         call write_results(f, prefix, r_, error); if (allocated(error)) return
+        if (allocated(c%warnings)) then
+            call write_warnings(f, prefix, c%warnings, error); if (allocated(error)) return
+        end if
         call f%writeattr(prefix//'/scalars', 'solver_method', c%state%method, error); if (allocated(error)) return
         call f%writeattr(prefix//'/scalars', 'kernel_variant', c%spec%kernel_name(), error)
         if (allocated(error)) return
@@ -117,14 +121,29 @@ contains
         integer :: k
         character(len=:), allocatable :: name
         do k = 1, r%n
-            name = prefix//'/scalars/'//r%scalars(k)%name
-            if (r%scalars(k)%is_integer) then
-                call f%write(name, nint(r%scalars(k)%value, i8), error)
-            else
-                call f%write(name, r%scalars(k)%value, error)
-            end if
-            if (allocated(error)) return
-            call f%writeattr(name, 'units', r%scalars(k)%units, error); if (allocated(error)) return
+            associate (q => r%scalars(k))
+                name = prefix//'/'//q%group//'/'//q%name
+                if (q%is_integer) then
+                    call f%write(name, nint(q%value, i8), error)
+                else
+                    call f%write(name, q%value, error)
+                end if
+                if (allocated(error)) return
+                call f%writeattr(name, 'units', q%units, error); if (allocated(error)) return
+                if (q%group == 'validity') then         ! its threshold, when it warns
+                    select case (q%warns)
+                    case (WARNS_ABOVE)
+                        call f%writeattr(name, 'warns', 'above', error)
+                    case (WARNS_BELOW)
+                        call f%writeattr(name, 'warns', 'below', error)
+                    case default
+                        call f%writeattr(name, 'warns', 'never', error)
+                    end select
+                    if (allocated(error)) return
+                    if (q%warns /= 0) call f%writeattr(name, 'threshold', q%threshold, error)
+                    if (allocated(error)) return
+                end if
+            end associate
         end do
         do k = 1, r%na
             name = prefix//r%arrays(k)%path
@@ -134,5 +153,37 @@ contains
             if (allocated(error)) return
         end do
     end subroutine write_results
+
+    !> The warnings under PREFIX/warnings: five datasets of one entry per warning, in the order
+    !> they were found: `code`, `source` ('input' or 'validity'), `text` (strings), `value` and
+    !> `threshold` (float64; 0 where the warning is about a choice, not a number); empty when
+    !> there are none. The group's attribute `count` is their number.
+    subroutine write_warnings(f, prefix, warnings, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: prefix
+        type(warning_t), intent(in) :: warnings(:)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=:), allocatable :: codes(:), sources(:), texts(:)
+        real(dp), allocatable :: values(:), thresholds(:)
+        integer :: k, n, lc, lt
+        n = size(warnings)
+        lc = 1; lt = 1
+        do k = 1, n
+            lc = max(lc, len(warnings(k)%code), len(warnings(k)%source)); lt = max(lt, len(warnings(k)%text))
+        end do
+        allocate (character(len=lc) :: codes(n), sources(n))
+        allocate (character(len=lt) :: texts(n))
+        allocate (values(n), thresholds(n))
+        do k = 1, n
+            codes(k) = warnings(k)%code; sources(k) = warnings(k)%source; texts(k) = warnings(k)%text
+            values(k) = warnings(k)%value; thresholds(k) = warnings(k)%threshold
+        end do
+        call f%write(prefix//'/warnings/code', codes, error); if (allocated(error)) return
+        call f%write(prefix//'/warnings/source', sources, error); if (allocated(error)) return
+        call f%write(prefix//'/warnings/text', texts, error); if (allocated(error)) return
+        call f%write(prefix//'/warnings/value', values, error); if (allocated(error)) return
+        call f%write(prefix//'/warnings/threshold', thresholds, error); if (allocated(error)) return
+        call f%writeattr(prefix//'/warnings', 'count', int(n, i8), error)
+    end subroutine write_warnings
 
 end module veslide_case_file

@@ -37,7 +37,11 @@ contains
             o%amplitude_m = s%amplitude_m; o%wavelength_m = s%wavelength_m
             o%direction_rad = radians(s%direction_deg); o%radius_m = s%radius_m
             o%file = s%file; o%dataset = s%dataset; o%preparation = s%preparation
+            o%edge_jump = s%edge_jump; o%edge_step = s%edge_step
+            o%filled_fraction = s%filled_fraction; o%band_slope_removed = s%band_slope_removed
         end associate
+        allocate (spec%warnings(0))
+        if (allocated(cfg%warnings)) spec%warnings = cfg%warnings
         spec%speed_m_s = cfg%motion%speed_m_s
         spec%direction_deg = cfg%motion%direction_deg
         spec%mean_pressure_pa = cfg%load%mean_pressure_pa

@@ -7,7 +7,8 @@
 module veslide_config
     use veslide_kinds, only: dp, radians
     use veslide_error, only: error_t, fatal_error, add_context
-    use veslide_strings, only: str
+    use veslide_strings, only: str, sig
+    use veslide_warning, only: warning_t, add_warning
     use veslide_system, only: missing_reason
     use veslide_config_common, only: require, group_text_t, scan_namelist, get_group
     use veslide_config_grid, only: grid_config_t, read_grid_config
@@ -19,8 +20,9 @@ module veslide_config
     use veslide_config_analysis, only: analysis_config_t, read_analysis_config
     use veslide_config_sweep, only: sweep_config_t, read_sweep_config
     use veslide_config_output, only: output_config_t, read_output_config
-    use veslide_topography, only: topography_info_t, topography_info, edge_jump_limit
+    use veslide_topography, only: topography_info_t, topography_info
     use veslide_material, only: shift_factor
+    use veslide_validity, only: edge_jumps, edge_jump_limit
     implicit none
     private
     public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config
@@ -29,15 +31,12 @@ module veslide_config
     character(len=*), parameter :: group_names(9) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
                                                      'motion', 'solver', 'analysis', 'sweep', 'output']
 
-    !> One line of warning: an input that runs but does less than it seems to ask for
-    type :: warning_t
-        character(len=:), allocatable :: text
-    end type warning_t
-
     type :: config_t
         character(len=:), allocatable :: path        !! namelist file
         character(len=:), allocatable :: text        !! its text, verbatim
-        type(warning_t), allocatable :: warnings(:)  !! inputs that run but change nothing
+        !> what the input asks that changes nothing, or that its files say of themselves (source
+        !> 'input'; veslide_warning)
+        type(warning_t), allocatable :: warnings(:)
         type(grid_config_t) :: grid
         type(surface_config_t) :: surface
         type(material_config_t) :: material
@@ -119,6 +118,7 @@ contains
         allocate (cfg%sweep%seeds(0))
         cfg%output%file = 'veslide.h5'
         allocate (cfg%warnings(0))
+        allocate (character(len=32) :: cfg%surface%given(0), cfg%material%given(0))   ! (nothing read)
     end subroutine default_config
 
     !> Defaults that depend on other groups, and the checks across groups
@@ -143,9 +143,11 @@ contains
                 call require(error, cfg%surface%k_cut < nyq, p, 'surface', 'k_cut', str(cfg%surface%k_cut), &
                              ">= k_roll and below the Nyquist wavenumber "//str(nyq)//" of the grid")
             else if (.not. cfg%surface%k_cut < nyq) then
-                call fatal_error(error, "veslide: "//p//": &surface k_cut = "//str(cfg%surface%k_cut)// &
-                    " (the default) is not below the Nyquist wavenumber "//str(nyq)//" of the &grid: set &surface"// &
-                    " k_cut below "//str(nyq)//", or a larger &grid nx, ny")
+                ! the default 64 on a grid too small for it: half the grid's Nyquist (four cells
+                ! per shortest wavelength, the scan preparation's default)
+                cfg%surface%k_cut = max(0.5_dp*nyq, cfg%surface%k_roll)
+                call require(error, cfg%surface%k_cut < nyq, p, 'surface', 'k_roll', str(cfg%surface%k_roll), &
+                             "below the Nyquist wavenumber "//str(nyq)//" of the grid (k_cut defaults to half of it)")
             end if
         case ('cosine', 'bisinusoid')
             call require(error, periodic_wave(cfg), p, 'surface', 'wavelength_m/direction_deg', &
@@ -163,10 +165,12 @@ contains
                      str(cfg%analysis%zeta1)//"/"//str(cfg%analysis%zeta2), &
                      "0 <= zeta1 < zeta2 (band in multiples of 2 pi/lx_m; zeta2 = 0 means k_cut)")
         call require(error, (size(cfg%sweep%alphas) == 0 .and. size(cfg%sweep%eccentricities) == 0) .or. &
-                     cfg%surface%kind == 'self_affine', p, 'sweep', 'alphas_deg/eccentricities', "", &
-                     "only with &surface kind = 'self_affine'")
+                     cfg%surface%kind == 'self_affine', p, 'sweep', 'alphas_deg/eccentricities', &
+                     list_text(cfg%sweep%alphas)//"/"//list_text(cfg%sweep%eccentricities), &
+                     "only with &surface kind = 'self_affine' (here '"//cfg%surface%kind//"')")
         call require(error, size(cfg%sweep%temperatures) == 0 .or. cfg%material%shift /= 'none', p, 'sweep', &
-                     'temperatures_c', "", "only with a &material shift ('wlf' or 'arrhenius') and its reference")
+                     'temperatures_c', list_text(cfg%sweep%temperatures), &
+                     "only with a &material shift ('wlf' or 'arrhenius') and its reference")
         if (allocated(error)) return
         call check_shift(cfg%material%temperature_c, 'material', 'temperature_c')
         do k = 1, size(cfg%sweep%temperatures)
@@ -182,6 +186,7 @@ contains
             end do
             if (allocated(error)) return
         end if
+        call check_pressure_against_moduli(cfg, error); if (allocated(error)) return
         if (cfg%sweep%n_seeds > 0) cfg%sweep%seeds = [(cfg%surface%seed + k, k = 0, cfg%sweep%n_seeds - 1)]
         if (cfg%sweep%is_study() .and. .not. cfg%output%fields_given) cfg%output%fields = .false.
         call collect_warnings(cfg)
@@ -268,43 +273,56 @@ contains
         cfg%surface%preparation = info%preparation
         cfg%surface%edge_jump = [info%jump_x, info%jump_y]
         cfg%surface%edge_step = [info%step_x, info%step_y]
+        cfg%surface%filled_fraction = info%filled_fraction
+        cfg%surface%band_slope_removed = info%band_slope_removed
     end subroutine file_grid
 
-    !> Inputs that run but change nothing, one line each
+    !> Inputs that run but change nothing, and what the input's files say of themselves (a height
+    !> file's edges), one warning each (veslide_warning; codes in docs/validity.md)
     subroutine collect_warnings(cfg)
         type(config_t), intent(inout) :: cfg
         if (allocated(cfg%warnings)) deallocate (cfg%warnings)
         allocate (cfg%warnings(0))
         if (size(cfg%sweep%speeds) > 1 .and. cfg%material%model == 'elastic') &
-            call warn("&sweep speeds on an elastic &material: the solution and the zero friction are the same"// &
-                      " at every speed")
+            call warn('elastic-speeds', "&sweep speeds on an elastic &material: the solution and the zero friction"// &
+                      " are the same at every speed")
+        if (size(cfg%sweep%speeds) == 0 .and. cfg%motion%speed_m_s > 0.0_dp .and. cfg%material%model == 'elastic') &
+            call warn('elastic-speeds', "&motion speed_m_s on an elastic &material: the solution does not depend"// &
+                      " on the speed and the friction is zero (a viscoelastic &material model slides with friction)")
         if (size(cfg%sweep%alphas) > 1 .and. size(cfg%sweep%eccentricities) == 0 .and. &
             cfg%surface%eccentricity == 1.0_dp) &
-            call warn("&sweep alphas_deg with &surface eccentricity = 1: the spectrum is isotropic, every angle"// &
-                      " gives the same surface")
+            call warn('isotropic-angles', "&sweep alphas_deg with &surface eccentricity = 1: the spectrum is"// &
+                      " isotropic, every angle gives the same surface")
+        if ((size(cfg%sweep%seeds) > 1 .or. cfg%sweep%n_seeds > 1) .and. cfg%surface%kind /= 'self_affine') &
+            call warn('unused-input', "&sweep seeds with &surface kind = '"//cfg%surface%kind//"': only a"// &
+                      " random surface depends on its seed, every case repeats the first")
         if (cfg%material%shift /= 'none' .and. cfg%material%model == 'elastic') &
-            call warn("&material shift = '"//cfg%material%shift//"' on an elastic &material: an elastic solid"// &
-                      " has no times to shift, every temperature gives the same solution")
+            call warn('elastic-shift', "&material shift = '"//cfg%material%shift//"' on an elastic &material:"// &
+                      " an elastic solid has no times to shift, every temperature gives the same solution")
         if (size(cfg%sweep%speeds) > 0 .and. cfg%motion%speed_m_s /= 0.0_dp) &
-            call warn("&motion speed_m_s = "//str(cfg%motion%speed_m_s)//" is replaced by the &sweep speeds")
+            call warn('replaced-input', "&motion speed_m_s = "//str(cfg%motion%speed_m_s)//" is replaced by the"// &
+                      " &sweep speeds")
         if (size(cfg%sweep%temperatures) > 0 .and. cfg%material%temperature_c /= cfg%material%reference_temperature_c) &
-            call warn("&material temperature_c = "//str(cfg%material%temperature_c)//" is replaced by the"// &
-                      " &sweep temperatures_c")
+            call warn('replaced-input', "&material temperature_c = "//str(cfg%material%temperature_c)// &
+                      " is replaced by the &sweep temperatures_c")
         if (cfg%material%thickness_m == 0.0_dp .and. cfg%material%base /= 'bonded') &
-            call warn("&material base = '"//cfg%material%base//"' without a thickness_m: the solid is a half-space")
+            call warn('unused-input', "&material base = '"//cfg%material%base//"' without a thickness_m: the"// &
+                      " solid is a half-space")
+        if (.not. allocated(cfg%surface%given)) allocate (character(len=32) :: cfg%surface%given(0))
+        if (.not. allocated(cfg%material%given)) allocate (character(len=32) :: cfg%material%given(0))
         if (cfg%surface%kind == 'file') then
-            if (jumps(1)) call warn(edge_text('x', 'rows', 1))
-            if (jumps(2)) call warn(edge_text('y', 'columns', 2))
+            call unused('surface', cfg%surface%given, surface_reads(), "kind = 'file' (the heights are the file's)")
+        else
+            call unused('surface', cfg%surface%given, surface_reads(), "kind = '"//cfg%surface%kind//"'")
+        end if
+        call unused('material', cfg%material%given, material_reads(), "model = '"//cfg%material%model//"'")
+        if (cfg%surface%kind == 'file') then
+            if (edge_jumps(cfg%surface%edge_jump(1), cfg%surface%edge_step(1))) call warn('edge-jump', &
+                edge_text('x', 'rows', 1), cfg%surface%edge_jump(1), edge_jump_limit)
+            if (edge_jumps(cfg%surface%edge_jump(2), cfg%surface%edge_step(2))) call warn('edge-jump', &
+                edge_text('y', 'columns', 2), cfg%surface%edge_jump(2), edge_jump_limit)
         end if
     contains
-        !> The opposite edges along axis k jump by more than edge_jump_limit h_rms and three
-        !> times the rms step inside
-        logical function jumps(k)
-            integer, intent(in) :: k
-            jumps = cfg%surface%edge_jump(k) > edge_jump_limit .and. &
-                    cfg%surface%edge_jump(k) > 3.0_dp*cfg%surface%edge_step(k)
-        end function jumps
-
         function edge_text(axis, lines, k) result(t)
             character(len=*), intent(in) :: axis, lines
             integer, intent(in) :: k
@@ -319,11 +337,132 @@ contains
                 " FILE --periodic tukey)"
         end function edge_text
 
-        subroutine warn(text)
-            character(len=*), intent(in) :: text
-            cfg%warnings = [cfg%warnings, warning_t("veslide: "//cfg%path//": warning: "//text)]
+        !> The &surface variables its kind reads (kind itself aside)
+        function surface_reads() result(names)
+            character(len=16), allocatable :: names(:)
+            select case (cfg%surface%kind)
+            case ('self_affine')
+                names = [character(len=16) :: 'seed', 'hurst', 'eccentricity', 'alpha_deg', 'k_low', 'k_roll', &
+                         'k_cut', 'rms_slope', 'rms_height_m', 'scale_to']
+            case ('cosine')
+                names = [character(len=16) :: 'amplitude_m', 'wavelength_m', 'direction_deg']
+            case ('bisinusoid')
+                names = [character(len=16) :: 'amplitude_m', 'wavelength_m']
+            case ('paraboloid', 'cylinder')
+                names = [character(len=16) :: 'radius_m']
+            case ('file')
+                names = [character(len=16) :: 'file', 'dataset']
+            case default
+                allocate (names(0))
+            end select
+            ! k_cut is the default upper end of the anisotropy band (&analysis zeta2) of any surface
+            if (cfg%surface%kind /= 'self_affine') names = [character(len=16) :: names, 'k_cut']
+            names = [character(len=16) :: names, 'kind']
+        end function surface_reads
+
+        !> The &material variables its model reads (with the shift's and the layer's, which the
+        !> material's own checks guard)
+        function material_reads() result(names)
+            character(len=24), allocatable :: names(:)
+            select case (cfg%material%model)
+            case ('elastic')
+                names = [character(len=24) :: 'young_pa']
+            case ('one_term')
+                names = [character(len=24) :: 'einf_pa', 'ratio', 'tau_s']
+            case ('creep')
+                names = [character(len=24) :: 'e0_pa', 'creep_c_per_pa', 'creep_tau_s']
+            case default
+                names = [character(len=24) :: 'e0_pa', 'relax_e_pa', 'relax_rho_s']
+            end select
+            names = [character(len=24) :: names, 'model', 'poisson', 'shift', 'temperature_c', &
+                     'reference_temperature_c', 'wlf_c1', 'wlf_c2_k', 'activation_energy_j_mol', 'thickness_m', 'base']
+        end function material_reads
+
+        !> One warning naming the variables of `group` the input gave and `what` does not read
+        subroutine unused(group, given, reads, what)
+            character(len=*), intent(in) :: group, given(:), reads(:), what
+            character(len=:), allocatable :: list
+            integer :: k, n
+            if (size(given) == 0) return
+            list = ''; n = 0
+            do k = 1, size(given)
+                if (any(reads == given(k))) cycle
+                if (n > 0) list = list//", "
+                list = list//trim(given(k)); n = n + 1
+            end do
+            if (n == 0) return
+            if (n == 1) then
+                call warn('unused-input', "&"//group//" "//list//" is not used with "//what//": it changes"// &
+                          " nothing (remove it)")
+            else
+                call warn('unused-input', "&"//group//" "//list//" are not used with "//what//": they change"// &
+                          " nothing (remove them)")
+            end if
+        end subroutine unused
+
+        subroutine warn(code, text, value, threshold)
+            character(len=*), intent(in) :: code, text
+            real(dp), intent(in), optional :: value, threshold
+            call add_warning(cfg%warnings, code, text, 'input', value, threshold)
         end subroutine warn
     end subroutine collect_warnings
+
+    !> A nominal pressure above the solid's glassy contact modulus Einf/(1 - nu^2) would strain
+    !> it by more than 1 wherever it touched, in any state: no linear (visco)elastic model holds,
+    !> and the likely cause is a modulus in kPa or MPa read as Pa (or a pressure in the wrong unit)
+    subroutine check_pressure_against_moduli(cfg, error)
+        type(config_t), intent(in) :: cfg
+        type(error_t), allocatable, intent(inout) :: error
+        real(dp) :: e0, einf, p, estar
+        integer :: k
+        if (allocated(error)) return
+        call material_moduli(cfg, e0, einf)
+        estar = einf/(1.0_dp - cfg%material%poisson**2)
+        p = cfg%load%mean_pressure_pa
+        do k = 1, size(cfg%sweep%pressures)
+            p = max(p, cfg%sweep%pressures(k))
+        end do
+        if (.not. p > estar) return
+        if (size(cfg%sweep%pressures) > 0) then
+            call fatal_error(error, "veslide: "//cfg%path//": &sweep pressures_pa up to "//sig(p)//" Pa exceed"// &
+                " the solid's largest contact modulus Einf/(1 - nu^2) = "//sig(estar)//" Pa (&material): the solid"// &
+                " would be strained beyond 1 wherever it touched; moduli in kPa or MPa read as Pa?")
+        else
+            call fatal_error(error, "veslide: "//cfg%path//": &load mean_pressure_pa = "//sig(p)//" Pa exceeds"// &
+                " the solid's largest contact modulus Einf/(1 - nu^2) = "//sig(estar)//" Pa (&material): the solid"// &
+                " would be strained beyond 1 wherever it touched; moduli in kPa or MPa read as Pa?")
+        end if
+    end subroutine check_pressure_against_moduli
+
+    !> The relaxed (w -> 0) and glassy (w -> infinity) Young's moduli of &material [Pa]
+    pure subroutine material_moduli(cfg, e0, einf)
+        type(config_t), intent(in) :: cfg
+        real(dp), intent(out) :: e0, einf
+        associate (m => cfg%material)
+            select case (m%model)
+            case ('one_term')
+                einf = m%einf_pa; e0 = m%einf_pa/m%ratio
+            case ('creep')
+                e0 = m%e0_pa; einf = 1.0_dp/(1.0_dp/m%e0_pa - sum(m%prony_coef))
+            case ('relaxation')
+                e0 = m%e0_pa; einf = m%e0_pa + sum(m%prony_coef)
+            case default
+                e0 = m%young_pa; einf = m%young_pa
+            end select
+        end associate
+    end subroutine material_moduli
+
+    !> A list of numbers as the input writes it: 'a, b, c'
+    pure function list_text(x) result(t)
+        real(dp), intent(in) :: x(:)
+        character(len=:), allocatable :: t
+        integer :: k
+        t = ''
+        do k = 1, size(x)
+            if (k > 1) t = t//", "
+            t = t//str(x(k))
+        end do
+    end function list_text
 
     !> Fill unset cell lengths: lx from `lx_default`, ly from lx*ny/nx (square cells)
     subroutine default_lengths(cfg, lx_default)

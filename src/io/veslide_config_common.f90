@@ -11,7 +11,7 @@ module veslide_config_common
     private
     public :: group_text_t, scan_namelist, get_group, diagnose_read, try_interface, read_failed, split_lines
     public :: range_error, require, choices_text, is_one_of, finite_in, max_list, max_text
-    public :: unset_real, is_unset, list_length, check_list, check_text_length
+    public :: unset_real, is_unset, list_length, check_list, check_text_length, assigned_names
 
     !> Longest list a namelist array may hold (Prony terms, sweep lists)
     integer, parameter :: max_list = 64
@@ -314,6 +314,32 @@ contains
             i = i + 1
         end do
     end subroutine assignment_starts
+
+    !> The variables a group body assigns, lower case, each once, in the order first assigned
+    !> ('name(2) = ...' counts as 'name'): what the input gave, whatever the value
+    pure subroutine assigned_names(body, names)
+        character(len=*), intent(in) :: body
+        character(len=:), allocatable, intent(out) :: names(:)
+        integer, allocatable :: starts(:)
+        character(len=32), allocatable :: found(:)
+        character(len=32) :: name
+        integer :: k, e, w
+        character(len=*), parameter :: word = 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_'
+        call assignment_starts(body, starts)
+        allocate (found(0))
+        do k = 1, size(starts)
+            e = starts(k)
+            w = verify(body(e:), word)
+            if (w == 0) then
+                name = lower(body(e:))
+            else
+                name = lower(body(e:e + w - 2))
+            end if
+            if (all(found /= name)) found = [found, name]
+        end do
+        allocate (character(len=32) :: names(size(found)))
+        names = found
+    end subroutine assigned_names
 
     !> The refusal "veslide: PATH: &GROUP VAR = VALUE is out of range (allowed: ALLOWED)"
     pure subroutine range_error(error, path, group, var, value, allowed)

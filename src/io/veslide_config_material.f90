@@ -5,7 +5,7 @@ module veslide_config_material
     use veslide_strings, only: str
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
                                      finite_in, max_list, unset_real, list_length, check_list, check_text_length, &
-                                     max_text, is_unset
+                                     max_text, is_unset, assigned_names
     use veslide_material, only: material_model_names, shift_names, base_names
     implicit none
     private
@@ -30,6 +30,7 @@ module veslide_config_material
         !> a layer of this thickness on a rigid base [m] (0: a half-space), resting on it as `base`
         real(dp) :: thickness_m = 0.0_dp
         character(len=:), allocatable :: base
+        character(len=:), allocatable :: given(:)        !! the variables the input assigned
     end type material_config_t
 
     character(len=*), parameter :: names(19) = [character(len=23) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
@@ -43,6 +44,11 @@ module veslide_config_material
         'a real number', 'a real number', "a quoted text ('bonded')"]
     !> Largest modulus and time accepted [Pa], [s]: beyond them double precision loses the physics
     real(dp), parameter :: max_modulus = 1.0e15_dp, max_time = 1.0e15_dp
+    !> No solid is softer than about 10 Pa (the softest hydrogels): a modulus below 1 Pa is a
+    !> modulus in kPa or MPa read as Pa, refused with that hint
+    real(dp), parameter :: min_modulus = 1.0_dp
+    character(len=*), parameter :: modulus_range = "1 to 1e15 [Pa]; no solid is softer than about 10 Pa:"// &
+                                                   " a modulus in kPa or MPa read as Pa?"
 
 contains
 
@@ -86,6 +92,7 @@ contains
         call read_shift(); if (allocated(error)) return
         self%model = trim(model); self%young_pa = young_pa; self%poisson = poisson; self%einf_pa = einf_pa
         self%ratio = ratio; self%tau_s = tau_s; self%e0_pa = e0_pa
+        call assigned_names(g%body, self%given)
         call check_list(error, creep_c_per_pa, path, 'material', 'creep_c_per_pa')
         call check_list(error, creep_tau_s, path, 'material', 'creep_tau_s')
         call check_list(error, relax_e_pa, path, 'material', 'relax_e_pa')
@@ -107,18 +114,22 @@ contains
         if (allocated(error)) return
         select case (self%model)
         case ('elastic')
-            call require(error, finite_in(young_pa, 0.0_dp, max_modulus, open_low=.true.), path, 'material', &
-                         'young_pa', str(young_pa), "> 0 and <= 1e15 [Pa]")
+            call require(error, finite_in(young_pa, min_modulus, max_modulus), path, 'material', &
+                         'young_pa', str(young_pa), modulus_range)
         case ('one_term')
-            call require(error, finite_in(einf_pa, 0.0_dp, max_modulus, open_low=.true.), path, 'material', &
-                         'einf_pa', str(einf_pa), "> 0 and <= 1e15 [Pa]")
+            call require(error, finite_in(einf_pa, min_modulus, max_modulus), path, 'material', &
+                         'einf_pa', str(einf_pa), modulus_range)
             call require(error, finite_in(ratio, 1.0_dp, 1.0e12_dp, open_low=.true.), path, 'material', 'ratio', &
                          str(ratio), "> 1 and <= 1e12 (Einf/E0)")
+            if (.not. allocated(error)) &
+                call require(error, einf_pa/ratio >= min_modulus, path, 'material', 'ratio', str(ratio), &
+                             "at most einf_pa/1 Pa = "//str(einf_pa/min_modulus)//" (E0 = einf_pa/ratio = "// &
+                             str(einf_pa/ratio)//" Pa; no solid is softer than about 10 Pa)")
             call require(error, finite_in(tau_s, 0.0_dp, max_time, open_low=.true.), path, 'material', 'tau_s', &
                          str(tau_s), "> 0 and <= 1e15 [s]")
         case ('creep', 'relaxation')
-            call require(error, finite_in(e0_pa, 0.0_dp, max_modulus, open_low=.true.), path, 'material', 'e0_pa', &
-                         str(e0_pa), "> 0 and <= 1e15 [Pa]")
+            call require(error, finite_in(e0_pa, min_modulus, max_modulus), path, 'material', 'e0_pa', &
+                         str(e0_pa), modulus_range)
             call check_terms(); if (allocated(error)) return
             if (self%model == 'creep') &
                 call require(error, sum(self%prony_coef) < 1.0_dp/e0_pa, path, 'material', 'creep_c_per_pa', &

@@ -7,7 +7,8 @@ module veslide_config_output
     public :: output_config_t, read_output_config
 
     type :: output_config_t
-        character(len=:), allocatable :: file      !! result file
+        !> result file (default: the namelist's name with '.h5', in the current directory)
+        character(len=:), allocatable :: file
         !> write the 2-D fields: by default for a single case, not for a study (18 cases of 512^2
         !> are 151 MB with them, 391 kB without); `fields = .true.` asks for them in a study
         logical :: fields = .true.
@@ -32,13 +33,14 @@ contains
         character(len=512) :: msg
         character(len=:), allocatable :: lines(:)
         namelist /output/ file, fields, overwrite
-        file = 'veslide.h5'; fields = self%fields; overwrite = self%overwrite
+        file = achar(0); fields = self%fields; overwrite = self%overwrite
         call split_lines(g%text, lines)
         read (lines, nml=output, iostat=stat, iomsg=msg)
         if (read_failed(stat)) then
             call diagnose_read(stat, msg, path, 'output', g%body, names, kinds, try, error); return
         end if
         call check_text_length(error, file, path, 'output', 'file', g%body); if (allocated(error)) return
+        if (file == achar(0)) file = default_output(path)
         self%file = trim(file); self%fields = fields; self%overwrite = overwrite
         ! given when a read with the opposite default gives the same value
         fields = .not. self%fields
@@ -46,6 +48,20 @@ contains
         self%fields_given = stat == 0 .and. (fields .eqv. self%fields)
         call require(error, len(self%file) > 0, path, 'output', 'file', "''", "a file path")
     contains
+        !> The namelist file's name, its directory and extension dropped, with '.h5': the result of
+        !> case.nml is case.h5 in the current directory (veslide.h5 for a name that leaves nothing)
+        function default_output(input) result(out)
+            character(len=*), intent(in) :: input
+            character(len=:), allocatable :: out
+            integer :: slash, dot
+            slash = index(input, '/', back=.true.)
+            out = input(slash + 1:)
+            dot = index(out, '.', back=.true.)
+            if (dot > 1) out = out(:dot - 1)
+            if (len(out) == 0 .or. out == '.' .or. out == '..') out = 'veslide'
+            out = out//'.h5'
+        end function default_output
+
         subroutine try(lines, stat, msg)
             character(len=*), intent(in) :: lines(:)
             integer, intent(out) :: stat

@@ -4,7 +4,8 @@ module veslide_config_surface
     use veslide_error, only: error_t
     use veslide_strings, only: str
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
-                                     finite_in, check_text_length, max_text, unset_real, is_unset
+                                     finite_in, check_text_length, max_text, unset_real, is_unset, &
+                                     assigned_names
     use veslide_surface, only: surface_kind_names
     implicit none
     private
@@ -27,6 +28,10 @@ module veslide_config_surface
         character(len=:), allocatable :: preparation     !! the file's record of its preparation ('')
         !> the file's edge jumps along x and y and the rms steps inside [h_rms] (veslide_topography)
         real(dp) :: edge_jump(2) = 0.0_dp, edge_step(2) = 0.0_dp
+        !> the file's preparation: the share of the scan's points filled, the share of its slope
+        !> variance the band removed (the height file's attributes; -1 when it does not say)
+        real(dp) :: filled_fraction = -1.0_dp, band_slope_removed = -1.0_dp
+        character(len=:), allocatable :: given(:)        !! the variables the input assigned
     end type surface_config_t
 
     character(len=*), parameter :: names(17) = [character(len=13) :: 'kind', 'seed', 'hurst', 'eccentricity', &
@@ -78,6 +83,7 @@ contains
         self%rms_slope = rms_slope; self%rms_height_m = rms_height_m; self%scale_to = trim(scale_to)
         self%amplitude_m = amplitude_m; self%wavelength_m = wavelength_m; self%direction_deg = direction_deg
         self%radius_m = radius_m; self%file = trim(file); self%dataset = trim(dataset)
+        call assigned_names(g%body, self%given)
 
         big = 1.0e3_dp
         call require(error, is_one_of(self%kind, surface_kind_names), path, 'surface', 'kind', "'"//self%kind//"'", &

@@ -8,7 +8,7 @@
 !> one in a call. Every write goes through one private routine per object kind (dataset,
 !> attribute), dispatched by the generic `write` and `writeattr`.
 module veslide_hdf5
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_int
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_int, c_null_ptr
     use hdf5
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, io_error
@@ -28,8 +28,8 @@ module veslide_hdf5
         procedure :: flush => h5_flush
         procedure :: delete => h5_delete
         procedure :: copy_from => h5_copy_from
-        generic :: write => write_r0, write_i0, write_r1, write_r2, write_text
-        procedure, private :: write_r0, write_i0, write_r1, write_r2, write_text
+        generic :: write => write_r0, write_i0, write_r1, write_r2, write_text, write_text_list
+        procedure, private :: write_r0, write_i0, write_r1, write_r2, write_text, write_text_list
         generic :: writeattr => attr_text, attr_r0, attr_i0, attr_text_list, attr_i1
         procedure, private :: attr_text, attr_r0, attr_i0, attr_text_list, attr_i1
         procedure :: write_table => h5_write_table
@@ -211,7 +211,8 @@ contains
         if (ierr /= 0) then
             call io_error(error, "veslide:hdf5:write: cannot create "//name//" in "//self%path); return
         end if
-        call h5dwrite_f(did, dtype, buf, ierr)
+        ierr = 0
+        if (product(dims) > 0) call h5dwrite_f(did, dtype, buf, ierr)     ! (an empty dataset: nothing to write)
         call h5dclose_f(did, ie)
         if (ierr /= 0 .or. ie /= 0) call io_error(error, "veslide:hdf5:write: cannot write "//name//" in "//self%path)
     end subroutine write_raw
@@ -265,6 +266,27 @@ contains
         call write_raw(self, name, tid, dims, c_loc(ptr), error)
         call h5tclose_f(tid, ie)
     end subroutine write_text
+
+    !> 1-D string dataset (variable-length UTF-8), each value trimmed; an empty list gives an
+    !> empty dataset
+    subroutine write_text_list(self, name, values, error)
+        class(h5file_t), intent(inout) :: self
+        character(len=*), intent(in) :: name, values(:)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=len(values) + 1, kind=c_char), allocatable, target :: cs(:)
+        type(c_ptr), allocatable, target :: ptrs(:)
+        integer(hid_t) :: tid
+        integer :: ie, k
+        allocate (cs(max(size(values), 1)), ptrs(max(size(values), 1)))
+        ptrs = c_null_ptr
+        do k = 1, size(values)
+            cs(k) = trim(values(k))//c_null_char
+            ptrs(k) = c_loc(cs(k))
+        end do
+        call vl_string_type(tid)
+        call write_raw(self, name, tid, [int(size(values), hsize_t)], c_loc(ptrs), error)
+        call h5tclose_f(tid, ie)
+    end subroutine write_text_list
 
     !> Variable-length UTF-8 string type (close it with h5tclose_f)
     subroutine vl_string_type(tid)

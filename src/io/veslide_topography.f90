@@ -11,7 +11,7 @@ module veslide_topography
     use veslide_system, only: missing_reason
     implicit none
     private
-    public :: topography_info_t, topography_info, read_topography, edge_jump_limit
+    public :: topography_info_t, topography_info, read_topography
 
     !> What a height file says of itself, before its heights are read
     type :: topography_info_t
@@ -22,11 +22,11 @@ module veslide_topography
         !> (y), in units of the heights' rms; and the rms step between neighbours inside
         real(dp) :: jump_x = 0.0_dp, jump_y = 0.0_dp, step_x = 0.0_dp, step_y = 0.0_dp
         real(dp) :: rms_m = 0.0_dp                  !! rms of the heights about their mean
+        !> the preparation's costs the file states in its attributes `filled_fraction` (the share
+        !> of the scan's points that were unmeasured and filled) and `band_slope_variance_removed`
+        !> (the share of the slope variance the band removed); -1 when it does not state them
+        real(dp) :: filled_fraction = -1.0_dp, band_slope_removed = -1.0_dp
     end type topography_info_t
-
-    !> An edge jump above this many h_rms, and above three times the rms step inside, makes a
-    !> file's periodic images step: the run says so (README: measured topographies)
-    real(dp), parameter :: edge_jump_limit = 0.5_dp
     integer, parameter :: block_rows = 64           !! rows read at a time for the statistics
 
 contains
@@ -55,6 +55,8 @@ contains
                 call fatal_error(error, at//"attribute 'preparation' is not a text"); return
             end if
         end if
+        call read_share('filled_fraction', info%filled_fraction); if (allocated(error)) return
+        call read_share('band_slope_variance_removed', info%band_slope_removed); if (allocated(error)) return
         if (present(statistics)) then
             if (.not. statistics) then
                 call f%close(); return
@@ -75,6 +77,20 @@ contains
             if (.not. (length > 0.0_dp .and. ieee_is_finite(length))) &
                 call fatal_error(error, at//"attribute "//name//" must be > 0 [m]")
         end subroutine read_side
+
+        !> a share (0 to 1) the file states of its preparation in attribute `name`; -1 when absent
+        subroutine read_share(name, share)
+            character(len=*), intent(in) :: name
+            real(dp), intent(out) :: share
+            share = -1.0_dp
+            if (.not. f%attr_exists(dataset, name)) return
+            call f%read_attr_r0(dataset, name, share, error)
+            if (allocated(error)) then
+                call fatal_error(error, at//"attribute "//name//" is not a number"); return
+            end if
+            if (.not. (share >= 0.0_dp .and. share <= 1.0_dp)) &
+                call fatal_error(error, at//"attribute "//name//" must be a share from 0 to 1")
+        end subroutine read_share
 
         !> rms of the heights, of the steps inside and of the jumps across the edges, from
         !> blocks of rows (sums over the whole grid, then normalised by h_rms)
