@@ -25,7 +25,7 @@ module test_veslide_device
                                    update_transform, step_transform, gap_multiply, add_points, clipped_points
     use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
                                   full_contact, gap_to_z, sum_of, one_plus, difference_from
-    use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap
+    use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap, dr_load_sums, dr_shift
     use veslide_anderson_passes, only: anderson_columns, anderson_update
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
@@ -416,7 +416,8 @@ contains
         real(dp), allocatable, target :: x(:, :), z(:, :), zp(:, :), fp(:, :), p(:, :), g(:, :)
         type(rarray_t) :: xh, xd, zh, zd, zph, zpd, fph, fpd, ph, pd, gh, gd
         type(sarray_t) :: dfh, dfd, gmh, gmd
-        real(dp) :: rows_h(1 + 2*m, ny), rows_d(1 + 2*m, ny), rp(2), rg(2), coef(m)
+        real(dp) :: rows_h(1 + 2*m, ny), rows_d(1 + 2*m, ny), rp(2), rg(2), coef(m), load_h(2, ny), load_d(2, ny), &
+                    vmax(2)
         real(real32), allocatable :: hist(:, :)
         integer :: mk
         call twin_real(nx, ny, x, xh, xd); call twin_real(nx, ny, z, zh, zd)
@@ -454,6 +455,10 @@ contains
         call dr_restore(xh, zh, zph, fph); call dr_restore(xd, zd, zpd, fpd); call same_real(error, xh, xd, "restore")
         call dr_add_gap(zh, gh, 0.7_dp, 3.0_dp); call dr_add_gap(zd, gd, 0.7_dp, 3.0_dp)
         call same_real(error, zh, zd, "add_gap")
+        call dr_load_sums(xh, zh, 0.2_dp, load_h, vmax(1)); call dr_load_sums(xd, zd, 0.2_dp, load_d, vmax(2))
+        call same_values(error, reshape(load_d, [2*ny]), reshape(load_h, [2*ny]), "load_sums")
+        if (.not. allocated(error)) call check(error, vmax(1) == vmax(2), "load_sums: max v")
+        call dr_shift(zh, -0.3_dp); call dr_shift(zd, -0.3_dp); call same_real(error, zh, zd, "shift")
         call device_errors(error, "dr passes")
         call xd%destroy(); call zd%destroy(); call zpd%destroy(); call fpd%destroy(); call pd%destroy(); call gd%destroy()
         call dfd%destroy(); call gmd%destroy(); call dfh%destroy(); call gmh%destroy()

@@ -2,11 +2,15 @@
 !> right sign (zero at rest, positive in motion). The same cases at full size: veslide-bench hard.
 !> Then the profiles (veslide_scenes): 300 one-row and stripe-like random profiles that every
 !> method must solve (bccg stalled on about 5 % of one-row profiles while it rescaled the load).
+!> Then the layered scenes (veslide_scenes): 72 thin and thick layers on 5 surfaces each,
+!> solved by every method 'auto' may take for them and by 'auto' (before dr carried the load in
+!> its projection it left 16-29 of 60 thin bonded incompressible layers without contact, and 6
+!> of these 180 viscoelastic scenes; docs/solvers.md).
 module test_veslide_hard
     use veslide_kinds, only: dp
     use veslide_config, only: config_t
     use veslide_case, only: case_t, run_case
-    use veslide_scenes, only: hard_case, profile_case_count, profile_case
+    use veslide_scenes, only: hard_case, profile_case_count, profile_case, layer_case_count, layer_case
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     implicit none
     private
@@ -31,7 +35,9 @@ contains
             new_unittest("profiles-elastic-pdr", test_profiles_pdr), &
             new_unittest("profiles-elastic-dr", test_profiles_dr), &
             new_unittest("profiles-viscoelastic-pdr", test_profiles_visco_pdr), &
-            new_unittest("profiles-viscoelastic-dr", test_profiles_visco_dr) &
+            new_unittest("profiles-viscoelastic-dr", test_profiles_visco_dr), &
+            new_unittest("layers-elastic-every-method", test_layers_elastic), &
+            new_unittest("layers-viscoelastic-every-method", test_layers_visco) &
             ]
     end subroutine collect_hard
 
@@ -167,5 +173,55 @@ contains
         type(error_t), allocatable, intent(out) :: error
         call run_profiles('dr', .true., error)
     end subroutine test_profiles_visco_dr
+
+    !> Every layered scene of one half (elastic or viscoelastic) converges to the tolerance with
+    !> every method in `methods`, and its friction has the right sign
+    subroutine run_layers(viscoelastic, methods, error)
+        logical, intent(in) :: viscoelastic
+        character(len=*), intent(in) :: methods(:)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        character(len=:), allocatable :: name, first
+        type(error_t), allocatable :: sign_error
+        integer :: k, m, half, failed, pairs(size(methods))
+        character(len=12) :: count
+        half = layer_case_count()/2
+        failed = 0; pairs = 0
+        do m = 1, size(methods)
+            do k = merge(half + 1, 1, viscoelastic), merge(2*half, half, viscoelastic)
+                call layer_case(k, trim(methods(m)), cfg, name, error); if (allocated(error)) return
+                call run_case(cfg, c, error)
+                if (allocated(error)) then
+                    error%message = name//": "//error%message; return
+                end if
+                call check_friction_sign(cfg, c, name, sign_error)
+                if (.not. (c%state%converged .and. c%state%residual <= cfg%solver%tolerance) &
+                    .or. allocated(sign_error)) then
+                    failed = failed + 1
+                    if (.not. allocated(first)) first = name
+                end if
+                pairs(m) = max(pairs(m), c%state%operator_applications)
+            end do
+            call report("max FFT pairs "//trim(methods(m)), real(pairs(m), dp))
+        end do
+        if (failed > 0) then
+            write (count, '(i0)') failed
+            call check(error, .false., trim(count)//" layered solves did not converge or had friction of the"// &
+                       " wrong sign, the first: "//first)
+        end if
+    end subroutine run_layers
+
+    !> The elastic layers: a symmetric kernel, which 'auto' gives to bccg
+    subroutine test_layers_elastic(error)
+        type(error_t), allocatable, intent(out) :: error
+        call run_layers(.false., [character(len=4) :: 'bccg', 'auto'], error)
+    end subroutine test_layers_elastic
+
+    !> The viscoelastic layers in motion: 'auto' takes pdr or dr (by the grid and the spread)
+    subroutine test_layers_visco(error)
+        type(error_t), allocatable, intent(out) :: error
+        call run_layers(.true., [character(len=4) :: 'pdr', 'dr', 'auto'], error)
+    end subroutine test_layers_visco
 
 end module test_veslide_hard

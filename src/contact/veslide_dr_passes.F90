@@ -6,17 +6,20 @@
 !>  project    p = p_mean max(2x - z, 0)
 !>  restore    z = z_prev + f_prev; x = z
 !>  add_gap    z = z + gamma g/hs
+!>  load_sums  per row sum(max(v - c, 0)) and count(v > c), v = 2x - z, and the largest v
+!>  shift      z = z + c
 module veslide_dr_passes
     use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_long
     use veslide_kinds, only: dp
     use veslide_arrays, only: rarray_t, elements
     implicit none
     private
-    public :: dr_rebalance, dr_project, dr_restore, dr_add_gap
+    public :: dr_rebalance, dr_project, dr_restore, dr_add_gap, dr_load_sums, dr_shift
 
 #ifdef VESLIDE_CUDA
     interface
-        !> mode 0: rebalance (s), 1: project (s = p_mean, into p), 2: restore, 3: add_gap (x = g, s = gamma/hs pair)
+        !> mode 0: rebalance (s), 1: project (s = p_mean, into p), 2: restore, 3: add_gap (x = g, s = gamma/hs pair),
+        !> 4: shift (z = z + s)
         subroutine elementwise_gpu(n, mode, x, z, p, a, b, s, t) bind(c, name='veslide_dr_elementwise')
             import :: c_long, c_int, c_ptr, c_double
             integer(c_long), value :: n
@@ -24,6 +27,14 @@ module veslide_dr_passes
             type(c_ptr), value :: x, z, p, a, b
             real(c_double), value :: s, t
         end subroutine elementwise_gpu
+        !> rows(3, ny): [sum max(v - c, 0), count v > c, min -v], v = 2x - z
+        subroutine load_sums_gpu(nx, ny, x, z, c, rows) bind(c, name='veslide_dr_load_sums')
+            import :: c_int, c_ptr, c_double
+            integer(c_int), value :: nx, ny
+            type(c_ptr), value :: x, z
+            real(c_double), value :: c
+            real(c_double), intent(out) :: rows(*)
+        end subroutine load_sums_gpu
     end interface
 #endif
 
@@ -82,6 +93,36 @@ contains
         z%h = z%h + gamma*g%h/hs
     end subroutine dr_add_gap
 
+    !> v = 2x - z: rows(:, j) = [sum of max(v - c, 0), count of v > c] over row j; vmax = max v
+    !> (this process's)
+    subroutine dr_load_sums(x, z, c, rows, vmax)
+        type(rarray_t), intent(in) :: x, z
+        real(dp), intent(in) :: c
+        real(dp), intent(out) :: rows(:, :), vmax
+#ifdef VESLIDE_CUDA
+        real(dp), allocatable :: out(:, :)
+        if (x%device) then
+            allocate (out(3, x%n2))
+            call load_sums_gpu(x%n1, x%n2, x%d, z%d, c, out)
+            rows = out(1:2, :); vmax = -minval(out(3, :))
+            return
+        end if
+#endif
+        call dr_load_sums_cpu(x%h, z%h, c, rows, vmax)
+    end subroutine dr_load_sums
+
+    !> z = z + c
+    subroutine dr_shift(z, c)
+        type(rarray_t), intent(inout) :: z
+        real(dp), intent(in) :: c
+#ifdef VESLIDE_CUDA
+        if (z%device) then
+            call elementwise_gpu(elements(z), 4_c_int, z%d, z%d, z%d, z%d, z%d, c, 0.0_dp); return
+        end if
+#endif
+        z%h = z%h + c
+    end subroutine dr_shift
+
     ! ---- CPU twins ----------------------------------------------------------------------
 
     subroutine dr_rebalance_cpu(n, xb, z, s)
@@ -106,5 +147,27 @@ contains
         z = zprev + fprev
         xb = z
     end subroutine dr_restore_cpu
+
+    subroutine dr_load_sums_cpu(x, z, c, rows, vmax)
+        real(dp), intent(in) :: x(:, :), z(:, :)
+        real(dp), intent(in) :: c
+        real(dp), intent(out) :: rows(:, :), vmax
+        real(dp) :: v, t(2)
+        integer :: i, j
+        vmax = -huge(1.0_dp)
+        !$omp parallel do schedule(guided) private(i, v, t) reduction(max:vmax)
+        do j = 1, size(x, 2)
+            t = 0.0_dp
+            do i = 1, size(x, 1)
+                v = 2.0_dp*x(i, j) - z(i, j)
+                if (v > c) then
+                    t(1) = t(1) + (v - c); t(2) = t(2) + 1.0_dp
+                end if
+                vmax = max(vmax, v)
+            end do
+            rows(:, j) = t
+        end do
+        !$omp end parallel do
+    end subroutine dr_load_sums_cpu
 
 end module veslide_dr_passes

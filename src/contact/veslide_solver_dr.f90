@@ -6,8 +6,19 @@
 !> not K is symmetric, so the splitting converges without symmetry. In units p/p_mean,
 !> h/h_s, with step gamma, one iteration is
 !>   x = (I + gamma K)^-1 (z + gamma h), mean(x) = 1   (one FFT pair: the kernel's resolvent)
+!>   z <- z + c, c such that mean(max(2x - z - c, 0)) = 1   (the approach for the load)
 !>   y = max(2x - z, 0),  f = y - x,   z <- z + f      (accelerated by Anderson mixing).
-!> At the fixed point x = y = p and z = p + gamma g. The step is balanced every
+!> At the fixed point x = y = p and z = p + gamma g. The resolvent fixes the mean of x, never
+!> that of z: the mean of z is gamma times the mean gap (the approach), which the plain step
+!> alone would move by mean(y) - 1 per iteration, the mean gap by (mean(y) - 1) h_s/gamma.
+!> Where gamma is large (a stiff operator: a thin bonded incompressible layer, |K| p_mean/h_s
+!> ~ 2e-5 and gamma ~ 5e4) that left y without contact (y = 0, f = -x = -1 everywhere: a
+!> plateau of |f| on which the mixing and its safeguard see nothing) until the balancing had
+!> shrunk gamma below round-off (docs/solvers.md). The shift c, the one number that makes y
+!> carry the load, is found exactly instead (Newton's method on a convex piecewise-linear
+!> function of c, about 2.3 passes over x and z per iteration); it moves only the mean of z,
+!> which x does not see, and is 0 at the fixed point. So y always carries the load, as the
+!> projection of `solver_pdr` does. The step is balanced every
 !> `balance_every` iterations between the pressure residual (x where y = 0) and the gap
 !> residual (f/gamma where y > 0), by factors of `balance_factor`, with z remapped to the new
 !> step. An accelerated step whose residual grew by more than `aa_growth` is replaced by the
@@ -19,10 +30,10 @@ module veslide_solver_dr
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
     use veslide_anderson, only: anderson_t
-    use veslide_collective, only: global_max
+    use veslide_collective, only: global_max, ordered_sum
     use veslide_arrays, only: rarray_t, carray_t
     use veslide_passes, only: centre_divide, divided_copy
-    use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap
+    use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap, dr_load_sums, dr_shift
     use veslide_device, only: device_failed
     implicit none
     private
@@ -91,6 +102,7 @@ contains
             ! the map: x = resolvent(z) (left in the FFT buffer, which holds z on entry)
             call res%solve(f%t, hkern, gamma, 1.0_dp)
             state%operator_applications = state%operator_applications + 1
+            call carry_load()
 
             ! pass A: y, f = y - x and the residuals; the new history column and its products
             mk = aa%begin()
@@ -165,6 +177,46 @@ contains
         subroutine clear_history()
             call aa%reset(); accelerated = .false.
         end subroutine clear_history
+
+        !> z <- z + c with the c that makes y = max(2x - z, 0) carry the load: with v = 2x - z,
+        !> phi(c) = sum(max(v - c, 0)) - N = 0 (N cells). phi is convex, piecewise linear and
+        !> decreasing with slope -count(v > c): Newton's method from a c with phi >= 0 stays
+        !> below the root and is exact once that count stops changing (from phi < 0 its first
+        !> step lands below the root). Starts at c = 0, or without contact there (count 0) at
+        !> c = max v - N, where phi >= 0.
+        subroutine carry_load()
+            integer, parameter :: max_steps = 100
+            real(dp) :: c, c_new, phi, cnt, cnt_new, vmax, cells
+            integer :: k
+            cells = problem%kernel%grid%cells()
+            c = 0.0_dp
+            call load_sums(c, phi, cnt, vmax)
+            if (cnt == 0.0_dp) then
+                c = vmax - cells
+                call load_sums(c, phi, cnt, vmax)
+            end if
+            do k = 1, max_steps
+                if (phi == 0.0_dp .or. cnt == 0.0_dp) exit
+                c_new = c + phi/cnt
+                if (c_new == c) exit
+                call load_sums(c_new, phi, cnt_new, vmax)
+                c = c_new
+                if (cnt_new == cnt) exit
+                cnt = cnt_new
+            end do
+            if (c /= 0.0_dp .and. abs(c) <= huge(1.0_dp)) call dr_shift(z, c)
+        end subroutine carry_load
+
+        !> phi(c) and count(v > c) over the whole grid, v = 2x - z; vmax = max v
+        subroutine load_sums(c, phi, cnt, vmax)
+            real(dp), intent(in) :: c
+            real(dp), intent(out) :: phi, cnt, vmax
+            real(dp) :: rows(2, ny), t(2)
+            call dr_load_sums(f%t%x, z, c, rows, vmax)
+            call ordered_sum(problem%kernel%grid, rows, t)
+            call global_max(problem%kernel%grid, vmax)
+            phi = t(1) - problem%kernel%grid%cells(); cnt = t(2)
+        end subroutine load_sums
 
     end subroutine douglas_rachford
 

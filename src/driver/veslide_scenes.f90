@@ -3,18 +3,29 @@
 !> q0 .. k_cut q0, rms slope 0.025) and material time tau = 10 ms, so v tau/L0 = speed [m/s].
 !> The profiles (`profile_case`): many one-row and stripe-like random profiles, on which a solver
 !> that converges on every 2-D scene can still stall (the `hard` suite runs each method on all).
+!> The layered scenes (`layer_case`): thin and thick layers on both bases, Poisson ratios 0.3 to
+!> 1/2, q0 d from 1e-3 to 20, elastic and viscoelastic (a thin bonded incompressible layer
+!> stiffens the long waves as 1/(q d)^3, on which `dr` once stalled without contact).
 module veslide_scenes
-    use veslide_kinds, only: dp
+    use veslide_kinds, only: dp, two_pi
     use veslide_error, only: error_t
     use veslide_config, only: config_t, default_config, complete_config
     implicit none
     private
-    public :: hard_case_count, hard_case, profile_case_count, profile_case
+    public :: hard_case_count, hard_case, profile_case_count, profile_case, layer_case_count, layer_case
 
     integer, parameter :: ncase = 29
     !> profiles: one-row (nx 64, ny 1), stripes of 4 rows (eccentricity 0.1 along x) and of
     !> 8 rows (eccentricity 0.2 across x)
     integer, parameter :: nrow1 = 150, nstripe4 = 75, nstripe8 = 75
+    !> layered scenes: q0 d (q0 = 2 pi/L0, L0 = 1 cm) x Poisson ratio x base x (elastic, viscoelastic)
+    real(dp), parameter :: layer_q0d(6) = [1.0e-3_dp, 5.0e-3_dp, 2.0e-2_dp, 0.2_dp, 2.0_dp, 20.0_dp]
+    real(dp), parameter :: layer_nu(3) = [0.3_dp, 0.45_dp, 0.5_dp]
+    character(len=*), parameter :: layer_bases(2) = [character(len=12) :: 'bonded', 'frictionless']
+    !> their speeds (viscoelastic, cycling with the case) [m/s]: below, at and above the loss peak
+    real(dp), parameter :: layer_speeds(3) = [1.0e-2_dp, 0.13_dp, 1.0_dp]
+    !> surfaces per layer (consecutive seeds, cycling over 1..20)
+    integer, parameter :: layer_seeds = 5
 
 contains
 
@@ -116,5 +127,58 @@ contains
         name = trim(method)//' on the profile '//trim(text)
         call complete_config(cfg, error)
     end subroutine profile_case
+
+    pure integer function layer_case_count() result(n)
+        n = layer_seeds*size(layer_q0d)*size(layer_nu)*size(layer_bases)*2
+    end function layer_case_count
+
+    !> Configuration of layered scene k (1..layer_case_count()) solved by `method`: the hard
+    !> cases' geometry at 64^2 (L0 = 1 cm, k_cut 16, 32 kPa), a layer of thickness d with
+    !> q0 d = 1e-3 .. 20 on a 'bonded' or 'frictionless' base, Poisson ratio 0.3, 0.45 or 1/2;
+    !> the first half elastic (E = 1e7 Pa), the second the one-term law (Einf = 1e8 Pa, ratio 11,
+    !> tau = 10 ms) at 0.01, 0.13 or 1 m/s (cycling with k); each layer on `layer_seeds`
+    !> surfaces, the seed cycling over 1..20 with k
+    subroutine layer_case(k, method, cfg, name, error)
+        integer, intent(in) :: k
+        character(len=*), intent(in) :: method
+        type(config_t), intent(out) :: cfg
+        character(len=:), allocatable, intent(out) :: name
+        type(error_t), allocatable, intent(out) :: error
+        character(len=40) :: law
+        character(len=120) :: text
+        integer :: i, iq, inu, ibase
+        logical :: viscoelastic
+        i = (k - 1)/layer_seeds
+        iq = modulo(i, size(layer_q0d)) + 1; i = i/size(layer_q0d)
+        inu = modulo(i, size(layer_nu)) + 1; i = i/size(layer_nu)
+        ibase = modulo(i, size(layer_bases)) + 1; i = i/size(layer_bases)
+        viscoelastic = i > 0
+        call default_config(cfg, 'layer')
+        cfg%grid%nx = 64; cfg%grid%ny = 64; cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp
+        cfg%surface%seed = modulo(k - 1, 20) + 1; cfg%surface%k_cut = 16.0_dp
+        cfg%material%poisson = layer_nu(inu)
+        cfg%material%thickness_m = layer_q0d(iq)*cfg%grid%lx_m/two_pi
+        cfg%material%base = trim(layer_bases(ibase))
+        cfg%load%mean_pressure_pa = 32.0e3_dp
+        if (viscoelastic) then
+            cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+            cfg%material%tau_s = 0.01_dp
+            cfg%motion%speed_m_s = layer_speeds(modulo(k - 1, size(layer_speeds)) + 1)
+        else
+            cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e7_dp
+        end if
+        cfg%solver%method = method
+        cfg%solver%fft_planner = 'estimate'; cfg%output%fields = .false.
+        cfg%output%file = 'layer.h5'
+        if (viscoelastic) then
+            write (law, '("one-term at ", g0.2, " m/s")') cfg%motion%speed_m_s
+        else
+            law = 'elastic'
+        end if
+        write (text, '(a, ", ", a, " layer, q0 d = ", es7.1, ", nu = ", f4.2, ", seed ", i0)') trim(law), &
+            trim(layer_bases(ibase)), layer_q0d(iq), layer_nu(inu), cfg%surface%seed
+        name = trim(method)//' on '//trim(text)
+        call complete_config(cfg, error)
+    end subroutine layer_case
 
 end module veslide_scenes
