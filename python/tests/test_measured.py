@@ -3,6 +3,7 @@ SurfaceTopography, prepared, written and read back with h5py; the solver on a pr
 import json
 import subprocess
 import sys
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -350,3 +351,114 @@ def test_readme_measured_scan_example_runs_as_written(tmp_path, exe, monkeypatch
     assert ns["r"].converged
     assert ns["r"].scalars["friction_coefficient"] == r.scalars["friction_coefficient"]
     assert ns["scan"].heights[3, 7] == ns["scan"].matrix[7, 3]
+
+
+# --- unmeasured points: filled up to 2 %, else refused unless cropped or filled on request ---------
+
+def _cli(tmp_path, *args):
+    return subprocess.run([sys.executable, "-m", "veslide", "topography", *map(str, args)],
+                          capture_output=True, text=True, cwd=tmp_path)
+
+
+def holes(n_strip_x, extra=0):
+    """rough(50, 40) [ix, iy] with the points ix < n_strip_x, iy >= 30 undefined (a strip of
+    10 n_strip_x points at one corner) and `extra` (<= n_strip_x) more along iy = 0 from ix = 0:
+    the largest measured rectangle is ix >= n_strip_x, all iy."""
+    h = rough(50, 40)
+    h[:n_strip_x, 30:] = np.nan
+    h[:extra, 0] = np.nan
+    return h
+
+
+def test_largest_measured_rectangle_is_the_brute_force_one():
+    from veslide.measured import largest_measured_rectangle
+    rng = np.random.default_rng(5)
+    for trial in range(400):
+        nx, ny = rng.integers(1, 9, 2)
+        valid = rng.random((nx, ny)) < rng.uniform(0.2, 1.0)
+        best = 0
+        for i0 in range(nx):
+            for i1 in range(i0 + 1, nx + 1):
+                for j0 in range(ny):
+                    for j1 in range(j0 + 1, ny + 1):
+                        if valid[i0:i1, j0:j1].all():
+                            best = max(best, (i1 - i0) * (j1 - j0))
+        (i0, j0), (mx, my) = largest_measured_rectangle(valid)
+        assert mx * my == best, (valid, best)
+        assert valid[i0:i0 + mx, j0:j0 + my].all() and i0 + mx <= nx and j0 + my <= ny
+    assert largest_measured_rectangle(np.zeros((3, 4), bool)) == ((0, 0), (0, 0))
+    assert largest_measured_rectangle(np.ones((3, 4), bool)) == ((0, 0), (3, 4))
+    assert largest_measured_rectangle(np.array([1, 1, 0, 1, 1, 1, 0], bool)) == ((3, 0), (3, 1))   # a line
+
+
+def test_up_to_two_percent_undefined_is_filled_and_recorded(tmp_path):
+    scan = read(write_x3p(tmp_path / "s.x3p", holes(4).T, 1e-6, 1e-6))       # 40 of 2000 points: 2 %
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        s = prepare(scan, k_cut=6)
+    u = s.preparation["undefined_points"]
+    assert u["count"] == 40 and u["fraction"] == 0.02 and u["filled_fraction"] == 0.02
+    assert u["fill"] == "auto" and u["filled_by"].startswith("SurfaceTopography interpolate_undefined_data")
+    assert u["crop_valid"] is False and u["measured_rectangle"] is None
+    assert s.heights.shape == (50, 40) and np.all(np.isfinite(s.heights)) and s.preparation["warnings"] == []
+
+
+def test_more_than_two_percent_undefined_is_refused_naming_both_ways(tmp_path):
+    f = write_x3p(tmp_path / "s.x3p", holes(4, extra=1).T, 1e-6, 1e-6)     # 41 of 2000 points: 2.05 %
+    scan = read(f)
+    with pytest.raises(ValueError) as e:
+        prepare(scan, k_cut=6)
+    msg = str(e.value)
+    assert "\n" not in msg
+    assert msg == ("%s: 2.05 %% of its 50 x 40 points are unmeasured: crop_valid=True (--crop-valid) keeps the "
+                   "largest measured rectangle (46 x 40 points, 92 %% of the scan), or fill='harmonic' "
+                   "(--fill harmonic) fills them (the filled heights are invented)" % f.resolve())
+    with pytest.raises(ValueError, match="41 undefined points"):
+        prepare(scan, k_cut=6, fill=None)
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 6)
+    assert p.returncode == 1 and not out.exists() and p.stdout == ""
+    err, = p.stderr.splitlines()
+    assert "--crop-valid keeps the largest measured rectangle (46 x 40 points" in err and "--fill harmonic" in err
+
+
+def test_an_explicit_fill_above_two_percent_warns(tmp_path):
+    f = write_x3p(tmp_path / "s.x3p", holes(4, extra=1).T, 1e-6, 1e-6)
+    with pytest.warns(veslide.VeslideWarning) as got:
+        s = prepare(read(f), k_cut=6, fill="harmonic")
+    w, = [w.message for w in got]
+    assert (w.code, w.value, w.threshold, w.source) == ("filled-scan", 0.0205, 0.02, "preparation")
+    assert "2.05 % of its 50 x 40 points were unmeasured" in w.text and "invented" in w.text
+    assert s.preparation["undefined_points"]["filled_fraction"] == 0.0205
+    assert s.preparation["warnings"] == [{"code": "filled-scan", "value": 0.0205, "threshold": 0.02, "text": w.text}]
+    with warnings.catch_warnings():                      # 2 %, asked for: no warning
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        prepare(read(write_x3p(tmp_path / "t.x3p", holes(4).T, 1e-6, 1e-6)), k_cut=6, fill="harmonic")
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 6, "--fill", "harmonic")
+    assert p.returncode == 0, p.stderr
+    err, = p.stderr.splitlines()                         # the options in the command line's words
+    assert err == "warning: [filled-scan] %s" % w.text.replace("crop_valid=True (--crop-valid)", "--crop-valid")
+    assert veslide.load_topography(out).preparation["undefined_points"]["filled_fraction"] == 0.0205
+
+
+def test_crop_valid_keeps_the_largest_measured_rectangle(tmp_path):
+    h = holes(4, extra=1)                                 # largest measured: ix 4..49, iy 0..39
+    f = write_x3p(tmp_path / "s.x3p", h.T, 1e-6, 2e-6)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        s = prepare(read(f), detrend="none", periodic="none", k_cut=6, crop_valid=True)
+    u = s.preparation["undefined_points"]
+    assert u["measured_rectangle"] == {"start": [4, 0], "points": [46, 40], "fraction_kept": 0.92,
+                                       "scan_points": [50, 40]}
+    assert u["count"] == 41 and u["filled_fraction"] == 0 and u["filled_by"] is None and u["crop_valid"] is True
+    np.testing.assert_allclose(s.detrended, h[4:] - h[4:].mean(), rtol=0, atol=1e-20)   # before the detrending
+    assert (s.length_x_m, s.length_y_m) == pytest.approx((46e-6, 80e-6)) and s.heights.shape == (46, 40)
+    assert "cropped to the largest measured rectangle, 46 x 40 points from [4, 0] (0.92 of the scan)" in s.lines[2]
+    # nothing to crop: the scan whole, recorded
+    s = prepare(Scan.from_heights(rough(50, 40), 1e-4), k_cut=6, crop_valid=True)
+    assert s.preparation["undefined_points"]["measured_rectangle"]["points"] == [50, 40]
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 6, "--crop-valid")
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    assert veslide.load_topography(out).heights.shape == (46, 40)

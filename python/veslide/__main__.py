@@ -1,6 +1,7 @@
 """python -m veslide refine NAMELIST NX NX NX ... [--output-dir DIR] [--threads N]
 python -m veslide topography SCAN --out SURF.h5 [--nx N] [--ny N] [--detrend curvature|plane|none]
-                             [--periodic tukey|mirror|crop|none] [--taper F] [--k-cut K] ...
+                             [--periodic tukey|mirror|crop|none] [--taper F] [--k-cut K]
+                             [--fill auto|harmonic|none] [--crop-valid] ...
 
 refine: runs one case on several grids (or reuses the files already there from the same input)
 and prints the table and the error estimate of `veslide.refine`; exit status 1 on bad input, 2
@@ -9,14 +10,17 @@ when a solve did not converge, 3 when a file could not be written, 4 when the nu
 
 topography: reads a measured scan (any format SurfaceTopography reads), prepares it as
 `veslide.topography.prepare` does and writes the height file for `&surface kind='file'`, printing
-one line per choice with what it cost; exit status 1 on bad input."""
+one line per choice with what it cost, and a line `warning: ...` on stderr for each
+VeslideWarning of the preparation; exit status 1 on bad input (one line on stderr, no file)."""
 import argparse
+import re
 import sys
 import warnings
 
 import pandas as pd
 
 from .refinement import refine
+from ._warning import VeslideWarning
 from .runner import ConvergenceWarning, InputError, NumericalError, WriteError
 
 
@@ -46,6 +50,12 @@ def main(argv=None):
                    help="tukey: fraction of each side in the taper; crop: the most cut from each side (0.1)")
     t.add_argument("--k-cut", type=float, default=None,
                    help="modes kept: |q| <= k_cut 2 pi/lx (default: half the solve grid's Nyquist)")
+    t.add_argument("--fill", default="auto", choices=["auto", "harmonic", "none"],
+                   help="undefined points: auto fills up to 2 %% of the points harmonically and refuses more; "
+                        "harmonic fills any share (the filled heights are invented; a warning above 2 %%); "
+                        "none refuses any (default auto)")
+    t.add_argument("--crop-valid", action="store_true",
+                   help="crop the scan to its largest fully measured rectangle before the detrending")
     t.add_argument("--overwrite", action="store_true", help="replace the dataset if the file has it")
     args = ap.parse_args(argv)
     if args.command == "topography":
@@ -66,6 +76,11 @@ def main(argv=None):
     return 0 if ref.converged else 2      # as the program: 2 when a solve did not converge
 
 
+def _cli_words(text):
+    """The package's messages name an option as "python=value (--option value)": here the option alone."""
+    return re.sub(r"\b[a-z_]+=(?:True|'[^']*'|\([^)]*\)|[0-9.]+) \((--[a-z-]+(?: [^();]+)?)\)", r"\1", text)
+
+
 def _topography(args):
     from .topography import prepare, read
     channel = args.channel
@@ -73,8 +88,11 @@ def _topography(args):
         channel = int(channel)
     try:
         scan = read(args.scan, format=args.format, channel=channel, unit=args.unit, physical_sizes=args.size)
-        s = prepare(scan, nx=args.nx, ny=args.ny, detrend=args.detrend, periodic=args.periodic,
-                    taper=args.taper, k_cut=args.k_cut)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VeslideWarning)
+            s = prepare(scan, nx=args.nx, ny=args.ny, detrend=args.detrend, periodic=args.periodic,
+                        taper=args.taper, k_cut=args.k_cut, fill=None if args.fill == "none" else args.fill,
+                        crop_valid=args.crop_valid)
         for line in s.lines:
             print(line)
         path = s.write(args.out, args.dataset, overwrite=args.overwrite)
@@ -82,7 +100,7 @@ def _topography(args):
         print("veslide topography: %s" % e, file=sys.stderr)
         return 1
     except Exception as e:           # the readers raise their own kinds: each is a refused input here
-        msg = str(e)
+        msg = _cli_words(str(e))
         print("veslide topography: %s" % (msg if args.scan in msg else "%s: %s" % (args.scan, msg)), file=sys.stderr)
         return 1
     print("written:   %s:%s (%d x %d, %.6g x %.6g m; layout [iy, ix] in h5py, the solver's (nx, ny)); "
@@ -90,6 +108,12 @@ def _topography(args):
                                                                s.length_y_m))
     print("use:       &grid nx = %d, ny = %d /  &surface kind = 'file', file = '%s', dataset = '%s' /"
           % (s.nx, s.ny, path, args.dataset))
+    sys.stdout.flush()
+    for w in caught:                 # last, where they are seen
+        if issubclass(w.category, VeslideWarning):
+            print("warning: %s" % _cli_words(str(w.message)), file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return 0
 
 

@@ -40,9 +40,16 @@ from pathlib import Path
 
 import numpy as np
 
+from ._warning import warn
+
 #: detrend choices -> SurfaceTopography's detrend_mode
 DETREND_MODES = {"none": "center", "plane": "height", "curvature": "curvature"}
 PERIODIC_METHODS = ("tukey", "mirror", "crop", "none")
+#: fill choices: 'auto' fills up to FILL_MAX_AUTO of the points and refuses more, 'harmonic' fills
+#: any share (warning above FILL_MAX_AUTO), None refuses any undefined point
+FILL_CHOICES = ("auto", "harmonic", None)
+#: the largest share of undefined points filled without being asked to ('filled-scan' above it)
+FILL_MAX_AUTO = 0.02
 
 LAYOUTS = {
     "instrument matrix": "[iy, ix]: one row per scan line along x (Scan.matrix)",
@@ -202,6 +209,34 @@ def read(path, format=None, channel=None, *, unit=None, physical_sizes=None, hei
     return _in_metres(topo, source)
 
 
+def largest_measured_rectangle(valid):
+    """The largest axis-aligned rectangle of True points in the mask `valid` [ix, iy] (1-D: a
+    line): ((ix0, iy0), (mx, my)), the start and the size in points; ((0, 0), (0, 0)) when no
+    point is True. Of several of the same size, the first found (rows ix in order). O(nx ny): for each row ix the column heights of the True runs ending there
+    (a histogram), whose largest rectangle one pass with a stack finds."""
+    v = np.asarray(valid, dtype=bool)
+    if v.ndim == 1:
+        v = v[:, None]
+    if v.ndim != 2:
+        raise ValueError("the mask must be 1-D or 2-D [ix, iy], got %d dimensions" % v.ndim)
+    nx, ny = v.shape
+    run = np.zeros(ny, dtype=np.int64)
+    best_area, best = 0, ((0, 0), (0, 0))
+    for ix in range(nx):
+        run = np.where(v[ix], run + 1, 0)
+        hist = run.tolist() + [0]
+        stack = []                    # (first column, height), heights increasing
+        for j, hj in enumerate(hist):
+            start = j
+            while stack and stack[-1][1] >= hj:
+                s, hh = stack.pop()
+                if hh * (j - s) > best_area:
+                    best_area, best = hh * (j - s), ((ix - hh + 1, s), (hh, j - s))
+                start = s
+            stack.append((start, hj))
+    return best
+
+
 def _tukey(n, alpha):
     """The periodic (DFT-even) Tukey window of n points: 0 at index 0 only, a cosine taper over a
     fraction alpha of the period (alpha/2 each side of index 0), 1 elsewhere."""
@@ -345,7 +380,8 @@ class PreparedSurface:
     the solve grid, `length_x_m`, `length_y_m`, `preparation` (a dict: every choice, also written
     to the file as JSON), `costs` (a dict of fractions and h_rms units, see `prepare`), `lines`
     (one line per choice, as the command line prints them), `detrended` and `periodised` (the
-    scan's grid [ix, iy] after the detrending and after the periodisation), `write(path)`."""
+    scan's grid [ix, iy] after the detrending and after the periodisation), `warnings` (the
+    VeslideWarnings `prepare` issued, as dicts: code, value, threshold, text), `write(path)`."""
 
     def __init__(self, heights, length_x_m, length_y_m, preparation, costs, lines, detrended, periodised):
         self.heights = heights
@@ -356,6 +392,10 @@ class PreparedSurface:
         self.lines = lines
         self.detrended = detrended
         self.periodised = periodised
+
+    @property
+    def warnings(self):
+        return self.preparation.get("warnings", [])
 
     @property
     def nx(self):
@@ -389,13 +429,35 @@ def _grid(nx, ny, sx, sy, lx, ly):
     return nx, ny
 
 
+def _crop(topo, start, size, lx, ly):
+    """The topography (in metres) of the sub-rectangle start, size [ix, iy] in points of topo."""
+    st = _st()
+    (i0, j0), (mx, my) = start, size
+    nx, ny = topo.nb_grid_pts if topo.dim == 2 else (topo.nb_grid_pts[0], 1)
+    h = np.ma.getdata(topo.heights())
+    h = np.array(h[:, None] if h.ndim == 1 else h, dtype=np.float64)[i0:i0 + mx, j0:j0 + my]
+    if topo.dim == 1:
+        return st.UniformLineScan(h[:, 0], lx * mx / nx, unit="m", periodic=False)
+    return st.Topography(h, (lx * mx / nx, ly * my / ny), unit="m", periodic=False)
+
+
+def _points(nx, ny):
+    return "%d" % nx if ny == 1 else "%d x %d" % (nx, ny)
+
+
 def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper=0.1, k_cut=None,
-            fill="harmonic"):
+            fill="auto", crop_valid=False):
     """A `PreparedSurface` from a `Scan` (or a SurfaceTopography topography), in this order:
 
     1. units: metres (done by `read`; the factor is recorded).
-    2. undefined points: filled by SurfaceTopography's `interpolate_undefined_data(fill)`
-       (fill='harmonic'; None refuses a scan that has them); their fraction is recorded.
+    2. undefined points (NaN, the instrument's mask): with `crop_valid` the scan is cropped to the
+       largest fully measured axis-aligned rectangle (`largest_measured_rectangle`; its start,
+       size and share of the scan recorded), so none is left. Else `fill` -- 'auto' (default):
+       up to FILL_MAX_AUTO (2 %) of the points filled by SurfaceTopography's
+       `interpolate_undefined_data('harmonic')`, more refused (the refusal names the rectangle
+       crop_valid would keep); 'harmonic': filled whatever their share, with a VeslideWarning
+       'filled-scan' above 2 % (the filled heights are invented); None: any undefined point
+       refused. Their count and the fraction filled are recorded.
     3. detrend: 'curvature' (the least-squares second-order polynomial), 'plane' (the least-squares
        plane) or 'none' (the mean only), by SurfaceTopography's `detrend`.
     4. periodic: how the scan becomes one periodic cell --
@@ -426,9 +488,13 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
         raise ValueError("detrend must be one of %s, got %r" % (", ".join(DETREND_MODES), detrend))
     if periodic not in PERIODIC_METHODS:
         raise ValueError("periodic must be one of %s, got %r" % (", ".join(PERIODIC_METHODS), periodic))
+    if fill not in FILL_CHOICES:
+        raise ValueError("fill must be 'auto', 'harmonic' or None, got %r" % (fill,))
     topo = scan.topography
     src = scan.source
+    name = src.get("path") or "the scan"
     lines = []
+    notes = []                # the warnings (text, code, value, threshold), issued once nothing is refused
     prep = {"format": "veslide measured topography preparation, version 1",
             "layouts": LAYOUTS, "source": _jsonable(src)}
     # 1. units
@@ -440,19 +506,56 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
                     *src.get("physical_sizes", [np.nan, np.nan]), src.get("unit")))
     lines.append("units:     %s -> m, factor %.6g" % (src.get("unit"), src.get("factor_to_m")))
     # 2. undefined points
-    n_undefined = 0
-    if topo.has_undefined_data:
-        n_undefined = int(np.ma.count_masked(topo.heights()))
+    sx, sy = scan.nx, scan.ny
+    lx, ly = scan.length_x_m, scan.length_y_m
+    n_undefined = int(np.ma.count_masked(topo.heights())) if topo.has_undefined_data else 0
+    frac_undefined = n_undefined / (sx * sy)
+    rect = None
+    if crop_valid or (n_undefined and (fill != "auto" or frac_undefined > FILL_MAX_AUTO)):
+        mask = np.ma.getmaskarray(topo.heights())
+        start, size = largest_measured_rectangle(~(mask[:, None] if mask.ndim == 1 else mask))
+        rect = {"start": [int(v) for v in start], "points": [int(v) for v in size],
+                "fraction_kept": size[0] * size[1] / (sx * sy), "scan_points": [sx, sy]}
+        offer = ("crop_valid=True (--crop-valid) keeps the largest measured rectangle (%s points, %.3g %% of the "
+                 "scan)" % (_points(*size), 100 * rect["fraction_kept"])) if size[0] >= 2 else \
+                "crop_valid=True (--crop-valid) finds no measured rectangle of 2 points along x"
+    filled = 0
+    if crop_valid:
+        if rect["points"][0] < 2:
+            raise ValueError("%s: %.3g %% of its %s points are unmeasured and no measured rectangle of 2 points "
+                             "along x is left to crop to" % (name, 100 * frac_undefined, _points(sx, sy)))
+        if n_undefined:
+            topo = _crop(topo, rect["start"], rect["points"], lx, ly)
+            sx, sy = rect["points"]
+            lx, ly = lx * sx / scan.nx, ly * sy / scan.ny
+    elif n_undefined:
         if fill is None:
-            raise ValueError("%s: %d undefined points; fill='harmonic' fills them"
-                             % (src.get("path") or "the scan", n_undefined))
-        topo = topo.interpolate_undefined_data(fill)
-    frac_undefined = n_undefined / (scan.nx * scan.ny)
+            raise ValueError("%s: %d undefined points (%.3g %% of its %s points): fill='harmonic' (--fill harmonic) "
+                             "fills them, or %s" % (name, n_undefined, 100 * frac_undefined, _points(sx, sy), offer))
+        if fill == "auto" and frac_undefined > FILL_MAX_AUTO:
+            raise ValueError("%s: %.3g %% of its %s points are unmeasured: %s, or fill='harmonic' (--fill harmonic) "
+                             "fills them (the filled heights are invented)"
+                             % (name, 100 * frac_undefined, _points(sx, sy), offer))
+        topo = topo.interpolate_undefined_data("harmonic")
+        filled = n_undefined
+        if frac_undefined > FILL_MAX_AUTO:
+            notes.append(("%s: %.3g %% of its %s points were unmeasured and are filled by harmonic interpolation "
+                          "(the filled heights are invented; %s)" % (name, 100 * frac_undefined, _points(scan.nx, scan.ny),
+                                                                     offer),
+                          "filled-scan", frac_undefined, FILL_MAX_AUTO))
     prep["undefined_points"] = {"count": n_undefined, "fraction": frac_undefined,
-                                "filled_by": ("SurfaceTopography interpolate_undefined_data('%s')" % fill)
-                                if n_undefined else None}
-    lines.append("undefined: %d points (%.3g of the area)%s" % (
-        n_undefined, frac_undefined, ", filled by interpolate_undefined_data('%s')" % fill if n_undefined else ""))
+                                "filled_by": "SurfaceTopography interpolate_undefined_data('harmonic')"
+                                if filled else None,
+                                "fill": fill, "fill_max_auto": FILL_MAX_AUTO,
+                                "filled_fraction": filled / (scan.nx * scan.ny),
+                                "crop_valid": bool(crop_valid), "measured_rectangle": rect if crop_valid else None}
+    line = "undefined: %d points (%.3g of the area)" % (n_undefined, frac_undefined)
+    if filled:
+        line += ", filled by interpolate_undefined_data('harmonic')"
+    elif crop_valid and n_undefined:
+        line += ": cropped to the largest measured rectangle, %s points from [%d, %d] (%.3g of the scan), " \
+                "%.6g x %.6g m" % (_points(sx, sy), rect["start"][0], rect["start"][1], rect["fraction_kept"], lx, ly)
+    lines.append(line)
     # 3. detrend
     raw = np.asarray(topo.heights(), dtype=np.float64)
     d = topo.detrend(detrend_mode=DETREND_MODES[detrend])
@@ -470,7 +573,6 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     lines.append("detrend:   %s (SurfaceTopography '%s'): removed %.4g m rms, h_rms %.4g m"
                  % (detrend, DETREND_MODES[detrend], prep["detrend"]["rms_removed_m"], hrms))
     # 4. periodic
-    lx, ly = scan.length_x_m, scan.length_y_m
     h1, lx1, ly1, rec, costs = _periodise(h0, lx, ly, periodic, taper, d)
     before, after = _edge_stats(h0, hrms), _edge_stats(h1, hrms)
     for k, v in before.items():
@@ -534,4 +636,7 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
         version = None
     prep["veslide_python"] = version
     lines.append("surface:   h_rms %.4g m, rms slope %.4g" % (hr, slope))
+    prep["warnings"] = [{"code": c, "value": v, "threshold": t, "text": x} for x, c, v, t in notes]
+    for text, code, value, threshold in notes:
+        warn(text, code, value, threshold, source="preparation", stacklevel=2)
     return PreparedSurface(g, lx1, ly1, _jsonable(prep), costs, lines, h0, h1)
