@@ -462,3 +462,62 @@ def test_crop_valid_keeps_the_largest_measured_rectangle(tmp_path):
     p = _cli(tmp_path, f, "--out", out, "--k-cut", 6, "--crop-valid")
     assert p.returncode == 0 and p.stderr == "", p.stderr
     assert veslide.load_topography(out).heights.shape == (46, 40)
+
+
+# --- the band: a warning when it removes more than half of the cell's slope variance -------------
+
+def two_waves(removed):
+    """a periodic 128 x 64 scan over 100 x 50 um: waves along x at k = 3 and k = 11 whose slope
+    variances make the k = 11 one the fraction `removed` of the whole."""
+    lx, ly = 1e-4, 0.5e-4
+    x = np.arange(128)[:, None] * lx / 128 + np.zeros((1, 64))
+    b = np.sqrt(9 * removed / (1 - removed) / 121)        # 121 b^2 / (9 + 121 b^2) = removed
+    return 1e-7 * (np.cos(2 * np.pi * 3 * x / lx + 0.2) + b * np.cos(2 * np.pi * 11 * x / lx + 0.5)), lx, ly
+
+
+@pytest.mark.parametrize("removed", [0.6, 0.4])
+def test_band_removing_more_than_half_the_slope_variance_warns(removed, tmp_path):
+    h, lx, ly = two_waves(removed)
+    scan = Scan.from_heights(h, lx, ly, periodic=True)
+    kw = dict(nx=32, detrend="none", periodic="none", k_cut=8)
+    with warnings.catch_warnings(record=True) as got:
+        warnings.simplefilter("always")
+        s = prepare(scan, **kw)
+    assert s.costs["band_slope_variance_removed"] == pytest.approx(removed, rel=1e-9)
+    if removed < 0.5:
+        assert got == [] and s.preparation["band"]["half_slope"] is None and s.warnings == []
+        return
+    w, = [g.message for g in got]
+    assert isinstance(w, veslide.VeslideWarning)
+    assert (w.code, w.value, w.threshold) == ("band-slope-removed", s.costs["band_slope_variance_removed"], 0.5)
+    # half the slope variance lies at k >= 11: a 48-point grid (its Nyquist 24, default k_cut 12) keeps it
+    assert w.text == ("the scan: the band (k_cut 8 q0 on 32 x 16 points) removes 0.6 of the cell's slope variance, "
+                      "which the solve then lacks: nx=48 (--nx 48) with its default k_cut 12 (half its Nyquist) "
+                      "keeps at least half, as does k_cut=11 (--k-cut 11) on this grid")
+    assert s.preparation["band"]["half_slope"] == {"k_cut": 11.0, "grid": [48, 24], "kept_max": pytest.approx(1.0)}
+    assert s.warnings == [{"code": "band-slope-removed", "value": w.value, "threshold": 0.5, "text": w.text}]
+    with warnings.catch_warnings():                      # what it says keeps half
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        assert prepare(scan, **dict(kw, nx=48, k_cut=None)).costs["band_slope_variance_removed"] < 0.5
+        assert prepare(scan, **dict(kw, k_cut=11)).costs["band_slope_variance_removed"] < 0.5
+    f = write_x3p(tmp_path / "s.x3p", h.T, lx / 128, ly / 64)
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--nx", 32, "--detrend", "none", "--periodic", "none", "--k-cut", 8)
+    assert p.returncode == 0 and out.exists()
+    err, = p.stderr.splitlines()
+    assert err.startswith("warning: [band-slope-removed] %s: the band (k_cut 8 q0 on 32 x 16 points)" % f.resolve())
+    assert err.endswith(": --nx 48 with its default k_cut 12 (half its Nyquist) keeps at least half, as does "
+                        "--k-cut 11 on this grid")
+
+
+def test_band_warning_says_when_the_scan_cannot_keep_half():
+    """the slopes at the scan's own Nyquist (a row-to-row alternation, as noise gives): no band keeps them"""
+    h, lx, ly = two_waves(0.1)
+    h = h + 1e-7 * (-1.0) ** np.arange(128)[:, None]
+    with pytest.warns(veslide.VeslideWarning, match="band-slope-removed") as got:
+        s = prepare(Scan.from_heights(h, lx, ly, periodic=True), detrend="none", periodic="none")
+    w = got[0].message
+    assert w.value == s.costs["band_slope_variance_removed"] > 0.99
+    assert w.text.endswith("the scan's own points cannot keep half of it (every mode below its Nyquist 64 keeps "
+                           "%.3g)" % s.preparation["band"]["half_slope"]["kept_max"])
+    assert s.preparation["band"]["half_slope"]["grid"] is None

@@ -50,6 +50,9 @@ PERIODIC_METHODS = ("tukey", "mirror", "crop", "none")
 FILL_CHOICES = ("auto", "harmonic", None)
 #: the largest share of undefined points filled without being asked to ('filled-scan' above it)
 FILL_MAX_AUTO = 0.02
+#: the largest share of the cell's slope variance the band may remove without a warning
+#: ('band-slope-removed' above it)
+BAND_SLOPE_REMOVED_MAX = 0.5
 
 LAYOUTS = {
     "instrument matrix": "[iy, ix]: one row per scan line along x (Scan.matrix)",
@@ -375,6 +378,77 @@ def _band_resample(h, lx, ly, nx, ny, k_cut):
     return g, rec, costs
 
 
+def _nyquist_k(nx, ny, lx, ly):
+    """The Nyquist of an (nx, ny) grid over lx x ly in q0 = 2 pi/lx (as prepare's k_cut check)."""
+    return min(nx / 2, ny / 2 * lx / ly) if ny > 1 else nx / 2
+
+
+def _half_slope_k(h, lx, ly):
+    """(k, kept): the smallest k_cut (in q0 = 2 pi/lx) whose band keeps at least half of the slope
+    variance of the cell h [ix, iy] (lx x ly), and the share kept by every mode below the cell's
+    Nyquist lines (the most any band can keep); k None when that is below half."""
+    sx, sy = h.shape
+    kx = np.rint(np.fft.fftfreq(sx, 1.0 / sx))
+    ky = np.rint(np.fft.fftfreq(sy, 1.0 / sy))
+    KX, KY = np.meshgrid(kx, ky, indexing="ij")
+    k2 = KX ** 2 + (KY * lx / ly) ** 2
+    w = np.abs(np.fft.fft2(h)) ** 2 * k2          # the slope variance of each mode, in q0^2
+    total = w.sum()
+    if not total > 0:
+        return None, 0.0
+    eligible = (2 * np.abs(KX) < sx) & (2 * np.abs(KY) < sy)
+    k = np.sqrt(k2[eligible])
+    order = np.argsort(k, kind="stable")
+    cum = np.cumsum(w[eligible][order])
+    kept = float(cum[-1] / total)
+    if kept < BAND_SLOPE_REMOVED_MAX:
+        return None, kept
+    return float(k[order][np.argmax(cum >= BAND_SLOPE_REMOVED_MAX * total * (1 - 1e-12))]), kept
+
+
+def _fft_size(n):
+    """The smallest even number >= n whose prime factors are 2, 3 and 5 (a fast FFT size)."""
+    m = max(2, int(n) + int(n) % 2)
+    while True:
+        r = m
+        for p in (2, 3, 5):
+            while r % p == 0:
+                r //= p
+        if r == 1:
+            return m
+        m += 2
+
+
+def _grid_for_k(k, lx, ly, line=False):
+    """The smallest solve grid of a fast FFT size along x (ny from the aspect ratio, as prepare's)
+    whose default k_cut, half its Nyquist, is at least k."""
+    nx = _fft_size(np.ceil(4 * k * (1 - 1e-12)))
+    while True:
+        ny = 1 if line else max(1, int(round(nx * ly / lx)))
+        if _nyquist_k(nx, ny, lx, ly) / 2 >= k * (1 - 1e-12):
+            return nx, ny
+        nx = _fft_size(nx + 1)
+
+
+def _band_note(name, removed, k_cut, nx, ny, lx, ly, h1, line):
+    """The text of the 'band-slope-removed' warning, and the record of what would keep half."""
+    k_half, kept_max = _half_slope_k(h1, lx, ly)
+    head = ("%s: the band (k_cut %.4g q0 on %s points) removes %.3g of the cell's slope variance, which the solve "
+            "then lacks" % (name, k_cut, _points(nx, ny), removed))
+    if k_half is None:
+        return (head + ": the scan's own points cannot keep half of it (every mode below its Nyquist %.4g keeps %.3g)"
+                % (_nyquist_k(*h1.shape, lx, ly), kept_max)), {"k_cut": None, "grid": None, "kept_max": kept_max}
+    gx, gy = _grid_for_k(k_half, lx, ly, line)
+    text = head + ": nx=%d (--nx %d) with its default k_cut %.4g (half its Nyquist) keeps at least half" % (
+        gx, gx, _nyquist_k(gx, gy, lx, ly) / 2)
+    if gx > h1.shape[0]:
+        text += " (finer than the cell's %d points along x: interpolated)" % h1.shape[0]
+    k_show = np.ceil(k_half * 1000) / 1000
+    if k_show < _nyquist_k(nx, ny, lx, ly):
+        text += ", as does k_cut=%.6g (--k-cut %.6g) on this grid" % (k_show, k_show)
+    return text, {"k_cut": k_half, "grid": [gx, gy], "kept_max": kept_max}
+
+
 class PreparedSurface:
     """A periodic surface made from a scan for `&surface kind='file'`: `heights` [ix, iy] [m] on
     the solve grid, `length_x_m`, `length_y_m`, `preparation` (a dict: every choice, also written
@@ -473,6 +547,11 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
        nx, ny given: the other from the cell's aspect ratio), so nothing above k_cut is kept and
        nothing is aliased. k_cut must lie below the solve grid's Nyquist,
        min(nx/2, ny/2 lx/ly); default: half of it (4 cells per shortest wavelength kept).
+       When the band removes more than half of the cell's slope variance, a VeslideWarning
+       'band-slope-removed' (value: the fraction removed, threshold 0.5) names the smallest k_cut
+       that keeps half, from the cell's spectrum, and the grid (nx, a fast FFT size) whose default
+       k_cut reaches it -- or says that no band on the scan's points keeps half (its slopes lie at
+       its Nyquist). Recorded in preparation['band']['half_slope'].
 
     `costs`: area_fraction_changed (of the cell: the taper band, or the 3/4 of mirror images),
     area_fraction_dropped (of the scan, by a crop), slope_variance_change (relative change of
@@ -617,6 +696,11 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
                     "; " + band["note"] if "note" in band else ""))
     lines.append("resample:  %d x %d -> %d x %d points (Fourier), cell %.6g x %.6g m"
                  % (h1.shape[0], h1.shape[1], nx_, ny_, lx1, ly1))
+    removed = costs["band_slope_variance_removed"]
+    band["half_slope"] = None
+    if removed > BAND_SLOPE_REMOVED_MAX:
+        text, band["half_slope"] = _band_note(name, removed, k_cut, nx_, ny_, lx1, ly1, h1, False)
+        notes.append((text, "band-slope-removed", removed, BAND_SLOPE_REMOVED_MAX))
     hr = float(np.sqrt(np.mean(g ** 2)))
     gx = np.fft.fftfreq(nx_, lx1 / nx_) * 2 * np.pi
     gy = np.fft.fftfreq(ny_, ly1 / ny_) * 2 * np.pi
