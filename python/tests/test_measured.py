@@ -521,3 +521,38 @@ def test_band_warning_says_when_the_scan_cannot_keep_half():
     assert w.text.endswith("the scan's own points cannot keep half of it (every mode below its Nyquist 64 keeps "
                            "%.3g)" % s.preparation["band"]["half_slope"]["kept_max"])
     assert s.preparation["band"]["half_slope"]["grid"] is None
+
+
+# --- the readers' refusals name the options ------------------------------------------------------
+
+def test_reader_refusals_are_one_line_naming_the_options(tmp_path):
+    plain = tmp_path / "plain.txt"
+    np.savetxt(plain, rough(20, 12).T * 1e6)
+    x3p = write_x3p(tmp_path / "scan.x3p", rough(20, 12).T, 1e-6, 1e-6)
+    junk = tmp_path / "junk.dat"
+    junk.write_bytes(b"\x00\x01not a scan" * 20)
+    cases = [
+        ((plain,), "the file gives neither its size nor its length unit: pass --size LX LY and --unit um, or what "
+                   "they are (channels: Default): "),
+        ((plain, "--size", 40, 24), "the file gives no length unit: pass --unit um, or what it is (channels: Default)"),
+        ((plain, "--unit", "um"), "the file gives no physical size: pass --size LX LY, in its unit (channels: Default)"),
+        ((plain, "--unit", "um", "--size", 40), "channel Default is a 2-D topography: --size LX LY, got 1 numbers"),
+        ((x3p, "--channel", "Phase"), "no channel 'Phase': --channel takes a name or an index (channels: Default)"),
+        ((x3p, "--channel", 2), "no channel 2: --channel takes a name or an index 0 to 0 (channels: Default)"),
+        ((x3p, "--unit", "um"), "the file gives its unit itself: leave out --unit (channels: Default): Value for "
+                                "keyword 'unit' is already fixed by file contents"),
+        ((x3p, "--format", "sdf"), "SurfaceTopography cannot read it as 'sdf': --format names another: "),
+        ((x3p, "--format", "nope"), "SurfaceTopography has no format 'nope': --format takes one of sdf, "),
+        ((junk,), "SurfaceTopography cannot tell its format from its content (no reader takes it): --format names "
+                  "it, one of "),
+    ]
+    out = tmp_path / "surf.h5"
+    for args, want in cases:
+        p = _cli(tmp_path, *args, "--out", out)
+        assert p.returncode == 1 and not out.exists() and p.stdout == "", (args, p.stderr)
+        assert len(p.stderr.splitlines()) == 1, p.stderr
+        err = p.stderr.strip()
+        assert err.startswith("veslide topography: %s: " % args[0]) and want in err, (args, err)
+    with pytest.raises(ValueError, match=r"no channel 'Phase': channel= \(--channel\)"):
+        read(x3p, channel="Phase")
+    assert read(plain, unit="um", physical_sizes=(40, 24)).source["channels"] == ["Default"]

@@ -40,8 +40,10 @@ def main(argv=None):
     t.add_argument("--format", default=None, help="the file's format when not found from its content (e.g. x3p)")
     t.add_argument("--channel", default=None, help="the channel, by index or name (default: the reader's)")
     t.add_argument("--unit", default=None, help="length unit for a file that gives none (e.g. um)")
-    t.add_argument("--size", nargs=2, type=float, metavar=("LX", "LY"), default=None,
-                   help="the scan's sides in that unit, for a file that gives none")
+    t.add_argument("--size", nargs="+", type=float, metavar=("LX", "LY"), default=None,
+                   help="the scan's sides in that unit, for a file that gives none (a line scan: LX)")
+    t.add_argument("--height-scale", type=float, default=None, metavar="F",
+                   help="multiply the heights by F (heights in another unit than the file's sides)")
     t.add_argument("--nx", type=int, default=None, help="points of the solve grid along x (default: the cell's)")
     t.add_argument("--ny", type=int, default=None, help="along y (default: from nx and the cell's aspect ratio)")
     t.add_argument("--detrend", default="curvature", choices=["curvature", "plane", "none"])
@@ -78,7 +80,7 @@ def main(argv=None):
 
 def _cli_words(text):
     """The package's messages name an option as "python=value (--option value)": here the option alone."""
-    return re.sub(r"\b[a-z_]+=(?:True|'[^']*'|\([^)]*\)|[0-9.]+) \((--[a-z-]+(?: [^();]+)?)\)", r"\1", text)
+    return re.sub(r"\b[a-z_]+=(?:True|'[^']*'|\([^)]*\)|[0-9.]+)? \((--[a-z-]+(?: [^();]+)?)\)", r"\1", text)
 
 
 def _topography(args):
@@ -87,7 +89,10 @@ def _topography(args):
     if channel is not None and channel.isdigit():
         channel = int(channel)
     try:
-        scan = read(args.scan, format=args.format, channel=channel, unit=args.unit, physical_sizes=args.size)
+        if args.size is not None and len(args.size) > 2:
+            raise ValueError("--size takes LX LY (a line scan: LX), got %d numbers" % len(args.size))
+        scan = read(args.scan, format=args.format, channel=channel, unit=args.unit, physical_sizes=args.size,
+                    height_scale_factor=args.height_scale)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", VeslideWarning)
             s = prepare(scan, nx=args.nx, ny=args.ny, detrend=args.detrend, periodic=args.periodic,

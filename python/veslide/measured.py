@@ -54,6 +54,7 @@ FILL_MAX_AUTO = 0.02
 #: ('band-slope-removed' above it)
 BAND_SLOPE_REMOVED_MAX = 0.5
 
+
 LAYOUTS = {
     "instrument matrix": "[iy, ix]: one row per scan line along x (Scan.matrix)",
     "numpy (this package, SurfaceTopography)": "[ix, iy] (Scan.heights, PreparedSurface.heights)",
@@ -164,6 +165,18 @@ def _in_metres(topo, source):
     return Scan(topo.to_unit("m") if topo.unit != "m" else topo, source)
 
 
+def _reader_words(e, limit=240):
+    """The first line of a reader's exception, shortened: its own words, kept after ours."""
+    lines = [ln.strip() for ln in str(e).strip().splitlines() if ln.strip()]
+    text = lines[0] if lines else type(e).__name__
+    return text if len(text) <= limit else text[:limit] + " ..."
+
+
+def _formats():
+    from SurfaceTopography.IO import lookup_reader_by_format
+    return ", ".join(lookup_reader_by_format)
+
+
 def read(path, format=None, channel=None, *, unit=None, physical_sizes=None, height_scale_factor=None,
          **reader_kwargs):
     """A `Scan` (heights [ix, iy] in metres) from any file SurfaceTopography reads (x3p, sdf, sur,
@@ -171,29 +184,91 @@ def read(path, format=None, channel=None, *, unit=None, physical_sizes=None, hei
     `SurfaceTopography.IO.readers`): the format is found from the content unless `format` names
     it (e.g. 'x3p', 'asc'). `channel` picks a channel by index or name (default: the reader's
     default). `unit` (e.g. 'um') and `physical_sizes` (lx, ly in that unit) for files that do not
-    say them, `height_scale_factor` likewise; other keywords go to the reader's `topography()`.
-    The file's matrix is [iy, ix] (rows along x), which the reader turns to [ix, iy]."""
+    say them, `height_scale_factor` (multiplies the heights) likewise; other keywords go to the
+    reader's `topography()`. The file's matrix is [iy, ix] (rows along x), which the reader turns
+    to [ix, iy]. What the reader cannot do is refused in one line (a ValueError) that names the
+    keyword and the command line's option that would help (format= --format, channel= --channel,
+    unit= --unit, physical_sizes= --size, height_scale_factor= --height-scale) and lists the
+    file's channels, with the reader's own words last."""
     st = _st()
+    from SurfaceTopography.Exceptions import CannotDetectFileFormat, MetadataAlreadyFixedByFile, UnknownFileFormat
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError("%s: no such file" % path)
-    reader = st.open_topography(str(path), format=format)
+    import logging
+    root = logging.getLogger()
+    hush = None if root.handlers else logging.NullHandler()    # the readers tried and refused log their
+    if hush is not None:                                        # reasons (logging's last resort: stderr)
+        root.addHandler(hush)
+    try:
+        reader = st.open_topography(str(path), format=format)
+    except UnknownFileFormat:
+        raise ValueError("%s: SurfaceTopography has no format %r: format= (--format) takes one of %s"
+                         % (path, format, _formats())) from None
+    except CannotDetectFileFormat:
+        raise ValueError("%s: SurfaceTopography cannot tell its format from its content (no reader takes it): "
+                         "format= (--format) names it, one of %s" % (path, _formats())) from None
+    except Exception as e:                    # an explicit format whose reader refused the file, or a damaged file
+        raise ValueError("%s: SurfaceTopography cannot read it%s: %s"
+                         % (path, " as %r: format= (--format) names another" % format if format else "",
+                            _reader_words(e))) from None
+    finally:
+        if hush is not None:
+            root.removeHandler(hush)
     channels = reader.channels
+    names = [str(c.name) for c in channels]
+    listing = "channels: " + ", ".join(names)
     if channel is None:
         index = reader.default_channel.index
     elif isinstance(channel, str):
-        names = [c.name for c in channels]
         if channel not in names:
-            raise ValueError("%s: no channel %r (channels: %s)" % (path, channel, ", ".join(names)))
+            raise ValueError("%s: no channel %r: channel= (--channel) takes a name or an index (%s)"
+                             % (path, channel, listing))
         index = names.index(channel)
     else:
         index = int(channel)
+        if not 0 <= index < len(channels):
+            raise ValueError("%s: no channel %d: channel= (--channel) takes a name or an index 0 to %d (%s)"
+                             % (path, index, len(channels) - 1, listing))
+    ch = channels[index]
+    line = getattr(ch, "dim", 2) == 1
+    sides = "physical_sizes=(lx,) (--size LX)" if line else "physical_sizes=(lx, ly) (--size LX LY)"
+    if physical_sizes is not None:
+        physical_sizes = tuple(float(v) for v in np.atleast_1d(physical_sizes))
+        if len(physical_sizes) != (1 if line else 2):
+            raise ValueError("%s: channel %s is %s: %s, got %d numbers" % (
+                path, names[index], "a line scan" if line else "a 2-D topography", sides, len(physical_sizes)))
     kwargs = dict(reader_kwargs, channel_index=index)
     for k, v in (("unit", unit), ("physical_sizes", physical_sizes),
                  ("height_scale_factor", height_scale_factor)):
         if v is not None:
-            kwargs[k] = tuple(v) if k == "physical_sizes" else v
-    topo = reader.topography(**kwargs)
+            kwargs[k] = v
+    need_size = physical_sizes is None and getattr(ch, "physical_sizes", None) is None
+    need_unit = unit is None and getattr(ch, "unit", None) is None
+    no_size = "the file gives no physical size: pass %s, in its unit" % sides
+    no_unit = "the file gives no length unit: pass unit='um' (--unit um), or what it is"
+    try:
+        topo = reader.topography(**kwargs)
+    except MetadataAlreadyFixedByFile as e:
+        import re
+        key = (re.search(r"keyword '(\w+)'", str(e)) or [None, "a keyword"])[1]
+        option = {"unit": "--unit", "physical_sizes": "--size", "height_scale_factor": "--height-scale"}.get(key)
+        raise ValueError("%s: the file gives its %s itself: leave out %s=%s (%s): %s"
+                         % (path, key, key, " (%s)" % option if option else "", listing, _reader_words(e))) from None
+    except Exception as e:
+        if need_size and need_unit:
+            what = ("the file gives neither its size nor its length unit: pass %s and unit='um' (--unit um), "
+                    "or what they are" % sides)
+        elif need_size or need_unit:
+            what = no_size if need_size else no_unit
+        else:
+            what = ("SurfaceTopography cannot read channel %s (format= (--format) names the format if it is another, "
+                    "channel= (--channel) another channel)" % names[index])
+        raise ValueError("%s: %s (%s): %s" % (path, what, listing, _reader_words(e))) from None
+    if topo.physical_sizes is None:
+        raise ValueError("%s: %s (%s)" % (path, no_size, listing))
+    if topo.unit is None:
+        raise ValueError("%s: %s (%s)" % (path, no_unit, listing))
     info = topo.info or {}
     digest = hashlib.sha256()
     with open(path, "rb") as f:
@@ -201,14 +276,12 @@ def read(path, format=None, channel=None, *, unit=None, physical_sizes=None, hei
             digest.update(block)
     source = {"path": str(path.resolve()), "sha256": digest.hexdigest(), "bytes": path.stat().st_size,
               "format": reader.format(), "reader": reader.name(),
-              "channel": {"index": index, "name": channels[index].name},
+              "channel": {"index": index, "name": names[index]},
               "reader_kwargs": {k: v for k, v in kwargs.items() if k != "channel_index"},
               "instrument": (info.get("instrument") or {}).get("name"),
               "acquisition_time": info.get("acquisition_time"),
-              "matrix_layout": "the file's matrix [iy, ix] (rows along x), read as heights [ix, iy]"}
-    if physical_sizes is None and topo.physical_sizes is None:
-        raise ValueError("%s: the file gives no physical size: pass physical_sizes=(lx, ly) in its unit "
-                         "(--size LX LY)" % path)
+              "matrix_layout": "the file's matrix [iy, ix] (rows along x), read as heights [ix, iy]",
+              "channels": names, "unit_from": "given" if unit is not None else "file"}
     return _in_metres(topo, source)
 
 
