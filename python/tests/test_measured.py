@@ -523,6 +523,45 @@ def test_band_warning_says_when_the_scan_cannot_keep_half():
     assert s.preparation["band"]["half_slope"]["grid"] is None
 
 
+# --- absurd heights: an rms slope above 10 is refused --------------------------------------------
+
+def wave(rms_slope, n=64, lx=1e-4, k=3):
+    """a periodic n x n scan over lx x lx: one wave along x of the given rms slope"""
+    x = np.arange(n)[:, None] * lx / n + np.zeros((1, n))
+    amp = rms_slope * np.sqrt(2) * lx / (2 * np.pi * k)
+    return amp * np.cos(2 * np.pi * k * x / lx)
+
+
+@pytest.mark.parametrize("rms_slope", [11.0, 9.0])
+def test_an_rms_slope_above_ten_is_refused(rms_slope):
+    scan = Scan.from_heights(wave(rms_slope), 1e-4, periodic=True)
+    kw = dict(detrend="none", periodic="none", k_cut=8)
+    if rms_slope < 10:
+        assert prepare(scan, **kw).preparation["result"]["rms_slope"] == pytest.approx(rms_slope, rel=1e-9)
+        return
+    with pytest.raises(ValueError) as e:
+        prepare(scan, **kw)
+    assert str(e.value) == ("the scan: the rms slope of the heights is 11 (a contact of small slopes needs well below "
+                            "1): heights in another unit (unit= (--unit), or height_scale_factor= (--height-scale) "
+                            "for the heights alone), or an array that is not heights")
+
+
+def test_heights_in_the_wrong_unit_are_refused_naming_the_options(tmp_path):
+    """a text export that says its heights are metres but holds micrometres: slopes of 1e5"""
+    f = write_asc(tmp_path / "scan.txt", rough(50, 40).T * 1e6, 100.0, 80.0)
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 8)
+    assert p.returncode == 1 and not out.exists() and p.stdout == ""
+    err, = p.stderr.splitlines()
+    assert err.startswith("veslide topography: %s: the rms slope of the heights is " % f.resolve())
+    assert err.endswith("e4 (a contact of small slopes needs well below 1): heights in another unit (--height-scale "
+                        "rescales them, the file giving its unit m), or a channel that is not heights (--channel; "
+                        "channels: Height)")
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 8, "--height-scale", 1e-6)
+    assert p.returncode == 0, p.stderr
+    assert veslide.load_topography(out).preparation["result"]["rms_slope"] < 1
+
+
 # --- the readers' refusals name the options ------------------------------------------------------
 
 def test_reader_refusals_are_one_line_naming_the_options(tmp_path):

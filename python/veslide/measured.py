@@ -53,7 +53,9 @@ FILL_MAX_AUTO = 0.02
 #: the largest share of the cell's slope variance the band may remove without a warning
 #: ('band-slope-removed' above it)
 BAND_SLOPE_REMOVED_MAX = 0.5
-
+#: a prepared surface of a larger rms slope is refused: no contact model of small slopes holds, and
+#: heights in the wrong unit or a channel that is not heights give such numbers
+SLOPE_REFUSED = 10.0
 
 LAYOUTS = {
     "instrument matrix": "[iy, ix]: one row per scan line along x (Scan.matrix)",
@@ -779,6 +781,15 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     gy = np.fft.fftfreq(ny_, ly1 / ny_) * 2 * np.pi
     GQ = np.abs(np.fft.fft2(g) / g.size) ** 2
     slope = float(np.sqrt((GQ * (gx[:, None] ** 2 + gy[None, :] ** 2)).sum()))
+    if not slope <= SLOPE_REFUSED:
+        unit_fix = ("height_scale_factor= (--height-scale) rescales them, the file giving its unit %s"
+                    % src.get("unit") if src.get("unit_from") == "file" else
+                    "unit= (--unit), or height_scale_factor= (--height-scale) for the heights alone")
+        what = ("a channel that is not heights (channel= (--channel); channels: %s)" % ", ".join(src["channels"])
+                if src.get("channels") else "an array that is not heights")
+        raise ValueError("%s: the rms slope of the heights is %s (a contact of small slopes needs well below 1): "
+                         "heights in another unit (%s), or %s"
+                         % (name, ("%.2g" % slope).replace("e+0", "e").replace("e+", "e"), unit_fix, what))
     prep["result"] = {"nx": nx_, "ny": ny_, "length_x_m": lx1, "length_y_m": ly1, "h_rms_m": hr,
                       "rms_slope": slope, "layout": LAYOUTS["numpy (this package, SurfaceTopography)"]}
     prep["costs"] = costs
