@@ -595,3 +595,108 @@ def test_reader_refusals_are_one_line_naming_the_options(tmp_path):
     with pytest.raises(ValueError, match=r"no channel 'Phase': channel= \(--channel\)"):
         read(x3p, channel="Phase")
     assert read(plain, unit="um", physical_sizes=(40, 24)).source["channels"] == ["Default"]
+
+
+# --- line scans: height files of ny = 1 ----------------------------------------------------------
+
+def profile(n=200, seed=4):
+    """a smooth random non-periodic profile [ix] (a few long waves) plus a slope and a bow [um]"""
+    rng = np.random.default_rng(seed)
+    x = np.arange(n) / n
+    z = sum(rng.standard_normal() * np.cos(2 * np.pi * rng.uniform(0.5, 9) * x + rng.uniform(0, 6.3))
+            for _ in range(10))
+    return 0.05 * z + 0.3 * x - 0.2 * x ** 2
+
+
+def test_a_line_scan_becomes_a_height_file_of_ny_1(tmp_path, exe):
+    """a stylus profile as a two-column text file (x, z in um, 0.5 um apart): read as a line scan,
+    prepared, written with ny = 1 and length_y_m the solve grid's spacing, and solved"""
+    n, dx = 200, 0.5
+    z = profile(n)
+    f = tmp_path / "profile.txt"
+    np.savetxt(f, np.c_[np.arange(n) * dx, z])
+    scan = read(f, unit="um")
+    assert scan.line_scan and (scan.nx, scan.ny) == (n, 1) and scan.heights.shape == (n, 1)
+    assert scan.length_x_m == pytest.approx(n * dx * 1e-6) and scan.length_y_m == pytest.approx(dx * 1e-6)
+    np.testing.assert_allclose(scan.heights[:, 0], z * 1e-6, rtol=1e-12)
+    out = tmp_path / "line.h5"
+    p = _cli(tmp_path, f, "--unit", "um", "--out", out, "--nx", 64, "--k-cut", 12)
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    assert "a line scan of 200 points, 100 um" in p.stdout and "nx = 64, ny = 1 /" in p.stdout
+    with h5py.File(out, "r") as f5:
+        ds = f5["/height_m"]
+        assert ds.shape == (1, 64)                                   # h5py (ny, nx)
+        assert ds.attrs["length_x_m"] == pytest.approx(100e-6)
+        assert ds.attrs["length_y_m"] == pytest.approx(100e-6 / 64)      # square cells of the solve grid
+        prep = json.loads(ds.attrs["preparation"])
+        assert prep["line_scan"]["length_y_m"] == ds.attrs["length_y_m"] and "square" in prep["line_scan"]["why"]
+    assert prep["source"]["line_scan"] is True and prep["result"]["ny"] == 1
+    back = veslide.load_topography(out)
+    assert back.heights.shape == (64, 1)
+    qx, qy, c = veslide.psd_2d(back.heights, back.length_x_m, back.length_y_m)     # nothing above k_cut
+    above = np.abs(qx) > 12 * 2 * np.pi / back.length_x_m * (1 + 1e-9)
+    assert above.any() and c[above].max() <= 1e-24 * c.max()
+    pr = params(surface={"kind": "file", "file": str(out)}, load={"mean_pressure_pa": 1e5})
+    r = veslide.run(pr, output=tmp_path / "solve.h5", exe=exe, progress=None)
+    assert r.converged and (r.scalars["nx"], r.scalars["ny"]) == (64, 1)
+    assert r.scalars["length_y_m"] == pytest.approx(back.length_y_m, rel=1e-12)
+    np.testing.assert_array_equal(r.fields.height_m.transpose("x", "y").values, back.heights)
+
+
+def test_a_one_column_profile_needs_its_length(tmp_path):
+    f = tmp_path / "z.txt"
+    np.savetxt(f, profile(120))
+    p = _cli(tmp_path, f, "--out", tmp_path / "o.h5")
+    assert p.returncode == 1 and "--size LX and --unit um" in p.stderr and not (tmp_path / "o.h5").exists()
+    p = _cli(tmp_path, f, "--out", tmp_path / "o.h5", "--unit", "um", "--size", 60, 1)
+    assert p.returncode == 1 and "a line scan: --size LX, got 2 numbers" in p.stderr
+    p = _cli(tmp_path, f, "--out", tmp_path / "o.h5", "--unit", "um", "--size", 60)
+    assert p.returncode == 0, p.stderr
+    assert veslide.load_topography(tmp_path / "o.h5").heights.shape == (120, 1)
+
+
+@pytest.mark.parametrize("periodic", ["tukey", "mirror", "crop", "none"])
+def test_line_scans_are_detrended_periodised_and_banded(periodic):
+    n, lx = 200, 1e-4
+    z = 1e-6 * profile(n)
+    x = np.arange(n) / n
+    scan = Scan.from_heights(z, lx)
+    assert scan.line_scan and scan.heights.shape == (n, 1)
+    s = prepare(scan, nx=64, periodic=periodic, taper=0.2, k_cut=10)
+    assert s.detrended.shape == (n, 1) and s.heights.shape == (64, 1) and s.ny == 1
+    assert s.length_y_m == pytest.approx(s.length_x_m / 64)
+    assert s.preparation["line_scan"]["length_y_m"] == s.length_y_m
+    m = s.periodised.shape[0]
+    assert s.periodised.shape == (m, 1)
+    if periodic == "mirror":                                        # the image in x only
+        assert m == 2 * n and s.length_x_m == pytest.approx(2 * lx)
+        np.testing.assert_array_equal(s.periodised[n:, 0], s.periodised[n - 1::-1, 0])
+        assert s.costs["area_fraction_changed"] == 0.5 and s.costs["edge_jump_x_after"] == 0
+    elif periodic == "crop":
+        assert 0.8 * n <= m < n and s.length_x_m == pytest.approx(lx * m / n)
+    elif periodic == "tukey":
+        assert s.periodised[0, 0] == 0 and s.costs["area_fraction_changed"] == pytest.approx(0.2, abs=1.5 / n)
+        assert s.costs["edge_jump_x_after"] < 0.1 * s.costs["edge_jump_x_before"]
+    qx, qy, c = veslide.psd_2d(s.heights, s.length_x_m, s.length_y_m)
+    above = np.abs(qx) > 10 * 2 * np.pi / s.length_x_m * (1 + 1e-9)
+    assert c[above].max() <= 1e-24 * c.max()
+    # the detrending removes a line and a parabola exactly, as on a topography
+    for mode, added in (("plane", 3e-6 * x - 1e-6), ("curvature", 2e-6 * x ** 2 - 3e-6 * x)):
+        a = prepare(Scan.from_heights(z, lx), detrend=mode, periodic=periodic, taper=0.2, k_cut=10).detrended
+        b = prepare(Scan.from_heights(z + added, lx), detrend=mode, periodic=periodic, taper=0.2, k_cut=10).detrended
+        np.testing.assert_allclose(b, a, rtol=0, atol=1e-12 * np.abs(added).max())
+    with pytest.raises(ValueError, match=r"a line scan makes a grid of ny = 1, got ny=8 \(--ny 8\)"):
+        prepare(scan, nx=64, ny=8, periodic=periodic, taper=0.2, k_cut=10)
+
+
+def test_line_scan_undefined_points_crop_to_the_longest_measured_run():
+    z = 1e-6 * profile(200)
+    z[[30, 31, 150]] = np.nan                                       # runs 0..29, 32..149, 151..199
+    scan = Scan.from_heights(z, 1e-4)
+    assert scan.topography.has_undefined_data
+    s = prepare(scan, crop_valid=True, detrend="none", periodic="none", k_cut=10)
+    assert s.preparation["undefined_points"]["measured_rectangle"]["start"] == [32, 0]
+    assert s.preparation["undefined_points"]["measured_rectangle"]["points"] == [118, 1]
+    np.testing.assert_allclose(s.detrended[:, 0], z[32:150] - z[32:150].mean(), rtol=0, atol=1e-20)
+    s = prepare(scan, k_cut=10)                                     # 1.5 %: filled
+    assert s.preparation["undefined_points"]["filled_fraction"] == 0.015 and np.all(np.isfinite(s.heights))

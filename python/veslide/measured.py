@@ -91,18 +91,25 @@ def _jsonable(x):
 
 
 class Scan:
-    """A measured topography in metres: `topography` (a SurfaceTopography topography, unit 'm'),
-    `heights` [ix, iy] (m; masked where the instrument marked points undefined), `matrix` the same
-    as [iy, ix], `length_x_m`, `length_y_m`, `nx`, `ny`, and `source` (a dict: the file, its
-    format and reader, the channel, the unit and the factor that made it metres)."""
+    """A measured topography in metres: `topography` (a SurfaceTopography topography or line scan,
+    unit 'm'), `heights` [ix, iy] (m; masked where the instrument marked points undefined), `matrix`
+    the same as [iy, ix], `length_x_m`, `length_y_m`, `nx`, `ny`, `line_scan`, and `source` (a
+    dict: the file, its format and reader, the channel, the unit and the factor that made it
+    metres). A line scan (a stylus profile along x) has heights of shape (nx, 1), ny = 1 and
+    length_y_m its point spacing, length_x_m / nx (square cells)."""
 
     def __init__(self, topography, source):
         self.topography = topography
         self.source = source
 
     @property
+    def line_scan(self):
+        return self.topography.dim == 1
+
+    @property
     def heights(self):
-        return self.topography.heights()
+        h = self.topography.heights()
+        return h[:, None] if h.ndim == 1 else h
 
     @property
     def matrix(self):
@@ -115,7 +122,7 @@ class Scan:
 
     @property
     def ny(self):
-        return int(self.topography.nb_grid_pts[1])
+        return 1 if self.line_scan else int(self.topography.nb_grid_pts[1])
 
     @property
     def length_x_m(self):
@@ -123,18 +130,28 @@ class Scan:
 
     @property
     def length_y_m(self):
+        if self.line_scan:
+            return self.length_x_m / self.nx
         return float(self.topography.physical_sizes[1])
 
     @classmethod
     def from_heights(cls, heights, length_x_m, length_y_m=None, unit="m", periodic=False):
         """A scan from heights [ix, iy] in `unit` (lengths in the same unit; length_y_m None:
-        square points, length_x_m * ny / nx)."""
+        square points, length_x_m * ny / nx). 1-D heights, or ny = 1, make a line scan (a
+        SurfaceTopography UniformLineScan; length_y_m must be None)."""
         st = _st()
         h = np.asarray(heights, dtype=np.float64)
-        if h.ndim != 2:
-            raise ValueError("heights must be 2-D [ix, iy], got %d dimensions" % h.ndim)
-        ly = length_x_m * h.shape[1] / h.shape[0] if length_y_m is None else length_y_m
-        t = st.Topography(h, (float(length_x_m), float(ly)), unit=unit, periodic=periodic)
+        if h.ndim == 2 and h.shape[1] == 1:
+            h = h[:, 0]
+        if h.ndim == 1:
+            if length_y_m is not None:
+                raise ValueError("a line scan has no y side: leave length_y_m None (it becomes the point spacing)")
+            t = st.UniformLineScan(h, float(length_x_m), unit=unit, periodic=periodic)
+        elif h.ndim == 2:
+            ly = length_x_m * h.shape[1] / h.shape[0] if length_y_m is None else length_y_m
+            t = st.Topography(h, (float(length_x_m), float(ly)), unit=unit, periodic=periodic)
+        else:
+            raise ValueError("heights must be 2-D [ix, iy] (or 1-D, a line scan), got %d dimensions" % h.ndim)
         return _in_metres(t, {"path": None, "format": "array", "reader": "Scan.from_heights [ix, iy]"})
 
     @classmethod
@@ -145,6 +162,9 @@ class Scan:
         return s
 
     def __repr__(self):
+        if self.line_scan:
+            return "<Scan %s: a line scan of %d points, %.4g m>" % (
+                self.source.get("path") or self.source.get("reader"), self.nx, self.length_x_m)
         return "<Scan %s: %d x %d points, %.4g x %.4g m>" % (
             self.source.get("path") or self.source.get("reader"), self.nx, self.ny, self.length_x_m,
             self.length_y_m)
@@ -153,8 +173,9 @@ class Scan:
 def _in_metres(topo, source):
     st = _st()
     from SurfaceTopography.Support.UnitConversion import get_unit_conversion_factor
-    if topo.dim != 2:
-        raise ValueError("%s: a line scan (1-D); the solver needs a 2-D topography" % source.get("path"))
+    if topo.dim not in (1, 2):
+        raise ValueError("%s: a topography of %d dimensions; a scan has 2 (or 1: a line scan)"
+                         % (source.get("path"), topo.dim))
     if not topo.is_uniform:
         raise ValueError("%s: not on a uniform grid" % source.get("path"))
     if topo.unit is None:
@@ -163,7 +184,7 @@ def _in_metres(topo, source):
     factor = float(get_unit_conversion_factor(topo.unit, "m"))
     source.update(unit=topo.unit, factor_to_m=factor, nb_grid_pts=[int(n) for n in topo.nb_grid_pts],
                   physical_sizes=[float(s) for s in topo.physical_sizes],
-                  periodic=bool(topo.is_periodic), surfacetopography=st.__version__)
+                  periodic=bool(topo.is_periodic), surfacetopography=st.__version__, line_scan=topo.dim == 1)
     return Scan(topo.to_unit("m") if topo.unit != "m" else topo, source)
 
 
@@ -385,6 +406,13 @@ def _periodise(h, lx, ly, method, taper, detrended_topography):
                    taper=taper, tapered_fraction_x=fx, tapered_fraction_y=fy,
                    window_area_mean=float(np.mean(w)))
         costs["area_fraction_changed"] = float(np.mean(w < 1))        # = 1 - (1 - fx)(1 - fy)
+    elif method == "mirror" and ny == 1:              # a line scan: the mirror image in x only
+        out = np.concatenate([h, h[::-1]], axis=0)
+        lx = 2 * lx
+        rec.update(how="a line scan and its mirror image in x (as SurfaceTopography's mirror_stitch in x, which "
+                       "takes no line scan), a cell of twice the length; the spectrum is that of an even profile",
+                   taper=None)
+        costs["area_fraction_changed"] = 0.5                           # the image
     elif method == "mirror":
         out = np.asarray(detrended_topography.mirror_stitch().heights(), dtype=np.float64)
         out = out - out.mean()                                         # as h: about the mean
@@ -444,8 +472,8 @@ def _band_resample(h, lx, ly, nx, ny, k_cut):
            "resample": {"from": [sx, sy], "to": [nx, ny],
                         "method": "Fourier: the kept modes copied into the solve grid's spectrum (numpy fft2/ifft2)"},
            "modes_kept": int(keep.sum()), "imaginary_part_max_m": imag,
-           "scan_nyquist_k": float(min(sx / 2, sy / 2 * lx / ly)),
-           "grid_nyquist_k": float(min(nx / 2, ny / 2 * lx / ly))}
+           "scan_nyquist_k": float(_nyquist_k(sx, sy, lx, ly)),
+           "grid_nyquist_k": float(_nyquist_k(nx, ny, lx, ly))}
     kept = float(p[keep].sum())
     costs = {"band_height_variance_removed": float(1 - kept / total) if total > 0 else 0.0,
              "band_slope_variance_removed": float(1 - (p[keep] * q2[keep]).sum() / total_slope)
@@ -565,7 +593,13 @@ class PreparedSurface:
         return "<PreparedSurface %d x %d, %.4g x %.4g m>" % (self.nx, self.ny, self.length_x_m, self.length_y_m)
 
 
-def _grid(nx, ny, sx, sy, lx, ly):
+def _grid(nx, ny, sx, sy, lx, ly, line=False):
+    if line:
+        if ny not in (None, 1):
+            raise ValueError("a line scan makes a grid of ny = 1, got ny=%d (--ny %d)" % (ny, ny))
+        ny = 1
+        if nx is None:
+            return sx, 1
     if nx is None and ny is None:
         return sx, sy
     if ny is None:
@@ -634,7 +668,17 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     included), edge_jump_x/y_before/after (rms over the rows/columns of the jump between the last
     and first point, in h_rms of the detrended scan, as the solver measures them) with the rms
     steps inside (edge_step_x/y), band_height_variance_removed and band_slope_variance_removed (the
-    fractions of the cell's height and slope variance above k_cut)."""
+    fractions of the cell's height and slope variance above k_cut).
+
+    A line scan (a profile along x, `Scan.line_scan`) goes through the same steps on heights of
+    shape (nx, 1) -- 'mirror' adds its mirror image in x only -- onto a solve grid of ny = 1 whose
+    length_y_m is its point spacing, length_x_m / nx (square cells; recorded, with the reason, in
+    preparation['line_scan']). The solver takes it as h(x), the same along y: parallel ridges.
+
+    Refused (ValueError, one line naming the options): more than 2 % undefined points unless
+    `fill` or `crop_valid` says what to do; a prepared rms slope above SLOPE_REFUSED (10): heights
+    in another unit or a channel that is not heights. Warned (VeslideWarning, source
+    'preparation', also listed in preparation['warnings']): 'filled-scan', 'band-slope-removed'."""
     if not isinstance(scan, Scan):
         scan = _in_metres(scan, {"path": None, "format": "SurfaceTopography object",
                                  "reader": type(scan).__name__})
@@ -654,10 +698,17 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     # 1. units
     prep["units"] = {"from": src.get("unit"), "factor_to_m": src.get("factor_to_m"),
                      "by": "SurfaceTopography to_unit('m')"}
-    lines.append("read:      %s (%s, reader '%s', channel %s): %d x %d points, %.6g x %.6g %s"
-                 % (src.get("path") or "(in memory)", src.get("format"), src.get("reader"),
-                    (src.get("channel") or {}).get("name", "-"), scan.nx, scan.ny,
-                    *src.get("physical_sizes", [np.nan, np.nan]), src.get("unit")))
+    line_scan = scan.line_scan
+    if line_scan:
+        lines.append("read:      %s (%s, reader '%s', channel %s): a line scan of %d points, %.6g %s"
+                     % (src.get("path") or "(in memory)", src.get("format"), src.get("reader"),
+                        (src.get("channel") or {}).get("name", "-"), scan.nx,
+                        *src.get("physical_sizes", [np.nan]), src.get("unit")))
+    else:
+        lines.append("read:      %s (%s, reader '%s', channel %s): %d x %d points, %.6g x %.6g %s"
+                     % (src.get("path") or "(in memory)", src.get("format"), src.get("reader"),
+                        (src.get("channel") or {}).get("name", "-"), scan.nx, scan.ny,
+                        *src.get("physical_sizes", [np.nan, np.nan]), src.get("unit")))
     lines.append("units:     %s -> m, factor %.6g" % (src.get("unit"), src.get("factor_to_m")))
     # 2. undefined points
     sx, sy = scan.nx, scan.ny
@@ -711,9 +762,9 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
                 "%.6g x %.6g m" % (_points(sx, sy), rect["start"][0], rect["start"][1], rect["fraction_kept"], lx, ly)
     lines.append(line)
     # 3. detrend
-    raw = np.asarray(topo.heights(), dtype=np.float64)
+    raw = np.asarray(topo.heights(), dtype=np.float64).reshape(sx, sy)
     d = topo.detrend(detrend_mode=DETREND_MODES[detrend])
-    h0 = np.ascontiguousarray(np.asarray(d.heights(), dtype=np.float64))
+    h0 = np.ascontiguousarray(np.asarray(d.heights(), dtype=np.float64).reshape(sx, sy))
     h0 = h0 - h0.mean()
     removed = raw - raw.mean() - h0
     hrms = float(np.sqrt(np.mean(h0 ** 2)))
@@ -737,7 +788,8 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     costs["slope_variance_change"] = m2_cell / m2_scan - 1 if m2_scan > 0 else 0.0
     rec.update(points=[int(n) for n in h1.shape], length_m=[lx1, ly1])
     prep["periodic"] = rec
-    what = {"tukey": "Tukey taper %.3g" % taper, "mirror": "mirror stitching (cell 2 x 2 the scan)",
+    what = {"tukey": "Tukey taper %.3g" % taper,
+            "mirror": "mirror image in x (cell twice the scan)" if line_scan else "mirror stitching (cell 2 x 2 the scan)",
             "crop": "crop to %d x %d points (at least %.3g of each side)" % (h1.shape + (1 - taper,)),
             "none": "none (taken as periodic)"}[periodic]
     lines.append("periodic:  %s: area changed %.4f, dropped %.4f, slope variance %+.4f; edge jump x %.3g -> %.3g, "
@@ -747,8 +799,8 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
                     costs["edge_jump_y_before"], costs["edge_jump_y_after"], costs["edge_step_x_after"],
                     costs["edge_step_y_after"]))
     # 5. band and grid
-    nx_, ny_ = _grid(nx, ny, h1.shape[0], h1.shape[1], lx1, ly1)
-    nyq = min(nx_ / 2, ny_ / 2 * lx1 / ly1) if ny_ > 1 else nx_ / 2
+    nx_, ny_ = _grid(nx, ny, h1.shape[0], h1.shape[1], lx1, ly1, line_scan)
+    nyq = _nyquist_k(nx_, ny_, lx1, ly1)
     if k_cut is None:
         k_cut = nyq / 2
         k_note = "default: half the grid's Nyquist"
@@ -769,12 +821,24 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
                  % (k_cut, k_note, band["wavelength_cut_m"], band["grid_nyquist_k"],
                     costs["band_height_variance_removed"], costs["band_slope_variance_removed"],
                     "; " + band["note"] if "note" in band else ""))
-    lines.append("resample:  %d x %d -> %d x %d points (Fourier), cell %.6g x %.6g m"
-                 % (h1.shape[0], h1.shape[1], nx_, ny_, lx1, ly1))
+    if line_scan:             # y: one point of the solve grid's spacing, square cells
+        ly_out = lx1 / nx_
+        prep["line_scan"] = {
+            "length_y_m": ly_out,
+            "why": "a line scan has no y side: the solve grid has ny = 1 (heights h(x), the same along y: parallel "
+                   "ridges, plane strain) and length_y_m is its point spacing length_x_m / nx, so that its cells "
+                   "are square; the y side enters no result per area (no wavevector has qy != 0)"}
+        lines.append("resample:  %d -> %d points (Fourier), cell %.6g m; a line scan: ny = 1, length_y_m %.6g m "
+                     "(the grid's spacing: square cells)" % (h1.shape[0], nx_, lx1, ly_out))
+    else:
+        ly_out = ly1
+        prep["line_scan"] = None
+        lines.append("resample:  %d x %d -> %d x %d points (Fourier), cell %.6g x %.6g m"
+                     % (h1.shape[0], h1.shape[1], nx_, ny_, lx1, ly1))
     removed = costs["band_slope_variance_removed"]
     band["half_slope"] = None
     if removed > BAND_SLOPE_REMOVED_MAX:
-        text, band["half_slope"] = _band_note(name, removed, k_cut, nx_, ny_, lx1, ly1, h1, False)
+        text, band["half_slope"] = _band_note(name, removed, k_cut, nx_, ny_, lx1, ly1, h1, line_scan)
         notes.append((text, "band-slope-removed", removed, BAND_SLOPE_REMOVED_MAX))
     hr = float(np.sqrt(np.mean(g ** 2)))
     gx = np.fft.fftfreq(nx_, lx1 / nx_) * 2 * np.pi
@@ -790,7 +854,7 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
         raise ValueError("%s: the rms slope of the heights is %s (a contact of small slopes needs well below 1): "
                          "heights in another unit (%s), or %s"
                          % (name, ("%.2g" % slope).replace("e+0", "e").replace("e+", "e"), unit_fix, what))
-    prep["result"] = {"nx": nx_, "ny": ny_, "length_x_m": lx1, "length_y_m": ly1, "h_rms_m": hr,
+    prep["result"] = {"nx": nx_, "ny": ny_, "length_x_m": lx1, "length_y_m": ly_out, "h_rms_m": hr,
                       "rms_slope": slope, "layout": LAYOUTS["numpy (this package, SurfaceTopography)"]}
     prep["costs"] = costs
     prep["costs_note"] = ("area_fraction_changed: of the cell (taper band; mirror images); area_fraction_dropped: "
@@ -807,4 +871,4 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     prep["warnings"] = [{"code": c, "value": v, "threshold": t, "text": x} for x, c, v, t in notes]
     for text, code, value, threshold in notes:
         warn(text, code, value, threshold, source="preparation", stacklevel=2)
-    return PreparedSurface(g, lx1, ly1, _jsonable(prep), costs, lines, h0, h1)
+    return PreparedSurface(g, lx1, ly_out, _jsonable(prep), costs, lines, h0, h1)
