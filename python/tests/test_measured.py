@@ -574,7 +574,8 @@ def test_reader_refusals_are_one_line_naming_the_options(tmp_path):
         ((plain,), "the file gives neither its size nor its length unit: pass --size LX LY and --unit um, or what "
                    "they are (channels: Default): "),
         ((plain, "--size", 40, 24), "the file gives no length unit: pass --unit um, or what it is (channels: Default)"),
-        ((plain, "--unit", "um"), "the file gives no physical size: pass --size LX LY, in its unit (channels: Default)"),
+        ((plain, "--unit", "um"),
+         "the file gives no physical size: pass --size LX LY, in its unit (channels: Default)"),
         ((plain, "--unit", "um", "--size", 40), "channel Default is a 2-D topography: --size LX LY, got 1 numbers"),
         ((x3p, "--channel", "Phase"), "no channel 'Phase': --channel takes a name or an index (channels: Default)"),
         ((x3p, "--channel", 2), "no channel 2: --channel takes a name or an index 0 to 0 (channels: Default)"),
@@ -700,3 +701,29 @@ def test_line_scan_undefined_points_crop_to_the_longest_measured_run():
     np.testing.assert_allclose(s.detrended[:, 0], z[32:150] - z[32:150].mean(), rtol=0, atol=1e-20)
     s = prepare(scan, k_cut=10)                                     # 1.5 %: filled
     assert s.preparation["undefined_points"]["filled_fraction"] == 0.015 and np.all(np.isfinite(s.heights))
+
+
+# --- the height file: attributes for the solver; writing the same content again ------------------
+
+def test_height_file_carries_filled_fraction_and_band_slope_removed(tmp_path):
+    f = write_x3p(tmp_path / "s.x3p", holes(4, extra=1).T, 1e-6, 1e-6)
+    with pytest.warns(veslide.VeslideWarning):
+        s = prepare(read(f), nx=32, k_cut=3, fill="harmonic")
+    out = s.write(tmp_path / "surf.h5")
+    with h5py.File(out, "r") as f5:
+        a = f5["/height_m"].attrs
+        assert a["filled_fraction"] == 0.0205 and a["filled_fraction"].dtype == np.float64
+        assert a["band_slope_variance_removed"] == s.costs["band_slope_variance_removed"] > 0.5
+        assert a["band_slope_variance_removed"].dtype == np.float64
+        prep = json.loads(a["preparation"])
+    old_keys = {"format", "layouts", "source", "units", "undefined_points", "detrend", "periodic", "band", "result",
+                "costs", "costs_note", "veslide_python"}
+    assert old_keys <= set(prep)                                     # the JSON keeps its keys
+    # heights not prepared from a scan: nothing filled, no band
+    veslide.write_topography(tmp_path / "raw.h5", rough(8, 4), 1e-4)
+    with h5py.File(tmp_path / "raw.h5", "r") as f5:
+        a = f5["/height_m"].attrs
+        assert (a["filled_fraction"], a["band_slope_variance_removed"]) == (0.0, 0.0)
+    with pytest.raises(ValueError, match=r"filled_fraction must be a fraction in \[0, 1\]"):
+        veslide.write_topography(tmp_path / "bad.h5", rough(8, 4), 1e-4, filled_fraction=2.0)
+    assert not (tmp_path / "bad.h5").exists()

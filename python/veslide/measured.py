@@ -311,8 +311,9 @@ def read(path, format=None, channel=None, *, unit=None, physical_sizes=None, hei
 def largest_measured_rectangle(valid):
     """The largest axis-aligned rectangle of True points in the mask `valid` [ix, iy] (1-D: a
     line): ((ix0, iy0), (mx, my)), the start and the size in points; ((0, 0), (0, 0)) when no
-    point is True. Of several of the same size, the first found (rows ix in order). O(nx ny): for each row ix the column heights of the True runs ending there
-    (a histogram), whose largest rectangle one pass with a stack finds."""
+    point is True. Of several of the same size, the first found (rows ix in order). O(nx ny):
+    for each row ix the column heights of the True runs ending there (a histogram), whose
+    largest rectangle one pass with a stack finds."""
     v = np.asarray(valid, dtype=bool)
     if v.ndim == 1:
         v = v[:, None]
@@ -584,7 +585,8 @@ class PreparedSurface:
 
     def write(self, path, dataset="/height_m", *, overwrite=False):
         """Write the heights for `&surface kind='file', file=path, dataset=dataset` with the
-        attributes length_x_m, length_y_m, length_m (= length_x_m) and preparation (JSON)."""
+        attributes length_x_m, length_y_m, length_m (= length_x_m), preparation (JSON), and for
+        the solver filled_fraction and band_slope_variance_removed (floats)."""
         from .topography import write_topography
         return write_topography(path, self.heights, (self.length_x_m, self.length_y_m), dataset,
                                 preparation=self.preparation, overwrite=overwrite)
@@ -745,8 +747,8 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
         filled = n_undefined
         if frac_undefined > FILL_MAX_AUTO:
             notes.append(("%s: %.3g %% of its %s points were unmeasured and are filled by harmonic interpolation "
-                          "(the filled heights are invented; %s)" % (name, 100 * frac_undefined, _points(scan.nx, scan.ny),
-                                                                     offer),
+                          "(the filled heights are invented; %s)"
+                          % (name, 100 * frac_undefined, _points(scan.nx, scan.ny), offer),
                           "filled-scan", frac_undefined, FILL_MAX_AUTO))
     prep["undefined_points"] = {"count": n_undefined, "fraction": frac_undefined,
                                 "filled_by": "SurfaceTopography interpolate_undefined_data('harmonic')"
@@ -789,7 +791,8 @@ def prepare(scan, nx=None, ny=None, detrend="curvature", periodic="tukey", taper
     rec.update(points=[int(n) for n in h1.shape], length_m=[lx1, ly1])
     prep["periodic"] = rec
     what = {"tukey": "Tukey taper %.3g" % taper,
-            "mirror": "mirror image in x (cell twice the scan)" if line_scan else "mirror stitching (cell 2 x 2 the scan)",
+            "mirror": "mirror image in x (cell twice the scan)" if line_scan else
+                      "mirror stitching (cell 2 x 2 the scan)",
             "crop": "crop to %d x %d points (at least %.3g of each side)" % (h1.shape + (1 - taper,)),
             "none": "none (taken as periodic)"}[periodic]
     lines.append("periodic:  %s: area changed %.4f, dropped %.4f, slope variance %+.4f; edge jump x %.3g -> %.3g, "
