@@ -727,3 +727,32 @@ def test_height_file_carries_filled_fraction_and_band_slope_removed(tmp_path):
     with pytest.raises(ValueError, match=r"filled_fraction must be a fraction in \[0, 1\]"):
         veslide.write_topography(tmp_path / "bad.h5", rough(8, 4), 1e-4, filled_fraction=2.0)
     assert not (tmp_path / "bad.h5").exists()
+
+
+def test_writing_the_same_surface_again_is_a_no_op(tmp_path):
+    scan = Scan.from_heights(rough(50, 40), 1e-4)
+    s = prepare(scan, nx=32, k_cut=6)
+    out = s.write(tmp_path / "surf.h5")
+    before = (out.read_bytes(), out.stat().st_mtime_ns)
+    assert prepare(scan, nx=32, k_cut=6).write(out) == out        # the same content: nothing written
+    assert (out.read_bytes(), out.stat().st_mtime_ns) == before
+    for other in (prepare(scan, nx=32, k_cut=5),                    # other heights and preparation
+                  prepare(Scan.from_heights(rough(50, 40), 2e-4), nx=32, k_cut=6)):   # other sides
+        with pytest.raises(FileExistsError, match="exists with other heights or attributes"):
+            other.write(out)
+        assert out.read_bytes() == before[0]
+    s5 = prepare(scan, nx=32, k_cut=5)
+    s5.write(out, overwrite=True)
+    np.testing.assert_array_equal(veslide.load_topography(out).heights, s5.heights)
+    # the same preparation text with heights one bit off: refused
+    h = s5.heights.copy()
+    h[3, 4] = np.nextafter(h[3, 4], 1.0)
+    with pytest.raises(FileExistsError):
+        veslide.write_topography(out, h, (s5.length_x_m, s5.length_y_m), preparation=s5.preparation)
+    # the command line run twice: the second finds its file and says so by exiting 0
+    f = write_x3p(tmp_path / "scan.x3p", rough(50, 40).T, 2e-6, 2e-6)
+    for _ in range(2):
+        p = _cli(tmp_path, f, "--out", tmp_path / "cli.h5", "--nx", 32, "--k-cut", 6)
+        assert p.returncode == 0, p.stderr
+    p = _cli(tmp_path, f, "--out", tmp_path / "cli.h5", "--nx", 32, "--k-cut", 5)
+    assert p.returncode == 1 and "exists with other heights or attributes" in p.stderr

@@ -586,7 +586,9 @@ class PreparedSurface:
     def write(self, path, dataset="/height_m", *, overwrite=False):
         """Write the heights for `&surface kind='file', file=path, dataset=dataset` with the
         attributes length_x_m, length_y_m, length_m (= length_x_m), preparation (JSON), and for
-        the solver filled_fraction and band_slope_variance_removed (floats)."""
+        the solver filled_fraction and band_slope_variance_removed (floats). A file that holds
+        the dataset with bitwise the same heights and attributes is left as it is (a no-op; as
+        `veslide.run` reuses an identical result); a different one is refused unless overwrite."""
         from .topography import write_topography
         return write_topography(path, self.heights, (self.length_x_m, self.length_y_m), dataset,
                                 preparation=self.preparation, overwrite=overwrite)

@@ -62,6 +62,29 @@ def _prepared_number(preparation, keys):
         return None
 
 
+def _same_dataset(path, dataset, data, attrs):
+    """True when the file at path holds `dataset` with bitwise the same data and exactly these attributes."""
+    if not (path.is_file() and h5py.is_hdf5(path)):
+        return False
+    with h5py.File(path, "r") as f:
+        ds = f.get(dataset)
+        if not isinstance(ds, h5py.Dataset) or ds.shape != data.shape or ds.dtype != data.dtype:
+            return False
+        if ds[()].tobytes() != data.tobytes():
+            return False
+        got = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in ds.attrs.items()}
+    if set(got) != set(attrs):
+        return False
+    for k, v in attrs.items():
+        g = got[k]
+        if isinstance(v, str):
+            if g != v:
+                return False
+        elif np.asarray(g).tobytes() != np.asarray(v, dtype=np.float64).tobytes():
+            return False
+    return True
+
+
 def write_topography(path, heights, length_m, dataset="/height_m", *, preparation=None, overwrite=False,
                      filled_fraction=None, band_slope_variance_removed=None):
     """Write heights [m] for `&surface kind='file', file=path, dataset=dataset`.
@@ -83,7 +106,9 @@ def write_topography(path, heights, length_m, dataset="/height_m", *, preparatio
                  scan: nothing filled, no band).
     The solver reads a Fortran (nx, ny) array h(ix, iy): HDF5 stores it with dims (ny, nx), so the
     array written by h5py is the transpose, heights.T, with a `layout` attribute saying so.
-    The file is created or appended to; an existing dataset is replaced only with overwrite=True."""
+    The file is created or appended to. A dataset already there with bitwise the same heights and
+    attributes (sides, preparation, ...) is left as it is (the path returned: writing it again is
+    a no-op); a different one is replaced only with overwrite=True."""
     h = _as_xy(heights)
     nx, ny = h.shape
     if nx < 2 or ny < 1:
@@ -107,11 +132,13 @@ def write_topography(path, heights, length_m, dataset="/height_m", *, preparatio
         attrs["preparation"] = preparation
     data = np.ascontiguousarray(h.T)                 # [iy, ix] on disk
     path = Path(path)
+    if _same_dataset(path, dataset, data, attrs):
+        return path
     with h5py.File(path, "a") as f:
         if dataset in f:
             if not overwrite:
-                raise FileExistsError("%s: dataset %s exists: overwrite=True (--overwrite) "
-                                      "replaces it" % (path, dataset))
+                raise FileExistsError("%s: dataset %s exists with other heights or attributes: overwrite=True "
+                                      "(--overwrite) replaces it" % (path, dataset))
             del f[dataset]
         ds = f.create_dataset(dataset, data=data)
         for k, v in attrs.items():
