@@ -751,8 +751,9 @@ def test_writing_the_same_surface_again_is_a_no_op(tmp_path):
         veslide.write_topography(out, h, (s5.length_x_m, s5.length_y_m), preparation=s5.preparation)
     # the command line run twice: the second finds its file and says so by exiting 0
     f = write_x3p(tmp_path / "scan.x3p", rough(50, 40).T, 2e-6, 2e-6)
-    for _ in range(2):
+    for word in ("written:  ", "unchanged:"):
         p = _cli(tmp_path, f, "--out", tmp_path / "cli.h5", "--nx", 32, "--k-cut", 6)
         assert p.returncode == 0, p.stderr
+        assert p.stdout.splitlines()[-2].startswith(word + " %s:/height_m (32 x 26" % (tmp_path / "cli.h5"))
     p = _cli(tmp_path, f, "--out", tmp_path / "cli.h5", "--nx", 32, "--k-cut", 5)
     assert p.returncode == 1 and "exists with other heights or attributes" in p.stderr

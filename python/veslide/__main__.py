@@ -13,6 +13,7 @@ topography: reads a measured scan (any format SurfaceTopography reads), prepares
 one line per choice with what it cost, and a line `warning: ...` on stderr for each
 VeslideWarning of the preparation; exit status 1 on bad input (one line on stderr, no file)."""
 import argparse
+import os
 import re
 import sys
 import warnings
@@ -100,7 +101,9 @@ def _topography(args):
                         crop_valid=args.crop_valid)
         for line in s.lines:
             print(line)
+        before = os.stat(args.out).st_mtime_ns if os.path.exists(args.out) else None
         path = s.write(args.out, args.dataset, overwrite=args.overwrite)
+        unchanged = before is not None and os.stat(path).st_mtime_ns == before
     except ImportError as e:
         print("veslide topography: %s" % e, file=sys.stderr)
         return 1
@@ -108,9 +111,10 @@ def _topography(args):
         msg = _cli_words(str(e))
         print("veslide topography: %s" % (msg if args.scan in msg else "%s: %s" % (args.scan, msg)), file=sys.stderr)
         return 1
-    print("written:   %s:%s (%d x %d, %.6g x %.6g m; layout [iy, ix] in h5py, the solver's (nx, ny)); "
-          "the preparation in its attribute 'preparation'" % (path, args.dataset, s.nx, s.ny, s.length_x_m,
-                                                               s.length_y_m))
+    print("%s %s:%s (%d x %d, %.6g x %.6g m; layout [iy, ix] in h5py, the solver's (nx, ny)); "
+          "the preparation in its attribute 'preparation'%s"
+          % ("unchanged:" if unchanged else "written:  ", path, args.dataset, s.nx, s.ny, s.length_x_m, s.length_y_m,
+             " (the file held these heights already)" if unchanged else ""))
     print("use:       &grid nx = %d, ny = %d /  &surface kind = 'file', file = '%s', dataset = '%s' /"
           % (s.nx, s.ny, path, args.dataset))
     sys.stdout.flush()
