@@ -34,7 +34,22 @@ def main(argv=None):
     r.add_argument("sizes", nargs="+", type=int, help="nx of each grid (ny scaled with it)")
     r.add_argument("--output-dir", default="refine", help="where refine-NXxNY.h5 go (default: ./refine)")
     r.add_argument("--threads", type=int, default=None, help="OMP_NUM_THREADS of each run")
-    t = sub.add_parser("topography", help="make a measured scan a periodic height file for &surface kind='file'")
+    t = sub.add_parser(
+        "topography", help="make a measured scan a periodic height file for &surface kind='file'",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        description="Read a measured scan (any format SurfaceTopography reads; a line scan makes a grid of\n"
+                    "ny = 1), prepare it (undefined points, detrend, periodic cell, band and grid) and write\n"
+                    "the height file, printing one line per choice with what it cost.",
+        epilog="refused (exit status 1, one line on stderr, no file written):\n"
+               "  more than 2 % of the points undefined, unless --crop-valid or --fill harmonic;\n"
+               "  a prepared rms slope above 10 (heights in another unit: --unit, --height-scale;\n"
+               "  a channel that is not heights: --channel); a file without its unit or size.\n"
+               "warned (a line 'warning: [code] ...' on stderr, the file written):\n"
+               "  filled-scan         more than 2 % of the points filled (--fill harmonic)\n"
+               "  band-slope-removed  k_cut and the grid remove more than half of the slope\n"
+               "                      variance; says which --nx (and k_cut) keeps half\n"
+               "the height file's dataset has the attributes length_x_m, length_y_m, preparation (JSON),\n"
+               "filled_fraction and band_slope_variance_removed; writing the same surface again is a no-op.")
     t.add_argument("scan", help="the instrument's file (x3p, sdf, sur, datx, opd, plu, gwy, nc, asc, ...)")
     t.add_argument("--out", required=True, help="the height file to write (HDF5)")
     t.add_argument("--dataset", default="/height_m", help="its dataset (default /height_m)")
@@ -46,7 +61,8 @@ def main(argv=None):
     t.add_argument("--height-scale", type=float, default=None, metavar="F",
                    help="multiply the heights by F (heights in another unit than the file's sides)")
     t.add_argument("--nx", type=int, default=None, help="points of the solve grid along x (default: the cell's)")
-    t.add_argument("--ny", type=int, default=None, help="along y (default: from nx and the cell's aspect ratio)")
+    t.add_argument("--ny", type=int, default=None,
+                   help="along y (default: from nx and the cell's aspect ratio; a line scan: 1)")
     t.add_argument("--detrend", default="curvature", choices=["curvature", "plane", "none"])
     t.add_argument("--periodic", default="tukey", choices=["tukey", "mirror", "crop", "none"])
     t.add_argument("--taper", type=float, default=0.1,
