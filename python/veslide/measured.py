@@ -9,6 +9,13 @@ height file for `&surface kind='file'`, and record every choice made and what it
 
 The same from the shell: `python -m veslide topography scan.x3p --out surf.h5 --nx 256 ...`.
 
+No silent wrong answer: a scan with more than 2 % of its points unmeasured is refused unless
+`crop_valid=True` (the largest measured rectangle) or `fill='harmonic'` (warned: 'filled-scan');
+a prepared rms slope above 10 is refused (heights in another unit, a channel that is not
+heights); a band that removes more than half of the slope variance is warned
+('band-slope-removed', naming the grid that keeps half). A line scan (a profile) becomes a
+height file of ny = 1.
+
 Three orders of the same heights, and which array has which:
 
     instrument matrix  [iy, ix]  one row per scan line: a row runs along x, the rows along y (as

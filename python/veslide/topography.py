@@ -6,7 +6,8 @@ matrix is [iy, ix] (one row per scan line along x): pass `matrix.T`, or `Scan.fr
 height file holds the solver's Fortran (nx, ny) array: h5py shape (ny, nx), index [iy, ix].
 
 Measured scans (`veslide.measured`, needs SurfaceTopography): `read(path, ...)` -> `Scan`,
-`prepare(scan, nx, ny, detrend, periodic, taper, k_cut)` -> `PreparedSurface` (`.write(path)`).
+`prepare(scan, nx, ny, detrend, periodic, taper, k_cut, fill, crop_valid)` -> `PreparedSurface`
+(`.write(path)`); line scans make height files of ny = 1.
 """
 import json
 from pathlib import Path
