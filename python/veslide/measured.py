@@ -43,6 +43,8 @@ undefined points (`interpolate_undefined_data`). Written here, with numpy, what 
 """
 import hashlib
 import json
+import logging
+import re
 from pathlib import Path
 
 import numpy as np
@@ -225,7 +227,6 @@ def read(path, format=None, channel=None, *, unit=None, physical_sizes=None, hei
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError("%s: no such file" % path)
-    import logging
     root = logging.getLogger()
     hush = None if root.handlers else logging.NullHandler()    # the readers tried and refused log their
     if hush is not None:                                        # reasons (logging's last resort: stderr)
@@ -280,7 +281,6 @@ def read(path, format=None, channel=None, *, unit=None, physical_sizes=None, hei
     try:
         topo = reader.topography(**kwargs)
     except MetadataAlreadyFixedByFile as e:
-        import re
         key = (re.search(r"keyword '(\w+)'", str(e)) or [None, "a keyword"])[1]
         option = {"unit": "--unit", "physical_sizes": "--size", "height_scale_factor": "--height-scale"}.get(key)
         raise ValueError("%s: the file gives its %s itself: leave out %s=%s (%s): %s"
