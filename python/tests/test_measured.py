@@ -3,6 +3,7 @@ SurfaceTopography, prepared, written and read back with h5py; the solver on a pr
 import json
 import subprocess
 import sys
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -350,3 +351,409 @@ def test_readme_measured_scan_example_runs_as_written(tmp_path, exe, monkeypatch
     assert ns["r"].converged
     assert ns["r"].scalars["friction_coefficient"] == r.scalars["friction_coefficient"]
     assert ns["scan"].heights[3, 7] == ns["scan"].matrix[7, 3]
+
+
+# --- unmeasured points: filled up to 2 %, else refused unless cropped or filled on request ---------
+
+def _cli(tmp_path, *args):
+    return subprocess.run([sys.executable, "-m", "veslide", "topography", *map(str, args)],
+                          capture_output=True, text=True, cwd=tmp_path)
+
+
+def holes(n_strip_x, extra=0):
+    """rough(50, 40) [ix, iy] with the points ix < n_strip_x, iy >= 30 undefined (a strip of
+    10 n_strip_x points at one corner) and `extra` (<= n_strip_x) more along iy = 0 from ix = 0:
+    the largest measured rectangle is ix >= n_strip_x, all iy."""
+    h = rough(50, 40)
+    h[:n_strip_x, 30:] = np.nan
+    h[:extra, 0] = np.nan
+    return h
+
+
+def test_largest_measured_rectangle_is_the_brute_force_one():
+    from veslide.measured import largest_measured_rectangle
+    rng = np.random.default_rng(5)
+    for trial in range(400):
+        nx, ny = rng.integers(1, 9, 2)
+        valid = rng.random((nx, ny)) < rng.uniform(0.2, 1.0)
+        best = 0
+        for i0 in range(nx):
+            for i1 in range(i0 + 1, nx + 1):
+                for j0 in range(ny):
+                    for j1 in range(j0 + 1, ny + 1):
+                        if valid[i0:i1, j0:j1].all():
+                            best = max(best, (i1 - i0) * (j1 - j0))
+        (i0, j0), (mx, my) = largest_measured_rectangle(valid)
+        assert mx * my == best, (valid, best)
+        assert valid[i0:i0 + mx, j0:j0 + my].all() and i0 + mx <= nx and j0 + my <= ny
+    assert largest_measured_rectangle(np.zeros((3, 4), bool)) == ((0, 0), (0, 0))
+    assert largest_measured_rectangle(np.ones((3, 4), bool)) == ((0, 0), (3, 4))
+    assert largest_measured_rectangle(np.array([1, 1, 0, 1, 1, 1, 0], bool)) == ((3, 0), (3, 1))   # a line
+
+
+def test_up_to_two_percent_undefined_is_filled_and_recorded(tmp_path):
+    scan = read(write_x3p(tmp_path / "s.x3p", holes(4).T, 1e-6, 1e-6))       # 40 of 2000 points: 2 %
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        s = prepare(scan, k_cut=6)
+    u = s.preparation["undefined_points"]
+    assert u["count"] == 40 and u["fraction"] == 0.02 and u["filled_fraction"] == 0.02
+    assert u["fill"] == "auto" and u["filled_by"].startswith("SurfaceTopography interpolate_undefined_data")
+    assert u["crop_valid"] is False and u["measured_rectangle"] is None
+    assert s.heights.shape == (50, 40) and np.all(np.isfinite(s.heights)) and s.preparation["warnings"] == []
+
+
+def test_more_than_two_percent_undefined_is_refused_naming_both_ways(tmp_path):
+    f = write_x3p(tmp_path / "s.x3p", holes(4, extra=1).T, 1e-6, 1e-6)     # 41 of 2000 points: 2.05 %
+    scan = read(f)
+    with pytest.raises(ValueError) as e:
+        prepare(scan, k_cut=6)
+    msg = str(e.value)
+    assert "\n" not in msg
+    assert msg == ("%s: 2.05 %% of its 50 x 40 points are unmeasured: crop_valid=True (--crop-valid) keeps the "
+                   "largest measured rectangle (46 x 40 points, 92 %% of the scan), or fill='harmonic' "
+                   "(--fill harmonic) fills them (the filled heights are invented)" % f.resolve())
+    with pytest.raises(ValueError, match="41 undefined points"):
+        prepare(scan, k_cut=6, fill=None)
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 6)
+    assert p.returncode == 1 and not out.exists() and p.stdout == ""
+    err, = p.stderr.splitlines()
+    assert "--crop-valid keeps the largest measured rectangle (46 x 40 points" in err and "--fill harmonic" in err
+
+
+def test_an_explicit_fill_above_two_percent_warns(tmp_path):
+    f = write_x3p(tmp_path / "s.x3p", holes(4, extra=1).T, 1e-6, 1e-6)
+    with pytest.warns(veslide.VeslideWarning) as got:
+        s = prepare(read(f), k_cut=6, fill="harmonic")
+    w, = [w.message for w in got]
+    assert (w.code, w.value, w.threshold, w.source) == ("filled-scan", 0.0205, 0.02, "preparation")
+    assert "2.05 % of its 50 x 40 points were unmeasured" in w.text and "invented" in w.text
+    assert s.preparation["undefined_points"]["filled_fraction"] == 0.0205
+    assert s.preparation["warnings"] == [{"code": "filled-scan", "value": 0.0205, "threshold": 0.02, "text": w.text}]
+    with warnings.catch_warnings():                      # 2 %, asked for: no warning
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        prepare(read(write_x3p(tmp_path / "t.x3p", holes(4).T, 1e-6, 1e-6)), k_cut=6, fill="harmonic")
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 6, "--fill", "harmonic")
+    assert p.returncode == 0, p.stderr
+    err, = p.stderr.splitlines()                         # the options in the command line's words
+    assert err == "warning: [filled-scan] %s" % w.text.replace("crop_valid=True (--crop-valid)", "--crop-valid")
+    assert veslide.load_topography(out).preparation["undefined_points"]["filled_fraction"] == 0.0205
+
+
+def test_crop_valid_keeps_the_largest_measured_rectangle(tmp_path):
+    h = holes(4, extra=1)                                 # largest measured: ix 4..49, iy 0..39
+    f = write_x3p(tmp_path / "s.x3p", h.T, 1e-6, 2e-6)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        s = prepare(read(f), detrend="none", periodic="none", k_cut=6, crop_valid=True)
+    u = s.preparation["undefined_points"]
+    assert u["measured_rectangle"] == {"start": [4, 0], "points": [46, 40], "fraction_kept": 0.92,
+                                       "scan_points": [50, 40]}
+    assert u["count"] == 41 and u["filled_fraction"] == 0 and u["filled_by"] is None and u["crop_valid"] is True
+    np.testing.assert_allclose(s.detrended, h[4:] - h[4:].mean(), rtol=0, atol=1e-20)   # before the detrending
+    assert (s.length_x_m, s.length_y_m) == pytest.approx((46e-6, 80e-6)) and s.heights.shape == (46, 40)
+    assert "cropped to the largest measured rectangle, 46 x 40 points from [4, 0] (0.92 of the scan)" in s.lines[2]
+    # nothing to crop: the scan whole, recorded
+    s = prepare(Scan.from_heights(rough(50, 40), 1e-4), k_cut=6, crop_valid=True)
+    assert s.preparation["undefined_points"]["measured_rectangle"]["points"] == [50, 40]
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 6, "--crop-valid")
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    assert veslide.load_topography(out).heights.shape == (46, 40)
+
+
+# --- the band: a warning when it removes more than half of the cell's slope variance -------------
+
+def two_waves(removed):
+    """a periodic 128 x 64 scan over 100 x 50 um: waves along x at k = 3 and k = 11 whose slope
+    variances make the k = 11 one the fraction `removed` of the whole."""
+    lx, ly = 1e-4, 0.5e-4
+    x = np.arange(128)[:, None] * lx / 128 + np.zeros((1, 64))
+    b = np.sqrt(9 * removed / (1 - removed) / 121)        # 121 b^2 / (9 + 121 b^2) = removed
+    return 1e-7 * (np.cos(2 * np.pi * 3 * x / lx + 0.2) + b * np.cos(2 * np.pi * 11 * x / lx + 0.5)), lx, ly
+
+
+@pytest.mark.parametrize("removed", [0.6, 0.4])
+def test_band_removing_more_than_half_the_slope_variance_warns(removed, tmp_path):
+    h, lx, ly = two_waves(removed)
+    scan = Scan.from_heights(h, lx, ly, periodic=True)
+    kw = dict(nx=32, detrend="none", periodic="none", k_cut=8)
+    with warnings.catch_warnings(record=True) as got:
+        warnings.simplefilter("always")
+        s = prepare(scan, **kw)
+    assert s.costs["band_slope_variance_removed"] == pytest.approx(removed, rel=1e-9)
+    if removed < 0.5:
+        assert got == [] and s.preparation["band"]["half_slope"] is None and s.warnings == []
+        return
+    w, = [g.message for g in got]
+    assert isinstance(w, veslide.VeslideWarning)
+    assert (w.code, w.value, w.threshold) == ("band-slope-removed", s.costs["band_slope_variance_removed"], 0.5)
+    # half the slope variance lies at k >= 11: a 48-point grid (its Nyquist 24, default k_cut 12) keeps it
+    assert w.text == ("the scan: the band (k_cut 8 q0 on 32 x 16 points) removes 0.6 of the cell's slope variance, "
+                      "which the solve then lacks: nx=48 (--nx 48) with its default k_cut 12 (half its Nyquist) "
+                      "keeps at least half, as does k_cut=11 (--k-cut 11) on this grid")
+    assert s.preparation["band"]["half_slope"] == {"k_cut": 11.0, "grid": [48, 24], "kept_max": pytest.approx(1.0)}
+    assert s.warnings == [{"code": "band-slope-removed", "value": w.value, "threshold": 0.5, "text": w.text}]
+    with warnings.catch_warnings():                      # what it says keeps half
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        assert prepare(scan, **dict(kw, nx=48, k_cut=None)).costs["band_slope_variance_removed"] < 0.5
+        assert prepare(scan, **dict(kw, k_cut=11)).costs["band_slope_variance_removed"] < 0.5
+    f = write_x3p(tmp_path / "s.x3p", h.T, lx / 128, ly / 64)
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--nx", 32, "--detrend", "none", "--periodic", "none", "--k-cut", 8)
+    assert p.returncode == 0 and out.exists()
+    err, = p.stderr.splitlines()
+    assert err.startswith("warning: [band-slope-removed] %s: the band (k_cut 8 q0 on 32 x 16 points)" % f.resolve())
+    assert err.endswith(": --nx 48 with its default k_cut 12 (half its Nyquist) keeps at least half, as does "
+                        "--k-cut 11 on this grid")
+
+
+def test_band_warning_says_when_the_scan_cannot_keep_half():
+    """the slopes at the scan's own Nyquist (a row-to-row alternation, as noise gives): no band keeps them"""
+    h, lx, ly = two_waves(0.1)
+    h = h + 1e-7 * (-1.0) ** np.arange(128)[:, None]
+    with pytest.warns(veslide.VeslideWarning, match="band-slope-removed") as got:
+        s = prepare(Scan.from_heights(h, lx, ly, periodic=True), detrend="none", periodic="none")
+    w = got[0].message
+    assert w.value == s.costs["band_slope_variance_removed"] > 0.99
+    assert w.text.endswith("the scan's own points cannot keep half of it (every mode below its Nyquist 64 keeps "
+                           "%.3g)" % s.preparation["band"]["half_slope"]["kept_max"])
+    assert s.preparation["band"]["half_slope"]["grid"] is None
+
+
+# --- absurd heights: an rms slope above 10 is refused --------------------------------------------
+
+def wave(rms_slope, n=64, lx=1e-4, k=3):
+    """a periodic n x n scan over lx x lx: one wave along x of the given rms slope"""
+    x = np.arange(n)[:, None] * lx / n + np.zeros((1, n))
+    amp = rms_slope * np.sqrt(2) * lx / (2 * np.pi * k)
+    return amp * np.cos(2 * np.pi * k * x / lx)
+
+
+@pytest.mark.parametrize("rms_slope", [11.0, 9.0])
+def test_an_rms_slope_above_ten_is_refused(rms_slope):
+    scan = Scan.from_heights(wave(rms_slope), 1e-4, periodic=True)
+    kw = dict(detrend="none", periodic="none", k_cut=8)
+    if rms_slope < 10:
+        assert prepare(scan, **kw).preparation["result"]["rms_slope"] == pytest.approx(rms_slope, rel=1e-9)
+        return
+    with pytest.raises(ValueError) as e:
+        prepare(scan, **kw)
+    assert str(e.value) == ("the scan: the rms slope of the heights is 11 (a contact of small slopes needs well below "
+                            "1): heights in another unit (unit= (--unit), or height_scale_factor= (--height-scale) "
+                            "for the heights alone), or an array that is not heights")
+
+
+def test_heights_in_the_wrong_unit_are_refused_naming_the_options(tmp_path):
+    """a text export that says its heights are metres but holds micrometres: slopes of 1e5"""
+    f = write_asc(tmp_path / "scan.txt", rough(50, 40).T * 1e6, 100.0, 80.0)
+    out = tmp_path / "surf.h5"
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 8)
+    assert p.returncode == 1 and not out.exists() and p.stdout == ""
+    err, = p.stderr.splitlines()
+    assert err.startswith("veslide topography: %s: the rms slope of the heights is " % f.resolve())
+    assert err.endswith("e4 (a contact of small slopes needs well below 1): heights in another unit (--height-scale "
+                        "rescales them, the file giving its unit m), or a channel that is not heights (--channel; "
+                        "channels: Height)")
+    p = _cli(tmp_path, f, "--out", out, "--k-cut", 8, "--height-scale", 1e-6)
+    assert p.returncode == 0, p.stderr
+    assert veslide.load_topography(out).preparation["result"]["rms_slope"] < 1
+
+
+# --- the readers' refusals name the options ------------------------------------------------------
+
+def test_reader_refusals_are_one_line_naming_the_options(tmp_path):
+    plain = tmp_path / "plain.txt"
+    np.savetxt(plain, rough(20, 12).T * 1e6)
+    x3p = write_x3p(tmp_path / "scan.x3p", rough(20, 12).T, 1e-6, 1e-6)
+    junk = tmp_path / "junk.dat"
+    junk.write_bytes(b"\x00\x01not a scan" * 20)
+    cases = [
+        ((plain,), "the file gives neither its size nor its length unit: pass --size LX LY and --unit um, or what "
+                   "they are (channels: Default): "),
+        ((plain, "--size", 40, 24), "the file gives no length unit: pass --unit um, or what it is (channels: Default)"),
+        ((plain, "--unit", "um"),
+         "the file gives no physical size: pass --size LX LY, in its unit (channels: Default)"),
+        ((plain, "--unit", "um", "--size", 40), "channel Default is a 2-D topography: --size LX LY, got 1 numbers"),
+        ((x3p, "--channel", "Phase"), "no channel 'Phase': --channel takes a name or an index (channels: Default)"),
+        ((x3p, "--channel", 2), "no channel 2: --channel takes a name or an index 0 to 0 (channels: Default)"),
+        ((x3p, "--unit", "um"), "the file gives its unit itself: leave out --unit (channels: Default): Value for "
+                                "keyword 'unit' is already fixed by file contents"),
+        ((x3p, "--format", "sdf"), "SurfaceTopography cannot read it as 'sdf': --format names another: "),
+        ((x3p, "--format", "nope"), "SurfaceTopography has no format 'nope': --format takes one of sdf, "),
+        ((junk,), "SurfaceTopography cannot tell its format from its content (no reader takes it): --format names "
+                  "it, one of "),
+    ]
+    out = tmp_path / "surf.h5"
+    for args, want in cases:
+        p = _cli(tmp_path, *args, "--out", out)
+        assert p.returncode == 1 and not out.exists() and p.stdout == "", (args, p.stderr)
+        assert len(p.stderr.splitlines()) == 1, p.stderr
+        err = p.stderr.strip()
+        assert err.startswith("veslide topography: %s: " % args[0]) and want in err, (args, err)
+    with pytest.raises(ValueError, match=r"no channel 'Phase': channel= \(--channel\)"):
+        read(x3p, channel="Phase")
+    assert read(plain, unit="um", physical_sizes=(40, 24)).source["channels"] == ["Default"]
+
+
+# --- line scans: height files of ny = 1 ----------------------------------------------------------
+
+def profile(n=200, seed=4):
+    """a smooth random non-periodic profile [ix] (a few long waves) plus a slope and a bow [um]"""
+    rng = np.random.default_rng(seed)
+    x = np.arange(n) / n
+    z = sum(rng.standard_normal() * np.cos(2 * np.pi * rng.uniform(0.5, 9) * x + rng.uniform(0, 6.3))
+            for _ in range(10))
+    return 0.05 * z + 0.3 * x - 0.2 * x ** 2
+
+
+def test_a_line_scan_becomes_a_height_file_of_ny_1(tmp_path, exe):
+    """a stylus profile as a two-column text file (x, z in um, 0.5 um apart): read as a line scan,
+    prepared, written with ny = 1 and length_y_m the solve grid's spacing, and solved"""
+    n, dx = 200, 0.5
+    z = profile(n)
+    f = tmp_path / "profile.txt"
+    np.savetxt(f, np.c_[np.arange(n) * dx, z])
+    scan = read(f, unit="um")
+    assert scan.line_scan and (scan.nx, scan.ny) == (n, 1) and scan.heights.shape == (n, 1)
+    assert scan.length_x_m == pytest.approx(n * dx * 1e-6) and scan.length_y_m == pytest.approx(dx * 1e-6)
+    np.testing.assert_allclose(scan.heights[:, 0], z * 1e-6, rtol=1e-12)
+    out = tmp_path / "line.h5"
+    p = _cli(tmp_path, f, "--unit", "um", "--out", out, "--nx", 64, "--k-cut", 12)
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    assert "a line scan of 200 points, 100 um" in p.stdout and "nx = 64, ny = 1 /" in p.stdout
+    with h5py.File(out, "r") as f5:
+        ds = f5["/height_m"]
+        assert ds.shape == (1, 64)                                   # h5py (ny, nx)
+        assert ds.attrs["length_x_m"] == pytest.approx(100e-6)
+        assert ds.attrs["length_y_m"] == pytest.approx(100e-6 / 64)      # square cells of the solve grid
+        prep = json.loads(ds.attrs["preparation"])
+        assert prep["line_scan"]["length_y_m"] == ds.attrs["length_y_m"] and "square" in prep["line_scan"]["why"]
+    assert prep["source"]["line_scan"] is True and prep["result"]["ny"] == 1
+    back = veslide.load_topography(out)
+    assert back.heights.shape == (64, 1)
+    qx, qy, c = veslide.psd_2d(back.heights, back.length_x_m, back.length_y_m)     # nothing above k_cut
+    above = np.abs(qx) > 12 * 2 * np.pi / back.length_x_m * (1 + 1e-9)
+    assert above.any() and c[above].max() <= 1e-24 * c.max()
+    pr = params(surface={"kind": "file", "file": str(out)}, load={"mean_pressure_pa": 1e5})
+    r = veslide.run(pr, output=tmp_path / "solve.h5", exe=exe, progress=None)
+    assert r.converged and (r.scalars["nx"], r.scalars["ny"]) == (64, 1)
+    assert r.scalars["length_y_m"] == pytest.approx(back.length_y_m, rel=1e-12)
+    np.testing.assert_array_equal(r.fields.height_m.transpose("x", "y").values, back.heights)
+
+
+def test_a_one_column_profile_needs_its_length(tmp_path):
+    f = tmp_path / "z.txt"
+    np.savetxt(f, profile(120))
+    p = _cli(tmp_path, f, "--out", tmp_path / "o.h5")
+    assert p.returncode == 1 and "--size LX and --unit um" in p.stderr and not (tmp_path / "o.h5").exists()
+    p = _cli(tmp_path, f, "--out", tmp_path / "o.h5", "--unit", "um", "--size", 60, 1)
+    assert p.returncode == 1 and "a line scan: --size LX, got 2 numbers" in p.stderr
+    p = _cli(tmp_path, f, "--out", tmp_path / "o.h5", "--unit", "um", "--size", 60)
+    assert p.returncode == 0, p.stderr
+    assert veslide.load_topography(tmp_path / "o.h5").heights.shape == (120, 1)
+
+
+@pytest.mark.parametrize("periodic", ["tukey", "mirror", "crop", "none"])
+def test_line_scans_are_detrended_periodised_and_banded(periodic):
+    n, lx = 200, 1e-4
+    z = 1e-6 * profile(n)
+    x = np.arange(n) / n
+    scan = Scan.from_heights(z, lx)
+    assert scan.line_scan and scan.heights.shape == (n, 1)
+    s = prepare(scan, nx=64, periodic=periodic, taper=0.2, k_cut=10)
+    assert s.detrended.shape == (n, 1) and s.heights.shape == (64, 1) and s.ny == 1
+    assert s.length_y_m == pytest.approx(s.length_x_m / 64)
+    assert s.preparation["line_scan"]["length_y_m"] == s.length_y_m
+    m = s.periodised.shape[0]
+    assert s.periodised.shape == (m, 1)
+    if periodic == "mirror":                                        # the image in x only
+        assert m == 2 * n and s.length_x_m == pytest.approx(2 * lx)
+        np.testing.assert_array_equal(s.periodised[n:, 0], s.periodised[n - 1::-1, 0])
+        assert s.costs["area_fraction_changed"] == 0.5 and s.costs["edge_jump_x_after"] == 0
+    elif periodic == "crop":
+        assert 0.8 * n <= m < n and s.length_x_m == pytest.approx(lx * m / n)
+    elif periodic == "tukey":
+        assert s.periodised[0, 0] == 0 and s.costs["area_fraction_changed"] == pytest.approx(0.2, abs=1.5 / n)
+        assert s.costs["edge_jump_x_after"] < 0.1 * s.costs["edge_jump_x_before"]
+    qx, qy, c = veslide.psd_2d(s.heights, s.length_x_m, s.length_y_m)
+    above = np.abs(qx) > 10 * 2 * np.pi / s.length_x_m * (1 + 1e-9)
+    assert c[above].max() <= 1e-24 * c.max()
+    # the detrending removes a line and a parabola exactly, as on a topography
+    for mode, added in (("plane", 3e-6 * x - 1e-6), ("curvature", 2e-6 * x ** 2 - 3e-6 * x)):
+        a = prepare(Scan.from_heights(z, lx), detrend=mode, periodic=periodic, taper=0.2, k_cut=10).detrended
+        b = prepare(Scan.from_heights(z + added, lx), detrend=mode, periodic=periodic, taper=0.2, k_cut=10).detrended
+        np.testing.assert_allclose(b, a, rtol=0, atol=1e-12 * np.abs(added).max())
+    with pytest.raises(ValueError, match=r"a line scan makes a grid of ny = 1, got ny=8 \(--ny 8\)"):
+        prepare(scan, nx=64, ny=8, periodic=periodic, taper=0.2, k_cut=10)
+
+
+def test_line_scan_undefined_points_crop_to_the_longest_measured_run():
+    z = 1e-6 * profile(200)
+    z[[30, 31, 150]] = np.nan                                       # runs 0..29, 32..149, 151..199
+    scan = Scan.from_heights(z, 1e-4)
+    assert scan.topography.has_undefined_data
+    s = prepare(scan, crop_valid=True, detrend="none", periodic="none", k_cut=10)
+    assert s.preparation["undefined_points"]["measured_rectangle"]["start"] == [32, 0]
+    assert s.preparation["undefined_points"]["measured_rectangle"]["points"] == [118, 1]
+    np.testing.assert_allclose(s.detrended[:, 0], z[32:150] - z[32:150].mean(), rtol=0, atol=1e-20)
+    s = prepare(scan, k_cut=10)                                     # 1.5 %: filled
+    assert s.preparation["undefined_points"]["filled_fraction"] == 0.015 and np.all(np.isfinite(s.heights))
+
+
+# --- the height file: attributes for the solver; writing the same content again ------------------
+
+def test_height_file_carries_filled_fraction_and_band_slope_removed(tmp_path):
+    f = write_x3p(tmp_path / "s.x3p", holes(4, extra=1).T, 1e-6, 1e-6)
+    with pytest.warns(veslide.VeslideWarning):
+        s = prepare(read(f), nx=32, k_cut=3, fill="harmonic")
+    out = s.write(tmp_path / "surf.h5")
+    with h5py.File(out, "r") as f5:
+        a = f5["/height_m"].attrs
+        assert a["filled_fraction"] == 0.0205 and a["filled_fraction"].dtype == np.float64
+        assert a["band_slope_variance_removed"] == s.costs["band_slope_variance_removed"] > 0.5
+        assert a["band_slope_variance_removed"].dtype == np.float64
+        prep = json.loads(a["preparation"])
+    old_keys = {"format", "layouts", "source", "units", "undefined_points", "detrend", "periodic", "band", "result",
+                "costs", "costs_note", "veslide_python"}
+    assert old_keys <= set(prep)                                     # the JSON keeps its keys
+    # heights not prepared from a scan: nothing filled, no band
+    veslide.write_topography(tmp_path / "raw.h5", rough(8, 4), 1e-4)
+    with h5py.File(tmp_path / "raw.h5", "r") as f5:
+        a = f5["/height_m"].attrs
+        assert (a["filled_fraction"], a["band_slope_variance_removed"]) == (0.0, 0.0)
+    with pytest.raises(ValueError, match=r"filled_fraction must be a fraction in \[0, 1\]"):
+        veslide.write_topography(tmp_path / "bad.h5", rough(8, 4), 1e-4, filled_fraction=2.0)
+    assert not (tmp_path / "bad.h5").exists()
+
+
+def test_writing_the_same_surface_again_is_a_no_op(tmp_path):
+    scan = Scan.from_heights(rough(50, 40), 1e-4)
+    s = prepare(scan, nx=32, k_cut=6)
+    out = s.write(tmp_path / "surf.h5")
+    before = (out.read_bytes(), out.stat().st_mtime_ns)
+    assert prepare(scan, nx=32, k_cut=6).write(out) == out        # the same content: nothing written
+    assert (out.read_bytes(), out.stat().st_mtime_ns) == before
+    for other in (prepare(scan, nx=32, k_cut=5),                    # other heights and preparation
+                  prepare(Scan.from_heights(rough(50, 40), 2e-4), nx=32, k_cut=6)):   # other sides
+        with pytest.raises(FileExistsError, match="exists with other heights or attributes"):
+            other.write(out)
+        assert out.read_bytes() == before[0]
+    s5 = prepare(scan, nx=32, k_cut=5)
+    s5.write(out, overwrite=True)
+    np.testing.assert_array_equal(veslide.load_topography(out).heights, s5.heights)
+    # the same preparation text with heights one bit off: refused
+    h = s5.heights.copy()
+    h[3, 4] = np.nextafter(h[3, 4], 1.0)
+    with pytest.raises(FileExistsError):
+        veslide.write_topography(out, h, (s5.length_x_m, s5.length_y_m), preparation=s5.preparation)
+    # the command line run twice: the second finds its file and says so by exiting 0
+    f = write_x3p(tmp_path / "scan.x3p", rough(50, 40).T, 2e-6, 2e-6)
+    for word in ("written:  ", "unchanged:"):
+        p = _cli(tmp_path, f, "--out", tmp_path / "cli.h5", "--nx", 32, "--k-cut", 6)
+        assert p.returncode == 0, p.stderr
+        assert p.stdout.splitlines()[-2].startswith(word + " %s:/height_m (32 x 26" % (tmp_path / "cli.h5"))
+    p = _cli(tmp_path, f, "--out", tmp_path / "cli.h5", "--nx", 32, "--k-cut", 5)
+    assert p.returncode == 1 and "exists with other heights or attributes" in p.stderr

@@ -1,6 +1,7 @@
 """python -m veslide refine NAMELIST NX NX NX ... [--output-dir DIR] [--threads N]
 python -m veslide topography SCAN --out SURF.h5 [--nx N] [--ny N] [--detrend curvature|plane|none]
-                             [--periodic tukey|mirror|crop|none] [--taper F] [--k-cut K] ...
+                             [--periodic tukey|mirror|crop|none] [--taper F] [--k-cut K]
+                             [--fill auto|harmonic|none] [--crop-valid] ...
 
 refine: runs one case on several grids (or reuses the files already there from the same input)
 and prints the table and the error estimate of `veslide.refine`; exit status 1 on bad input, 2
@@ -9,14 +10,18 @@ when a solve did not converge, 3 when a file could not be written, 4 when the nu
 
 topography: reads a measured scan (any format SurfaceTopography reads), prepares it as
 `veslide.topography.prepare` does and writes the height file for `&surface kind='file'`, printing
-one line per choice with what it cost; exit status 1 on bad input."""
+one line per choice with what it cost, and a line `warning: ...` on stderr for each
+VeslideWarning of the preparation; exit status 1 on bad input (one line on stderr, no file)."""
 import argparse
+import os
+import re
 import sys
 import warnings
 
 import pandas as pd
 
 from .refinement import refine
+from ._warning import VeslideWarning
 from .runner import ConvergenceWarning, InputError, NumericalError, WriteError
 
 
@@ -29,23 +34,47 @@ def main(argv=None):
     r.add_argument("sizes", nargs="+", type=int, help="nx of each grid (ny scaled with it)")
     r.add_argument("--output-dir", default="refine", help="where refine-NXxNY.h5 go (default: ./refine)")
     r.add_argument("--threads", type=int, default=None, help="OMP_NUM_THREADS of each run")
-    t = sub.add_parser("topography", help="make a measured scan a periodic height file for &surface kind='file'")
+    t = sub.add_parser(
+        "topography", help="make a measured scan a periodic height file for &surface kind='file'",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        description="Read a measured scan (any format SurfaceTopography reads; a line scan makes a grid of\n"
+                    "ny = 1), prepare it (undefined points, detrend, periodic cell, band and grid) and write\n"
+                    "the height file, printing one line per choice with what it cost.",
+        epilog="refused (exit status 1, one line on stderr, no file written):\n"
+               "  more than 2 % of the points undefined, unless --crop-valid or --fill harmonic;\n"
+               "  a prepared rms slope above 10 (heights in another unit: --unit, --height-scale;\n"
+               "  a channel that is not heights: --channel); a file without its unit or size.\n"
+               "warned (a line 'warning: [code] ...' on stderr, the file written):\n"
+               "  filled-scan         more than 2 % of the points filled (--fill harmonic)\n"
+               "  band-slope-removed  k_cut and the grid remove more than half of the slope\n"
+               "                      variance; says which --nx (and k_cut) keeps half\n"
+               "the height file's dataset has the attributes length_x_m, length_y_m, preparation (JSON),\n"
+               "filled_fraction and band_slope_variance_removed; writing the same surface again is a no-op.")
     t.add_argument("scan", help="the instrument's file (x3p, sdf, sur, datx, opd, plu, gwy, nc, asc, ...)")
     t.add_argument("--out", required=True, help="the height file to write (HDF5)")
     t.add_argument("--dataset", default="/height_m", help="its dataset (default /height_m)")
     t.add_argument("--format", default=None, help="the file's format when not found from its content (e.g. x3p)")
     t.add_argument("--channel", default=None, help="the channel, by index or name (default: the reader's)")
     t.add_argument("--unit", default=None, help="length unit for a file that gives none (e.g. um)")
-    t.add_argument("--size", nargs=2, type=float, metavar=("LX", "LY"), default=None,
-                   help="the scan's sides in that unit, for a file that gives none")
+    t.add_argument("--size", nargs="+", type=float, metavar=("LX", "LY"), default=None,
+                   help="the scan's sides in that unit, for a file that gives none (a line scan: LX)")
+    t.add_argument("--height-scale", type=float, default=None, metavar="F",
+                   help="multiply the heights by F (heights in another unit than the file's sides)")
     t.add_argument("--nx", type=int, default=None, help="points of the solve grid along x (default: the cell's)")
-    t.add_argument("--ny", type=int, default=None, help="along y (default: from nx and the cell's aspect ratio)")
+    t.add_argument("--ny", type=int, default=None,
+                   help="along y (default: from nx and the cell's aspect ratio; a line scan: 1)")
     t.add_argument("--detrend", default="curvature", choices=["curvature", "plane", "none"])
     t.add_argument("--periodic", default="tukey", choices=["tukey", "mirror", "crop", "none"])
     t.add_argument("--taper", type=float, default=0.1,
                    help="tukey: fraction of each side in the taper; crop: the most cut from each side (0.1)")
     t.add_argument("--k-cut", type=float, default=None,
                    help="modes kept: |q| <= k_cut 2 pi/lx (default: half the solve grid's Nyquist)")
+    t.add_argument("--fill", default="auto", choices=["auto", "harmonic", "none"],
+                   help="undefined points: auto fills up to 2 %% of the points harmonically and refuses more; "
+                        "harmonic fills any share (the filled heights are invented; a warning above 2 %%); "
+                        "none refuses any (default auto)")
+    t.add_argument("--crop-valid", action="store_true",
+                   help="crop the scan to its largest fully measured rectangle before the detrending")
     t.add_argument("--overwrite", action="store_true", help="replace the dataset if the file has it")
     args = ap.parse_args(argv)
     if args.command == "topography":
@@ -66,30 +95,50 @@ def main(argv=None):
     return 0 if ref.converged else 2      # as the program: 2 when a solve did not converge
 
 
+def _cli_words(text):
+    """The package's messages name an option as "python=value (--option value)": here the option alone."""
+    return re.sub(r"\b[a-z_]+=(?:True|'[^']*'|\([^)]*\)|[0-9.]+)? \((--[a-z-]+(?: [^();]+)?)\)", r"\1", text)
+
+
 def _topography(args):
     from .topography import prepare, read
     channel = args.channel
     if channel is not None and channel.isdigit():
         channel = int(channel)
     try:
-        scan = read(args.scan, format=args.format, channel=channel, unit=args.unit, physical_sizes=args.size)
-        s = prepare(scan, nx=args.nx, ny=args.ny, detrend=args.detrend, periodic=args.periodic,
-                    taper=args.taper, k_cut=args.k_cut)
+        if args.size is not None and len(args.size) > 2:
+            raise ValueError("--size takes LX LY (a line scan: LX), got %d numbers" % len(args.size))
+        scan = read(args.scan, format=args.format, channel=channel, unit=args.unit, physical_sizes=args.size,
+                    height_scale_factor=args.height_scale)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VeslideWarning)
+            s = prepare(scan, nx=args.nx, ny=args.ny, detrend=args.detrend, periodic=args.periodic,
+                        taper=args.taper, k_cut=args.k_cut, fill=None if args.fill == "none" else args.fill,
+                        crop_valid=args.crop_valid)
         for line in s.lines:
             print(line)
+        before = os.stat(args.out).st_mtime_ns if os.path.exists(args.out) else None
         path = s.write(args.out, args.dataset, overwrite=args.overwrite)
+        unchanged = before is not None and os.stat(path).st_mtime_ns == before
     except ImportError as e:
         print("veslide topography: %s" % e, file=sys.stderr)
         return 1
     except Exception as e:           # the readers raise their own kinds: each is a refused input here
-        msg = str(e)
+        msg = _cli_words(str(e))
         print("veslide topography: %s" % (msg if args.scan in msg else "%s: %s" % (args.scan, msg)), file=sys.stderr)
         return 1
-    print("written:   %s:%s (%d x %d, %.6g x %.6g m; layout [iy, ix] in h5py, the solver's (nx, ny)); "
-          "the preparation in its attribute 'preparation'" % (path, args.dataset, s.nx, s.ny, s.length_x_m,
-                                                               s.length_y_m))
+    print("%s %s:%s (%d x %d, %.6g x %.6g m; layout [iy, ix] in h5py, the solver's (nx, ny)); "
+          "the preparation in its attribute 'preparation'%s"
+          % ("unchanged:" if unchanged else "written:  ", path, args.dataset, s.nx, s.ny, s.length_x_m, s.length_y_m,
+             " (the file held these heights already)" if unchanged else ""))
     print("use:       &grid nx = %d, ny = %d /  &surface kind = 'file', file = '%s', dataset = '%s' /"
           % (s.nx, s.ny, path, args.dataset))
+    sys.stdout.flush()
+    for w in caught:                 # last, where they are seen
+        if issubclass(w.category, VeslideWarning):
+            print("warning: %s" % _cli_words(str(w.message)), file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return 0
 
 

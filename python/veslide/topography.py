@@ -6,7 +6,8 @@ matrix is [iy, ix] (one row per scan line along x): pass `matrix.T`, or `Scan.fr
 height file holds the solver's Fortran (nx, ny) array: h5py shape (ny, nx), index [iy, ix].
 
 Measured scans (`veslide.measured`, needs SurfaceTopography): `read(path, ...)` -> `Scan`,
-`prepare(scan, nx, ny, detrend, periodic, taper, k_cut)` -> `PreparedSurface` (`.write(path)`).
+`prepare(scan, nx, ny, detrend, periodic, taper, k_cut, fill, crop_valid)` -> `PreparedSurface`
+(`.write(path)`); line scans make height files of ny = 1.
 """
 import json
 from pathlib import Path
@@ -49,21 +50,66 @@ def _lengths(length_m, nx, ny):
     return lx, ly
 
 
-def write_topography(path, heights, length_m, dataset="/height_m", *, preparation=None, overwrite=False):
+def _prepared_number(preparation, keys):
+    """preparation[keys[0]][keys[1]] as a float, or None (no such entry; a text that is not JSON)."""
+    if isinstance(preparation, str):
+        try:
+            preparation = json.loads(preparation)
+        except ValueError:
+            return None
+    try:
+        return float(preparation[keys[0]][keys[1]])
+    except (KeyError, TypeError, ValueError, IndexError):
+        return None
+
+
+def _same_dataset(path, dataset, data, attrs):
+    """True when the file at path holds `dataset` with bitwise the same data and exactly these attributes."""
+    if not (path.is_file() and h5py.is_hdf5(path)):
+        return False
+    with h5py.File(path, "r") as f:
+        ds = f.get(dataset)
+        if not isinstance(ds, h5py.Dataset) or ds.shape != data.shape or ds.dtype != data.dtype:
+            return False
+        if ds[()].tobytes() != data.tobytes():
+            return False
+        got = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in ds.attrs.items()}
+    if set(got) != set(attrs):
+        return False
+    for k, v in attrs.items():
+        g = got[k]
+        if isinstance(v, str):
+            if g != v:
+                return False
+        elif np.asarray(g).tobytes() != np.asarray(v, dtype=np.float64).tobytes():
+            return False
+    return True
+
+
+def write_topography(path, heights, length_m, dataset="/height_m", *, preparation=None, overwrite=False,
+                     filled_fraction=None, band_slope_variance_removed=None):
     """Write heights [m] for `&surface kind='file', file=path, dataset=dataset`.
 
     heights      2-D, indexed [ix, iy] (x first; an xarray DataArray with dims x and y in any
-                 order); nx >= 2, ny >= 1, nx and ny may differ. An instrument's matrix [iy, ix]
-                 (rows along x) is written as `matrix.T`.
+                 order); nx >= 2, ny >= 1 (ny = 1: a line scan, heights (nx, 1)), nx and ny may
+                 differ. An instrument's matrix [iy, ix] (rows along x) is written as `matrix.T`.
     length_m     the cell's side along x [m] (square cells: ly = lx ny / nx), or the pair
                  (lx, ly); stored as the attributes `length_x_m`, `length_y_m` and `length_m`
                  (= length_x_m, for older readers). The solver uses them unless &grid sets lx_m.
     preparation  how the heights were made (a dict, written as JSON text, or a text): the
                  attribute `preparation`, which the solver copies into its output
                  (`veslide.topography.prepare` fills it).
+    filled_fraction, band_slope_variance_removed
+                 float attributes of the same names for the solver: the share of the scan's points
+                 that were filled (invented) and the fraction of the cell's slope variance the band
+                 removed. None (default): the preparation's undefined_points.filled_fraction and
+                 costs.band_slope_variance_removed, 0 where it has none (heights not prepared from a
+                 scan: nothing filled, no band).
     The solver reads a Fortran (nx, ny) array h(ix, iy): HDF5 stores it with dims (ny, nx), so the
     array written by h5py is the transpose, heights.T, with a `layout` attribute saying so.
-    The file is created or appended to; an existing dataset is replaced only with overwrite=True."""
+    The file is created or appended to. A dataset already there with bitwise the same heights and
+    attributes (sides, preparation, ...) is left as it is (the path returned: writing it again is
+    a no-op); a different one is replaced only with overwrite=True."""
     h = _as_xy(heights)
     nx, ny = h.shape
     if nx < 2 or ny < 1:
@@ -71,22 +117,33 @@ def write_topography(path, heights, length_m, dataset="/height_m", *, preparatio
     if not np.all(np.isfinite(h)):
         raise ValueError("heights contain NaN or infinite values")
     lx, ly = _lengths(length_m, nx, ny)
+    if filled_fraction is None:
+        filled_fraction = _prepared_number(preparation, ("undefined_points", "filled_fraction"))
+    if band_slope_variance_removed is None:
+        band_slope_variance_removed = _prepared_number(preparation, ("costs", "band_slope_variance_removed"))
     if preparation is not None and not isinstance(preparation, str):
         preparation = json.dumps(preparation, sort_keys=False)
+    attrs = {"length_x_m": lx, "length_y_m": ly, "length_m": lx, "units": "m", "layout": LAYOUT,
+             "filled_fraction": float(filled_fraction or 0.0),
+             "band_slope_variance_removed": float(band_slope_variance_removed or 0.0)}
+    for name in ("filled_fraction", "band_slope_variance_removed"):
+        if not 0 <= attrs[name] <= 1:
+            raise ValueError("%s must be a fraction in [0, 1], got %r" % (name, attrs[name]))
+    if preparation is not None:
+        attrs["preparation"] = preparation
+    data = np.ascontiguousarray(h.T)                 # [iy, ix] on disk
     path = Path(path)
+    if _same_dataset(path, dataset, data, attrs):
+        return path
     with h5py.File(path, "a") as f:
         if dataset in f:
             if not overwrite:
-                raise FileExistsError("%s: dataset %s exists (overwrite=True replaces it)" % (path, dataset))
+                raise FileExistsError("%s: dataset %s exists with other heights or attributes: overwrite=True "
+                                      "(--overwrite) replaces it" % (path, dataset))
             del f[dataset]
-        ds = f.create_dataset(dataset, data=np.ascontiguousarray(h.T))   # [iy, ix] on disk
-        ds.attrs["length_x_m"] = lx
-        ds.attrs["length_y_m"] = ly
-        ds.attrs["length_m"] = lx
-        ds.attrs["units"] = "m"
-        ds.attrs["layout"] = LAYOUT
-        if preparation is not None:
-            ds.attrs["preparation"] = preparation
+        ds = f.create_dataset(dataset, data=data)
+        for k, v in attrs.items():
+            ds.attrs[k] = v
     return path
 
 
