@@ -4,6 +4,7 @@
 program veslide_tests
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit, stderr => error_unit
     use testsuite, only: testsuite_t, new_testsuite, run_testsuite
+    use test_support, only: unique_name
     use test_veslide_rng, only: collect_rng
     use test_veslide_grid, only: collect_grid, collect_fftw
     use test_veslide_threads, only: collect_threads
@@ -28,6 +29,7 @@ program veslide_tests
     use test_veslide_case, only: collect_case
     use test_veslide_study, only: collect_study
     use test_veslide_hard, only: collect_hard
+    use test_veslide_validity, only: collect_validity
     use test_veslide_device, only: collect_device
     use test_veslide_postproc, only: collect_postproc
     implicit none
@@ -69,6 +71,7 @@ program veslide_tests
         new_testsuite("case", collect_case), &
         new_testsuite("study", collect_study), &
         new_testsuite("hard", collect_hard), &
+        new_testsuite("validity", collect_validity), &
         new_testsuite("device", collect_device), &
         new_testsuite("postproc", collect_postproc) &
         ]
@@ -85,6 +88,34 @@ program veslide_tests
         write (stderr, '(a)') "no test matches '"//trim(want_suite)//" "//trim(want_test)//"'"
         nfail = nfail + 1
     end if
+    call check_no_leftovers()
     write (stdout, '(i0,a,i0,a)') npass, " passed, ", nfail, " failed"
     if (nfail > 0) error stop 1
+
+contains
+
+    !> Every file a test made under its unique names (test_support's unique_name) is gone: the
+    !> suite leaves nothing in the temporary directory (a run of the whole suite counts a failure
+    !> when it does, naming the files)
+    subroutine check_no_leftovers()
+        character(len=:), allocatable :: prefix, listing
+        integer :: stat, u, n
+        character(len=512) :: line
+        prefix = unique_name('')
+        stat = 0
+        listing = unique_name('leftovers.txt')
+        call execute_command_line("ls -d "//prefix//"* 2>/dev/null | grep -v -x '"//listing//"' > "//listing, &
+                                  exitstat=stat)
+        n = 0
+        open (newunit=u, file=listing, status='old', action='read', iostat=stat)
+        if (stat /= 0) return
+        do
+            read (u, '(a)', iostat=stat) line
+            if (stat /= 0) exit
+            n = n + 1
+            write (stderr, '(a)') "  LEFT  "//trim(line)//" (a test left this file in the temporary directory)"
+        end do
+        close (u, status='delete')
+        if (n > 0 .and. len_trim(want_suite) == 0) nfail = nfail + 1
+    end subroutine check_no_leftovers
 end program veslide_tests

@@ -70,9 +70,12 @@ contains
         h5 = unique_name(tag//'.h5')
         more = ''
         if (present(extra)) more = extra
-        call write_heights(h5, h, lx, error); if (allocated(error)) return
-        call read_text(tag, "&surface kind='file', file='"//h5//"' "//more//" /", cfg, error)
-        if (allocated(error)) return
+        call write_heights(h5, h, lx, error)
+        if (.not. allocated(error)) call read_text(tag, "&surface kind='file', file='"//h5//"' "//more//" /", cfg, error)
+        if (allocated(error)) then
+            open (newunit=u, file=h5); close (u, status='delete')     ! (nothing left in the temporary directory)
+            return
+        end if
         call case_spec_of(cfg, spec, error)
         if (.not. allocated(error)) call build_surface(spec, hout, error)
         open (newunit=u, file=h5); close (u, status='delete')

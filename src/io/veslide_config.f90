@@ -414,14 +414,11 @@ contains
         type(config_t), intent(in) :: cfg
         type(error_t), allocatable, intent(inout) :: error
         real(dp) :: e0, einf, p, estar
-        integer :: k
         if (allocated(error)) return
         call material_moduli(cfg, e0, einf)
         estar = einf/(1.0_dp - cfg%material%poisson**2)
         p = cfg%load%mean_pressure_pa
-        do k = 1, size(cfg%sweep%pressures)
-            p = max(p, cfg%sweep%pressures(k))
-        end do
+        if (size(cfg%sweep%pressures) > 0) p = maxval(cfg%sweep%pressures)     ! (they replace &load's)
         if (.not. p > estar) return
         if (size(cfg%sweep%pressures) > 0) then
             call fatal_error(error, "veslide: "//cfg%path//": &sweep pressures_pa up to "//sig(p)//" Pa exceed"// &

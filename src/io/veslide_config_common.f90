@@ -335,7 +335,7 @@ contains
             else
                 name = lower(body(e:e + w - 2))
             end if
-            if (all(found /= name)) found = [found, name]
+            if (all(found /= name)) found = [character(len=32) :: found, name]
         end do
         allocate (character(len=32) :: names(size(found)))
         names = found
