@@ -4,7 +4,11 @@
 # with -DVESLIDE_CUDA). Built where no GPU is visible it runs on the CPU, and says so once.
 #
 #   bash gpu/build.sh [--emulate] [PROGRAM]     build; print the path of PROGRAM (veslide,
-#                                               veslide-bench or veslide-tests; default veslide)
+#                                               veslide-bench or veslide-tests; default veslide);
+#                                               without --emulate, veslide and veslide-bench are
+#                                               linked into .venv/bin (the programs on the venv's
+#                                               PATH and the one Python runs; ./dev.sh links the
+#                                               CPU build back)
 #   bash gpu/build.sh [--emulate] test [ARGS]   build and run the Fortran suite (ARGS: suite, test)
 #   bash gpu/build.sh [--emulate] --paths       build; print the three programs' paths
 #   bash gpu/build.sh [--emulate] --flags       only the device library; print the Fortran
@@ -120,6 +124,17 @@ case "$what" in
         for p in $(paths); do echo "$root/$p"; done
         ;;
     veslide|veslide-bench)
+        exe="$root/$(fpm run "${flags[@]}" veslide --runner echo 2>/dev/null | tail -1)"
+        if [ "$emulate" = 0 ]; then
+            # the GPU build becomes the one on the venv's PATH and the one Python runs, as ./dev.sh
+            # makes its CPU build (./dev.sh run and ./dev.sh test link the CPU build back)
+            ln -sfn "$exe" "$root/.venv/bin/veslide"
+            ln -sfn "$(dirname "$exe")/veslide-bench" "$root/.venv/bin/veslide-bench"
+            echo "veslide gpu build: .venv/bin/veslide and veslide-bench now run this GPU build (source" \
+                 ".venv/bin/activate; Python's veslide.run finds it there unless VESLIDE_EXE or another veslide on" \
+                 "PATH comes first: VESLIDE_EXE=$exe runs it from anywhere); ./dev.sh run or test links the CPU" \
+                 "build back" >&2
+        fi
         echo "$root/$(fpm run "${flags[@]}" "$what" --runner echo 2>/dev/null | tail -1)"
         ;;
     veslide-tests)

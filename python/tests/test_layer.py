@@ -26,10 +26,11 @@ What is checked:
   ContactMechanics' solver on its half-space Green's function times our S written anew in numpy
   (an independent factor and solver, not an independent model);
 - the layer matters in these cases (the mean gap 29-51 % above the half-space's);
-- the README's example "A layered solid" runs and prints what it says.
+- docs/layers.md's example runs and prints what it says, without a warning.
 """
 import doctest
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -188,18 +189,19 @@ def test_the_layer_matters_here():
 
 
 def test_readme_layered_example(tmp_path, monkeypatch, exe):
-    """The README's "### A layered solid" block, a doctest, checked as test_readme checks its own."""
-    from test_readme import README, NumberChecker
-    text = README.read_text()
-    start = text.index("\n### A layered solid\n")
-    section = text[start:text.index("\n## ", start)]
-    blocks = re.findall(r"^```python\n(.*?)^```$", section, re.M | re.S)
+    """docs/layers.md's block, a doctest, checked as test_readme checks the README's (warnings
+    included: the example gives none)."""
+    from test_readme import DOCS, NumberChecker
+    page = DOCS / "layers.md"
+    blocks = re.findall(r"^```python\n(.*?)^```$", page.read_text(), re.M | re.S)
     assert len(blocks) == 1 and blocks[0].startswith(">>> ")
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("VESLIDE_EXE", str(exe))
     monkeypatch.setenv("OMP_NUM_THREADS", "1")
     runner = doctest.DocTestRunner(checker=NumberChecker(),
                                    optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
-    test = doctest.DocTestParser().get_doctest(blocks[0], {}, "README.md A layered solid", str(README), 0)
-    runner.run(test)
+    test = doctest.DocTestParser().get_doctest(blocks[0], {}, "docs/layers.md", str(page), 0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", veslide.VeslideWarning)
+        runner.run(test)
     assert runner.summarize(verbose=False).failed == 0

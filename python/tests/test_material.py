@@ -303,20 +303,19 @@ def test_plot_draws_the_series_and_its_data(noisy_fit):
 
 
 def test_the_readme_dma_example_runs(exe, tmp_path, monkeypatch):
-    """README's "A measured material" block, run as written but for its size (32^2 cells, 3 speeds,
+    """docs/materials.md's example, run as written but for its size (32^2 cells, 3 speeds,
     2 seeds instead of 256^2, 9 and 3) on a dma.csv of isothermal sweeps at 0, 20 and 40 C made
     from the known series: the fit, the plots and the two studies at 0 and 40 C, whose files
     hold their temperature."""
     import matplotlib
     matplotlib.use("Agg")
     from pathlib import Path
-    text = (Path(__file__).resolve().parents[2] / "README.md").read_text()
-    section = text[text.index("### A measured material"):text.index("### A layered solid")]
+    section = (Path(__file__).resolve().parents[2] / "docs" / "materials.md").read_text()
     block = section[section.index("```python\n") + 10:section.index("```\n", section.index("```python\n") + 10)]
     small = (('{"grid": {"nx": 256, "ny": 256}', '{"grid": {"nx": 32, "ny": 32}, "surface": {"k_cut": 8}'),
              ('"n_speeds": 9, "n_seeds": 3', '"n_speeds": 3, "n_seeds": 2'))
     for old, new in small:
-        assert old in block, "the README's DMA example changed: " + old
+        assert old in block, "docs/materials.md's DMA example changed: " + old
         block = block.replace(old, new)
     law = dict(reference_temperature_c=20.0, shift="wlf", wlf_c1=8.86, wlf_c2_k=101.6)
     true = vm.Material("relaxation", **{k: getattr(known_series(), k) for k in ("e0_pa", "coefficients", "times_s")},
@@ -327,7 +326,7 @@ def test_the_readme_dma_example_runs(exe, tmp_path, monkeypatch):
                comments="")
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("VESLIDE_EXE", str(exe))
-    exec(compile(block, "README.md: A measured material", "exec"), {})
+    exec(compile(block, "docs/materials.md", "exec"), {})
     import matplotlib.pyplot as plt
     plt.close("all")
     for t in (0, 40):

@@ -298,13 +298,15 @@ def test_solver_runs_a_prepared_rectangular_scan(tmp_path, exe):
     _solve(tmp_path, exe, (60, 45), 32, 24, "rect")
 
 
-README = Path(__file__).resolve().parents[2] / "README.md"
+ROOT = Path(__file__).resolve().parents[2]
+PAGE = ROOT / "docs" / "measured.md"
 
 
-def _readme_section(title="### A measured scan"):
-    text = README.read_text()
+def _readme_section(title="## From a scan to a run"):
+    """docs/measured.md's walk-through (the README's quick start 2 is a part of it)"""
+    text = PAGE.read_text()
     start = text.index("\n" + title + "\n")
-    end = text.index("\n### ", start + len(title) + 2)
+    end = text.index("\n## ", start + len(title) + 2)
     return text[start:end]
 
 
@@ -313,9 +315,20 @@ def _blocks(section, lang):
     return [m.group(1) for m in re.finditer(r"^```%s\n(.*?)^```$" % lang, section, re.M | re.S)]
 
 
+def test_readme_quick_start_is_the_walk_through():
+    """The README's quick start 2 runs the walk-through's commands (which the next test runs)."""
+    readme = (ROOT / "README.md").read_text()
+    qs = readme[readme.index("## Quick start 2"):readme.index("## Quick start 3")]
+    sh, = _blocks(qs, "sh")
+    walk = "\n".join(_blocks(_readme_section(), "sh"))
+    for line in sh.splitlines():
+        assert line in walk, line
+
+
 def test_readme_measured_scan_example_runs_as_written(tmp_path, exe, monkeypatch):
-    """the section's shell commands (the venv's python and ./dev.sh run replaced by this
-    interpreter and the program under test) print what it shows, and its Python block runs."""
+    """the walk-through's shell commands (the venv's python and ./dev.sh run replaced by this
+    interpreter and the program under test) print what it shows, warn of nothing, and its
+    Python block runs."""
     import os
     import re
     sec = _readme_section()
@@ -338,6 +351,7 @@ def test_readme_measured_scan_example_runs_as_written(tmp_path, exe, monkeypatch
     run = sh[1].replace("./dev.sh run", str(exe))
     p = subprocess.run(["bash", "-e", "-c", run], cwd=tmp_path, env=env, capture_output=True, text=True)
     assert p.returncode == 0, p.stdout + p.stderr
+    assert "warning" not in p.stderr, p.stderr
     area, mu = (float(v) for v in re.search(r"contact area ([0-9.]+), friction coefficient ([0-9.]+)", sh[1]).groups())
     r = veslide.read(tmp_path / "measured.h5")
     assert r.converged
@@ -347,7 +361,7 @@ def test_readme_measured_scan_example_runs_as_written(tmp_path, exe, monkeypatch
     monkeypatch.setenv("VESLIDE_EXE", str(exe))
     (tmp_path / "surf.h5").unlink()
     ns = {}
-    exec(compile(py, "README: A measured scan", "exec"), ns)
+    exec(compile(py, "docs/measured.md", "exec"), ns)
     assert ns["r"].converged
     assert ns["r"].scalars["friction_coefficient"] == r.scalars["friction_coefficient"]
     assert ns["scan"].heights[3, 7] == ns["scan"].matrix[7, 3]

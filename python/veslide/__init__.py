@@ -23,7 +23,7 @@ from .topography import load as load_topography, prepare as prepare_scan, read a
 from .material import FitReport, Material, fit_prony, shift_factor
 from ._warning import VeslideWarning
 
-__version__ = "0.3.0"
+__version__ = "0.4.0"
 
 __all__ = ["read", "read_running", "run", "start", "Run", "Progress", "git_revision", "write_topography", "read_topography", "find_executable",
            "namelist", "write_namelist", "refine", "convergence", "Refinement", "StudyRefinement",
