@@ -30,7 +30,9 @@ contains
             new_unittest("text-outside-groups", test_text_outside), &
             new_unittest("binary-file", test_binary), &
             new_unittest("no-group-at-all", test_no_group), &
-            new_unittest("default-k-cut-above-nyquist-says-default", test_default_kcut), &
+            new_unittest("default-k-cut-follows-a-small-grid", test_default_kcut), &
+            new_unittest("default-output-is-the-namelist-name", test_default_output), &
+            new_unittest("sweep-of-temperatures-without-a-shift-names-them", test_temperatures_without_shift), &
             new_unittest("no-op-inputs-warn", test_warnings) &
             ]
     end subroutine collect_config
@@ -437,6 +439,27 @@ contains
         call expect_message('defkcut', "&grid nx = 8, ny = 8 / &surface k_roll = 5 /", &
                             [character(len=40) :: "&surface k_roll = 5", "k_cut defaults to half of it"], error)
     end subroutine test_default_kcut
+
+    !> Without &output file the result of NAME.nml is NAME.h5 in the current directory
+    subroutine test_default_output(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=:), allocatable :: stem
+        call read_text('defout', "&grid nx = 64, ny = 64 /", cfg, error); if (allocated(error)) return
+        stem = unique_name('defout')
+        call check(error, cfg%output%file == stem(index(stem, '/', back=.true.) + 1:)//'.h5', &
+                   "default output: "//cfg%output%file); if (allocated(error)) return
+        call read_text('defout', "&output file = 'x/y.h5' /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%output%file == 'x/y.h5', "a given &output file")
+    end subroutine test_default_output
+
+    !> &sweep temperatures_c without a &material shift: refused with the values given
+    subroutine test_temperatures_without_shift(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('tnoshift', "&material model = 'one_term' / &sweep temperatures_c = 20, 40 /", &
+                            [character(len=48) :: "&sweep temperatures_c = 20.0000, 40.0000 is out of range", &
+                             "only with a &material shift"], error)
+    end subroutine test_temperatures_without_shift
 
     subroutine test_warnings(error)
         type(error_t), allocatable, intent(out) :: error

@@ -88,12 +88,23 @@ def test_heights_in_micrometres_written_as_metres_are_refused(exe, tmp_path):
         surf.unlink()
 
 
+def test_generated_surfaces_too_steep_are_refused(exe, tmp_path):
+    """An rms height in um written as m, and a cosine as steep: refused before the solve"""
+    refused(exe, tmp_path, "&grid nx = 64, ny = 64 / &surface k_cut = 16, rms_slope = 0, rms_height_m = 2 /",
+            ["&surface rms_height_m = 2 gives an rms slope of", "rms_height_m in metres?"])
+    refused(exe, tmp_path, "&grid nx = 64, ny = 64 / &surface kind = 'cosine', amplitude_m = 0.01, "
+                           "wavelength_m = 2.5e-3 /",
+            ["&surface amplitude_m = 0.01 over wavelength_m = 0.0025 gives an rms slope of", "lengths in metres?"])
+
+
 def test_moduli_in_mpa_read_as_pa_are_refused(exe, tmp_path):
     """A DMA fit in MPa taken as Pa: E0 = 3 'Pa', Einf = 2303 'Pa' under 32 kPa"""
     refused(exe, tmp_path, "&material model = 'relaxation', e0_pa = 3, relax_e_pa = 300, 2000, "
                            "relax_rho_s = 1e-3, 1e-6 /",
             ["&load mean_pressure_pa = 3.20e+04 Pa exceeds", "Einf/(1 - nu^2)", "MPa read as Pa?"])
     refused(exe, tmp_path, "&material young_pa = 0.5 /", ["&material young_pa = 0.5", "MPa read as Pa?"])
+    refused(exe, tmp_path, "&material young_pa = 2e4 / &sweep pressures_pa = 1e3, 3.2e4 /",
+            ["&sweep pressures_pa up to 3.20e+04 Pa exceed", "MPa read as Pa?"])
 
 
 def test_a_contact_of_three_cells_warns(exe, tmp_path):
