@@ -6,7 +6,7 @@ module veslide_version
     public :: veslide_version_number, version_string, compiler_string, compiler_flags, git_revision, utc_timestamp
 
     !> The package version; a test checks that it equals the version in fpm.toml
-    character(len=*), parameter :: veslide_version_number = "0.3.0"
+    character(len=*), parameter :: veslide_version_number = "0.4.0"
 
 contains
 
