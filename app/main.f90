@@ -11,8 +11,7 @@ program veslide_main
     use veslide_case_spec, only: case_spec_of
     use veslide_case, only: case_t, run_case
     use veslide_case_file, only: write_case
-    use veslide_summary, only: header_lines, summary_lines, summary_width
-    use veslide_warning, only: warning_line
+    use veslide_summary, only: header_lines, summary_lines, summary_width, write_warnings
     use veslide_memory, only: format_gib, device_estimate_bytes, case_memory
     use veslide_system, only: available_memory_bytes
     use veslide_kinds, only: i8, dp
@@ -92,9 +91,7 @@ program veslide_main
     if (allocated(error)) call fail(error)
     if (memory_only) call print_memory()
     ! warnings are part of the result: printed whatever --quiet says (and written to the file)
-    do i = 1, size(cfg%warnings)
-        write (stderr, '(a)') warning_line(cfg%warnings(i), cfg%path)
-    end do
+    call write_warnings(stderr, cfg%warnings, cfg%path, with_input=.true.)
     ! a GPU build where no GPU is visible runs on the CPU, and says so once
     if (.not. quiet .and. device_enabled .and. cfg%solver%device == 'auto' .and. .not. gpu_visible()) &
         write (stderr, '(a)') "veslide: this build has GPU support but no GPU is visible here: solving on the CPU"
@@ -145,9 +142,7 @@ program veslide_main
     call release_output(lock, cfg%output%file)
 
     if (.not. quiet) call summary()
-    do i = 1, size(c%warnings)
-        if (c%warnings(i)%source /= 'input') write (stderr, '(a)') warning_line(c%warnings(i), cfg%path)
-    end do
+    call write_warnings(stderr, c%warnings, cfg%path, with_input=.false.)
     if (.not. c%state%converged) then
         write (stderr, '(a,es9.2,a,es9.2,a,i0,a)') "veslide: NOT CONVERGED: residual ", c%state%residual, &
             " > tolerance ", cfg%solver%tolerance, " after ", c%state%iterations, &
@@ -243,12 +238,8 @@ contains
     !> with --quiet), and the case's warnings (always)
     subroutine print_progress(info)
         type(study_progress_t), intent(in) :: info
-        integer :: k
-        if (info%case_number > 0 .and. allocated(info%warnings)) then
-            do k = 1, size(info%warnings)
-                write (stderr, '(a)') warning_line(info%warnings(k), cfg%path//": case "//str(info%case_number))
-            end do
-        end if
+        if (info%case_number > 0 .and. allocated(info%warnings)) &
+            call write_warnings(stderr, info%warnings, cfg%path//": case "//str(info%case_number), with_input=.false.)
         if (quiet) return
         if (info%case_number == 0) then
             write (stdout, '("study resumed from its part file: ",i0," of ",i0," cases kept, ",i0," to run")') &

@@ -7,17 +7,33 @@ module veslide_summary
     use veslide_version, only: version_string
     use veslide_case_data, only: case_t, case_spec_t
     use veslide_validity, only: surface_band
+    use veslide_warning, only: warning_t, warning_line
     use veslide_quantities, only: results_t
     use veslide_device, only: device_info_t, device_info
     implicit none
     private
-    public :: header_lines, summary_lines, summary_width
+    public :: header_lines, summary_lines, summary_width, write_warnings
 
     !> The length of a line of the run summary: two texts of the input (up to 1023 characters
     !> each, the input's and the output's paths) and the words around them, never cut
     integer, parameter :: summary_width = 2200
 
 contains
+
+    !> Print `warnings` on `unit` (stderr), one line each, as "veslide: WHERE: warning [code]:
+    !> text"; those about the input (source 'input') only with `with_input` (they are printed
+    !> once, when the input is read). The programs print every warning, --quiet or not.
+    subroutine write_warnings(unit, warnings, where, with_input)
+        integer, intent(in) :: unit
+        type(warning_t), intent(in) :: warnings(:)
+        character(len=*), intent(in) :: where
+        logical, intent(in) :: with_input
+        integer :: k
+        do k = 1, size(warnings)
+            if (with_input .or. warnings(k)%source /= 'input') write (unit, '(a)') warning_line(warnings(k), where)
+        end do
+        flush (unit)
+    end subroutine write_warnings
 
     !> The header of a run, printed before it starts: the program, the input and the output, and
     !> what is solved

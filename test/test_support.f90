@@ -12,7 +12,7 @@ module test_support
     use veslide_output, only: process_id
     implicit none
     private
-    public :: solve_case, case_problem, unique_name, write_text, square_grid
+    public :: solve_case, case_problem, unique_name, write_text, square_grid, remove
 
 contains
 
@@ -90,6 +90,13 @@ contains
         write (pid, '(i0)') process_id()
         name = '/tmp/veslide-test-'//trim(pid)//'-'//tag
     end function unique_name
+
+    !> Delete `path` when it is there (a test's file in the temporary directory)
+    subroutine remove(path)
+        character(len=*), intent(in) :: path
+        integer :: u, stat
+        open (newunit=u, file=path, iostat=stat); if (stat == 0) close (u, status='delete')
+    end subroutine remove
 
     subroutine write_text(path, text)
         character(len=*), intent(in) :: path, text

@@ -3,7 +3,7 @@ module test_veslide_hdf5
     use veslide_kinds, only: dp, i8
     use veslide_hdf5, only: h5file_t
     use testsuite, only: error_t, unittest_t, new_unittest, check
-    use test_support, only: unique_name
+    use test_support, only: unique_name, remove
     implicit none
     private
     public :: collect_hdf5
@@ -20,11 +20,6 @@ contains
             ]
     end subroutine collect_hdf5
 
-    subroutine remove(path)
-        character(len=*), intent(in) :: path
-        integer :: u, stat
-        open (newunit=u, file=path, iostat=stat); if (stat == 0) close (u, status='delete')
-    end subroutine remove
 
     subroutine test_datasets(error)
         type(error_t), allocatable, intent(out) :: error

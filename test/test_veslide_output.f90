@@ -7,7 +7,7 @@ module test_veslide_output
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output, write_provenance
     use veslide_version, only: veslide_version_number
     use testsuite, only: error_t, unittest_t, new_unittest, check
-    use test_support, only: unique_name, write_text
+    use test_support, only: unique_name, write_text, remove
     implicit none
     private
     public :: collect_output
@@ -33,11 +33,6 @@ contains
         open (newunit=u, file=path, status='old'); read (u, '(a)') line; close (u)
     end function first_line
 
-    subroutine remove(path)
-        character(len=*), intent(in) :: path
-        integer :: u, stat
-        open (newunit=u, file=path, iostat=stat); if (stat == 0) close (u, status='delete')
-    end subroutine remove
 
     !> An existing result is never replaced unless asked, and is left untouched
     subroutine test_output_exists(error)

@@ -9,7 +9,7 @@ module test_veslide_study
     use veslide_study, only: study_plan_t, plan_study, run_study, merge_study_parts, seed_statistics, &
                              study_progress_t
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
-    use test_support, only: unique_name
+    use test_support, only: unique_name, remove
     use test_veslide_config, only: read_text
     use test_veslide_topography, only: write_heights
     implicit none
@@ -40,11 +40,6 @@ contains
             ]
     end subroutine collect_study
 
-    subroutine remove(path)
-        character(len=*), intent(in) :: path
-        integer :: u, stat
-        open (newunit=u, file=path, iostat=stat); if (stat == 0) close (u, status='delete')
-    end subroutine remove
 
     !> 2 seeds x 2 angles x 3 speeds: 4 chains, seeds outermost, speeds innermost
     subroutine test_plan(error)

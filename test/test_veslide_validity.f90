@@ -13,7 +13,7 @@ module test_veslide_validity
     use veslide_validity, only: slope_warn, max_slope_warn, contact_cells_min, patch_cells_min, strain_warn, &
                                 filled_warn, band_removed_warn, loss_warn
     use testsuite, only: error_t, unittest_t, new_unittest, check
-    use test_support, only: unique_name
+    use test_support, only: unique_name, remove
     use test_veslide_config, only: read_text, expect_words
     use test_veslide_topography, only: write_heights
     implicit none
@@ -111,11 +111,6 @@ contains
         call check(error, .not. warns(no, code), "the case built not to cross warns of "//code//"; "//codes(no))
     end subroutine crossing
 
-    subroutine remove(path)
-        character(len=*), intent(in) :: path
-        integer :: u, stat
-        open (newunit=u, file=path, iostat=stat); if (stat == 0) close (u, status='delete')
-    end subroutine remove
 
     ! ---------------------------------------------------------------- measures
 

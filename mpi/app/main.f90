@@ -19,8 +19,7 @@ program veslide_batch
     use veslide_case, only: case_t, run_case
     use veslide_case_file, only: write_case
     use veslide_quantities, only: results_t, case_results
-    use veslide_summary, only: header_lines, summary_lines, summary_width
-    use veslide_warning, only: warning_line
+    use veslide_summary, only: header_lines, summary_lines, summary_width, write_warnings
     use veslide_strings, only: str
     use veslide_case_data, only: case_spec_t
     use veslide_case_spec, only: case_spec_of
@@ -75,11 +74,8 @@ program veslide_batch
     ! (a study's ranks each read the whole height file anyway, and each writes its cases' warnings)
     if (.not. allocated(error) .and. rank /= 0 .and. cfg%sweep%is_study()) call read_config(input, cfg, error)
     if (allocated(error)) call die(error%message, exit_status(error))
-    if (rank == 0) then       ! warnings are part of the result: printed whatever --quiet says
-        do k = 1, size(cfg%warnings)
-            write (stderr, '(a)') warning_line(cfg%warnings(k), cfg%path)
-        end do
-    end if
+    ! warnings are part of the result: printed whatever --quiet says
+    if (rank == 0) call write_warnings(stderr, cfg%warnings, cfg%path, with_input=.true.)
     if (output_given) cfg%output%file = output
     out = cfg%output%file
     status = 0
@@ -199,9 +195,7 @@ contains
                     write (stdout, '(a)') trim(lines(i))
                 end do
             end if
-            do i = 1, size(c%warnings)
-                if (c%warnings(i)%source /= 'input') write (stderr, '(a)') warning_line(c%warnings(i), cfg%path)
-            end do
+            call write_warnings(stderr, c%warnings, cfg%path, with_input=.false.)
             if (status == 0 .and. .not. c%state%converged) write (stderr, '(a,es9.2,a,es9.2,a,i0,a)') &
                 "veslide-batch: NOT CONVERGED: residual ", c%state%residual, " > tolerance ", cfg%solver%tolerance, &
                 " after ", c%state%iterations, " iterations (result written with /scalars/converged = 0)"
@@ -269,12 +263,8 @@ contains
 
     subroutine print_progress(info)
         type(study_progress_t), intent(in) :: info
-        integer :: j
-        if (info%case_number > 0 .and. allocated(info%warnings)) then
-            do j = 1, size(info%warnings)
-                write (stderr, '(a)') warning_line(info%warnings(j), cfg%path//": case "//str(info%case_number))
-            end do
-        end if
+        if (info%case_number > 0 .and. allocated(info%warnings)) &
+            call write_warnings(stderr, info%warnings, cfg%path//": case "//str(info%case_number), with_input=.false.)
         if (quiet) return
         if (info%case_number == 0) then
             write (stdout, '("rank ",i0,"/",i0,": resumed from its part file: ",i0," of ",i0, &
