@@ -227,3 +227,17 @@ def test_figure_script_on_the_committed_tables(tmp_path):
                           str(tmp_path / "f.png")], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert (tmp_path / "f.png").stat().st_size > 10000
+
+
+def test_refine_raises_the_finest_grids_warnings_only(tmp_path, exe):
+    """The coarse grids of a refinement are coarse by design: their contact-resolution warnings
+    stay with their results; the finest grid's would be raised (here it has none)."""
+    import warnings
+    base = {"grid": {"nx": 32, "ny": 32}, "surface": {"k_cut": 8}, "material": {"model": "one_term"},
+            "motion": {"speed_m_s": 0.13}, "solver": {"fft_planner": "estimate"}}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ref = veslide.refine(base, [32, 64, 128], tmp_path, exe=exe, progress=None)
+    assert [w for w in caught if isinstance(w.message, veslide.VeslideWarning)] == []
+    assert [w.code for w in ref.results[0].warnings] == ["contact-resolution"]
+    assert ref.results[-1].warnings == []

@@ -26,7 +26,8 @@ import numpy as np
 import pandas as pd
 
 from .results import Result, parameter_columns, read
-from .runner import ConvergenceWarning, load_params, reuse_existing, run
+from ._warning import VeslideWarning
+from .runner import ConvergenceWarning, _raised_warnings, load_params, reuse_existing, run
 
 #: The scalars analysed unless others are asked for (those a file lacks are skipped)
 DEFAULT_SCALARS = ("contact_area_fraction", "contact_area_fraction_cells", "mean_separation_m",
@@ -354,6 +355,9 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
                 it. The rule of `veslide.run(..., reuse=True)` (`veslide.runner.reuse_existing`).
     overwrite   run again and replace the files instead
     threads, exe, progress   as for `veslide.run`
+
+    The finest grid's warnings (docs/validity.md) are raised as `veslide.VeslideWarning`s; the
+    coarser grids', coarse by design, stay with their results (`.results[k].warnings`).
     """
     base, _ = load_params(params)
     _check_refinable(base)
@@ -377,7 +381,16 @@ def refine(params, sizes, output_dir=None, threads=None, exe=None, *, scalars=DE
         created = not out_dir.exists()
         out_dir.mkdir(parents=True, exist_ok=True)
     try:
-        results = _run_grids(base, grids, out_dir, threads, exe, reuse, overwrite, progress)
+        # each grid's warnings stay with its result (results[k].warnings); the coarser grids are
+        # coarse by design, so only the finest grid's, the one the estimate quotes, are raised
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VeslideWarning)
+            results = _run_grids(base, grids, out_dir, threads, exe, reuse, overwrite, progress)
+        for c in caught:
+            if not isinstance(c.message, VeslideWarning):
+                warnings.warn_explicit(c.message, c.category, c.filename, c.lineno)
+        for w in _raised_warnings(results[-1]):
+            warnings.warn(w, stacklevel=2)
     except BaseException:
         if created and not any(out_dir.iterdir()):
             out_dir.rmdir()             # nothing was written: leave no empty directory behind
