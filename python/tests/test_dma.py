@@ -209,7 +209,8 @@ def test_master_curve_recovers_the_sample_s_wlf_law(curve):
 
 @pytest.mark.parametrize("seed", [1, 6])
 def test_master_curve_recovers_wlf_from_other_noise(seed):
-    """Two other noise draws (seed 6 was the worst of 12 tried: 0.067): within 0.1 and 5 %."""
+    """Two other noise draws (seed 6 was the worst of 12 with the neighbouring pairs alone, 0.097;
+    with every overlapping pair 0.067, the worst then seed 11's 0.070): within 0.1 and 5 %."""
     true = sample.true_material()
     with _no_warnings():
         mc = vm.master_curve(sample.sweeps(seed=seed), 20.0)

@@ -320,8 +320,6 @@ def _choose_columns(header, unit_row, columns, path):
         chosen[role] = hits[0][0]
         if role == "storage":
             shear = hits[0][1]
-    if columns is None or "storage" not in columns:
-        pass
     return chosen, shear
 
 
@@ -386,8 +384,8 @@ def _number(cell, decimal):
 
 def _describe_bad(row, names, unit_of, where_word="line"):
     what = []
-    for role, col, key in (("frequency", "frequency", "frequency_hz"), ("storage", "storage", "storage_pa"),
-                           ("loss", "loss", "loss_pa"), ("temperature", "temperature", "temperature_c")):
+    for role, key in (("frequency", "frequency_hz"), ("storage", "storage_pa"), ("loss", "loss_pa"),
+                      ("temperature", "temperature_c")):
         v = row[key]
         ok = math.isfinite(v) and (v > 0 if role != "temperature" else v > -273.15)
         if not ok:
@@ -671,23 +669,28 @@ def master_curve(table, reference_temperature_c, *, vertical=False, degree=2, mi
     (`read_dma`'s, or any DataFrame with frequency_hz, storage_pa, loss_pa, temperature_c and
     optionally sweep), by time-temperature superposition with shift factors found from the data.
 
-    Method: pairwise least-squares superposition of neighbouring sweeps (as in Honerkamp &
-    Weese, Rheol. Acta 32 (1993) 57, who estimate shift factors by least squares between shifted
-    data and a smooth curve; see also Dealy & Plazek, Rheol. Bull. 78(2) (2009) 16). Each
-    sweep's log10 E' and log10 E'' are smoothed by a polynomial in log10 f (`degree`, default 2).
-    For the sweeps i (colder) and j (the next warmer) the shift d = log10 a_Tj - log10 a_Ti
-    minimises the mean, over the points of either sweep that fall within the other's log10 f
-    range once shifted, of the squared differences between their log10 E' and log10 E'' and
-    the other sweep's polynomials: sum_q [sum_{x_j + d in i} (y_qj - v - P_qi(x_j + d))^2 +
-    sum_{x_i - d in j} (y_qi + v - P_qj(x_i - d))^2] over the overlap's points, with v = 0, or
-    with `vertical=True` the log10 b_T step v fitted with it (the moduli at T divided by b_T).
-    The minimum is found by a scan over d (0.02 decade steps, at least `min_overlap` points
-    overlapping) refined by scipy's least_squares on that overlap; the shifts add up along the
-    chain, and log10 a_T is measured from the reference (the monotone cubic through the sweeps'
-    temperatures and shifts, taken at the reference, which must lie within them).
+    Method: least-squares superposition of the sweeps on their overlaps (shift factors estimated
+    by least squares between shifted data and smooth curves, as Honerkamp & Weese, Rheol. Acta
+    32 (1993) 57; see also Dealy & Plazek, Rheol. Bull. 78(2) (2009) 16). Each sweep's
+    log10 E' and log10 E'' are smoothed by a polynomial P in log10 f (`degree`, default 2).
+    Two sweeps i (colder) and j (warmer) shifted by d = log10 a_Tj - log10 a_Ti are compared on
+    their overlap: the points of each that fall within the other's log10 f range once shifted,
+    with the residuals y_qj - v - P_qi(x_j + d) and y_qi + v - P_qj(x_i - d) for q = E', E''
+    (y = log10 of the modulus, x = log10 f; v = 0, or with `vertical=True` the step in log10 b_T,
+    the moduli at T being divided by b_T). First each neighbouring pair alone: d minimises the
+    mean square of its residuals, found by a scan (0.02 decade steps, at least `min_overlap`
+    points overlapping) refined by scipy's least_squares on that overlap; these add up along the
+    chain. Then every sweep's shift at once: the sum of squares of the residuals of every pair
+    of sweeps that overlap (not only neighbours: where shifts are small a sweep overlaps several,
+    and the chain's errors no longer add up from one end), by least_squares, the overlaps found
+    again until they settle. log10 a_T is then measured from the reference (the monotone cubic
+    through the sweeps' temperatures and shifts, taken at the reference, which must lie within
+    them). What is minimised, in one line: sum over overlapping pairs, points and q of the
+    squared log10 residuals above.
 
-    Each pair's standard error comes from the least-squares Jacobian and its residual; the
-    rms residual of each overlap says how well the pair superposes. Warned (VeslideWarning):
+    Standard errors come from the Jacobian and the residual variance of the last fit (they
+    leave out a temperature drift within a sweep); `pairs` gives each neighbouring pair's own
+    shift, its error and the rms residual of its overlap, which says how well it superposes. Warned (VeslideWarning):
     `poor-superposition` (a pair's rms log10 residual above 0.04, 10 %), `uncertain-shift` (a
     log10 a_T whose standard error exceeds 0.1), `shift-not-monotone` (log10 a_T rising with
     temperature somewhere: the table shift refuses it). Refused (DmaError, one line): fewer than
@@ -866,11 +869,7 @@ def _pair_shift(a, b, vertical, min_overlap):
     span = (a["x"].max() - a["x"].min()) + (b["x"].max() - b["x"].min())
 
     def parts(d):
-        ua = b["x"] + d                      # b's points in a's frame
-        ina = (ua >= a["x"].min()) & (ua <= a["x"].max())
-        ub = a["x"] - d                      # a's points in b's frame
-        inb = (ub >= b["x"].min()) & (ub <= b["x"].max())
-        return ina, inb
+        return _overlap(a, b, d)
 
     def residuals(d, ina, inb, v=None):
         r1 = np.concatenate([b["y"][q][ina] - a["p"][q](b["x"][ina] + d) for q in range(2)])

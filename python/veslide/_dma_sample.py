@@ -7,15 +7,15 @@ The known solid (`true_material`): a relaxation series of 30 terms, times 1e-13.
 a decade), E0 = 2.5 MPa, Einf = 2.0025 GPa; its spectrum is a Gaussian over log rho (the glass
 transition, centre 10^-9.5 s, 1.1 decades wide) and a power-law tail to long times (a filled
 rubber's slow relaxation). Its time-temperature law is WLF at 20 C with C1 = 7.5, C2 = 130 K
-(`TRUE_WLF`: a rubber whose glass transition lies near -60 C). The tan delta peak at 10 Hz lies
-near -40 C.
+(`TRUE_WLF`: a rubber whose glass transition lies near -60 C). Its tan delta peaks (1.22) at 1.1 MHz at 20 C,
+at 10 Hz near -32 C.
 
-The export (`write_export`): 21 sweeps from -50 to 100 C every 7.5 K, 10 frequencies from 0.1 to
-100 Hz each (log-spaced), E' and E''
-each with 2.5 % relative Gaussian noise (seed 2024), each point at its own measured temperature,
-which drifts by up to 0.3 K about the set point; columns f, E', E'', tan d, T in a real
-export's order, a units row (Hz, MPa, MPa, -, degC), moduli in MPa to 5 significant digits,
-UTF-8 with a byte-order mark, comma separated. About 10 kB.
+The export (`write_export`): 21 sweeps from -50 to 100 C every 7.5 K, 10 frequencies from 0.1
+to 100 Hz each (log-spaced); each point at its own temperature, which drifts by up to 0.3 K
+about the set point; E' and E'' each with 2.5 % relative Gaussian noise (seed 2024). In a real
+export's layout: the columns f, E', E'', tan d, T in that order, a units row (Hz, MPa, MPa, -,
+degC), moduli in MPa to 5 significant digits, UTF-8 with a byte-order mark, comma separated,
+CRLF lines. 7.6 kB.
 
     python -m veslide._dma_sample            # writes python/veslide/data/dma-sample.csv again
 """
