@@ -14,6 +14,12 @@
 !>                                 against its solve: the paper scene (tolerance 1e-8, one
 !>                                 thread) at N^2 (default 512), solve and measures timed in turn
 !>                                 (A B A B), medians and their ratio
+!>   veslide-bench prony [N [ROUNDS]]  the cost of a long Prony series: the paper scene's
+!>                                 surface, load and speed (one thread) at N^2 (default 512) on a
+!>                                 relaxation series of 20 and of 200 terms with the same spectrum
+!>                                 (1e-8..1e4 s), the two cases in turn (A B A B): kernel build,
+!>                                 solve and whole case, medians and their ratios; sliding along
+!>                                 x (the compliance once per column) and at 30 deg (once per mode)
 program veslide_bench
     use, intrinsic :: iso_fortran_env, only: stdout => output_unit
     use veslide_kinds, only: dp, pi
@@ -107,6 +113,16 @@ program veslide_bench
             call get_command_argument(3, arg); read (arg, *) k
         end if
         call bench_validity(n, k)
+    case ('prony')
+        n = 512
+        if (command_argument_count() >= 2) then
+            call get_command_argument(2, arg); read (arg, *) n
+        end if
+        k = 5
+        if (command_argument_count() >= 3) then
+            call get_command_argument(3, arg); read (arg, *) k
+        end if
+        call bench_prony(n, k)
     case ('hard')
         n = 256
         if (command_argument_count() >= 2) then
@@ -516,6 +532,57 @@ contains
         write (stdout, '(a,f9.4,a)') "  measures / solve                          ", 100.0_dp*median(tv)/median(ts), " %"
         write (stdout, '(a,i0)') "  warnings                                  ", size(c%warnings)
     end subroutine bench_validity
+
+    !> The cost of the number of Prony terms: the paper scene at n^2 (one thread, tolerance 1e-8)
+    !> on a relaxation series of 20 and of 200 terms drawn from one spectrum (a Gaussian over log
+    !> rho, rho = 1e-8..1e4 s, Einf = 1e8 Pa, E0 = 1e7 Pa; each term of the long series a tenth of
+    !> the short one's density), solved `rounds` times each in turn from cold: the kernel is built
+    !> once per case (per speed and temperature in a study), the solve applies it and does not
+    !> see the number of terms
+    subroutine bench_prony(n, rounds)
+        integer, intent(in) :: n, rounds
+        integer, parameter :: counts(2) = [20, 200]
+        real(dp), parameter :: directions(2) = [0.0_dp, 30.0_dp]
+        type(config_t) :: cfg(2)
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        real(dp) :: tk(rounds, 2), ts(rounds, 2), tc(rounds, 2), t0, x
+        integer :: its(2), r, m, j, nt, id
+        write (stdout, '(a,i0,a,i0,a)') "Prony terms against the case, paper scene ", n, "^2, ", rounds, &
+            " rounds, one thread (medians)"
+        do id = 1, size(directions)
+            do m = 1, 2
+                call scene(n, 'visco', 'auto', 1.0e-8_dp, cfg(m))
+                nt = counts(m)
+                cfg(m)%motion%direction_deg = directions(id)
+                cfg(m)%material%model = 'relaxation'; cfg(m)%material%e0_pa = 1.0e7_dp
+                cfg(m)%material%prony_time_s = [(10.0_dp**(-8.0_dp + 12.0_dp*(j - 1)/(nt - 1)), j = 1, nt)]
+                cfg(m)%material%prony_coef = [(exp(-0.5_dp*((-8.0_dp + 12.0_dp*(j - 1)/(nt - 1) + 2.0_dp)/ &
+                                                            2.0_dp)**2), j = 1, nt)]
+                x = sum(cfg(m)%material%prony_coef)
+                cfg(m)%material%prony_coef = 9.0e7_dp*cfg(m)%material%prony_coef/x
+                call complete_config(cfg(m), error); call check(error)
+            end do
+            do r = 1, rounds
+                do m = 1, 2
+                    t0 = now()
+                    call run_case(cfg(m), c, error); call check(error)
+                    tc(r, m) = now() - t0
+                    tk(r, m) = c%kernel_seconds; ts(r, m) = c%solve_seconds; its(m) = c%state%iterations
+                end do
+            end do
+            write (stdout, '(a,f5.1,a)') "  sliding at ", directions(id), " deg from x"
+            write (stdout, '(a)') "  terms   kernel [s]   solve [s]   case [s]   iterations"
+            do m = 1, 2
+                write (stdout, '(i7,3f12.4,i12)') counts(m), median(tk(:, m)), median(ts(:, m)), median(tc(:, m)), &
+                    its(m)
+            end do
+            write (stdout, '(a,f8.2,a)') "  case 200/20 - 1      ", &
+                100.0_dp*(median(tc(:, 2))/median(tc(:, 1)) - 1.0_dp), " %"
+            write (stdout, '(a,f8.2,a)') "  kernel 200 - 20      ", &
+                100.0_dp*(median(tk(:, 2)) - median(tk(:, 1)))/median(tc(:, 1)), " % of the 20-term case"
+        end do
+    end subroutine bench_prony
 
     !> The paper scene (see bench_scaling) at n^2 for `solid` ('elastic' or 'visco') and `method`
     subroutine scene(n, solid, method, tol, cfg)

@@ -18,3 +18,4 @@ fi
 OMP_NUM_THREADS=$threads bench kernels | tee results/bench-kernels.txt
 OMP_NUM_THREADS=$threads bench accuracy 1024 | tee results/bench-accuracy.txt
 OMP_NUM_THREADS=$threads bench hard 512 | tee results/bench-hard-512.txt
+OMP_NUM_THREADS=1 bench prony 512 5 | tee results/bench-prony.txt

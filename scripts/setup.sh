@@ -314,7 +314,7 @@ if ((${#missing[@]})); then
     exit 1
 fi
 
-py_pkgs=(fpm==0.12.0 numpy h5py matplotlib pandas xarray f90nml pytest scipy "SurfaceTopography>=1.27"
+py_pkgs=(fpm==0.12.0 numpy h5py matplotlib pandas xarray f90nml pytest scipy openpyxl "SurfaceTopography>=1.27"
          "ContactMechanics>=1.8.3")
 if [ ! -x .venv/bin/python ]; then
     echo "veslide setup: creating .venv"
@@ -326,7 +326,7 @@ state=0
 .venv/bin/python - "$root/python" <<'PY' 2>/dev/null || state=$?
 import importlib.util, pathlib, sys
 if not all(importlib.util.find_spec(m) for m in ("numpy", "h5py", "matplotlib", "pandas", "xarray", "f90nml", "pytest",
-                                                 "scipy", "SurfaceTopography", "ContactMechanics")):
+                                                 "scipy", "openpyxl", "SurfaceTopography", "ContactMechanics")):
     sys.exit(1)
 spec = importlib.util.find_spec("veslide")
 here = pathlib.Path(sys.argv[1]).resolve()

@@ -65,7 +65,9 @@ contains
             new_unittest("ratio-must-exceed-one", test_material_ratio), &
             new_unittest("prony-lists-without-gaps", test_material_prony), &
             new_unittest("infinite-prony-time", test_material_infinite), &
-            new_unittest("temperature-shift-needs-its-constants", test_material_shift) &
+            new_unittest("temperature-shift-needs-its-constants", test_material_shift), &
+            new_unittest("shift-table-read-and-checked", test_material_shift_table), &
+            new_unittest("prony-series-of-256-terms", test_material_long_series) &
             ]
     end subroutine collect_config_material
 
@@ -582,6 +584,82 @@ contains
         call check(error, index(cfg%warnings(1)%text, "replaced by the &sweep temperatures_c") > 0 .and. &
                    index(cfg%warnings(2)%text, "the solid is a half-space") > 0, "the warnings' texts")
     end subroutine test_material_shift
+
+    !> shift = 'table': its two lists read; refused in one line naming the variable: a table of
+    !> one point or of two lengths, temperatures not increasing, log10 a_T not decreasing, a
+    !> temperature of the material or of the sweep outside it, a WLF constant with it, the lists
+    !> with another law; a time shifted beyond 1e200 s
+    subroutine test_material_shift_table(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=*), parameter :: m = "&material model = 'one_term', shift = 'table', "// &
+                                           "reference_temperature_c = 20, "
+        character(len=*), parameter :: tab = "shift_temperatures_c = 0, 20, 40, shift_log10_at = 2, 0, -1.5"
+        call read_text('t1', m//"temperature_c = 30, "//tab//" / &sweep temperatures_c = 0, 40 /", cfg, error)
+        if (allocated(error)) return
+        call check(error, size(cfg%material%shift_table_c) == 3 .and. cfg%material%shift_table_log10(3) == -1.5_dp &
+                   .and. cfg%material%temperature_c == 30.0_dp, "the table read"); if (allocated(error)) return
+        call expect_message('t2', m//"shift_temperatures_c = 20, shift_log10_at = 0 /", [character(len=80) :: &
+                            "&material shift_temperatures_c and shift_log10_at must list the same number (2 to 256)", &
+                            "got 1 and 1"], error)
+        if (allocated(error)) return
+        call expect_message('t3', m//"shift_temperatures_c = 0, 20, 40, shift_log10_at = 2, 0 /", &
+                            [character(len=40) :: "got 3 and 2"], error)
+        if (allocated(error)) return
+        call expect_message('t4', m//"shift_temperatures_c = 0, 20, 20, shift_log10_at = 2, 0, -1 /", &
+                            [character(len=64) :: "&material shift_temperatures_c(3) = 20", "strictly increasing"], error)
+        if (allocated(error)) return
+        call expect_message('t5', m//"shift_temperatures_c = 0, 20, 40, shift_log10_at = 2, 0, 0.5 /", &
+                            [character(len=64) :: "&material shift_log10_at(3) = 0.5", &
+                            "a_T falls as the temperature rises"], error)
+        if (allocated(error)) return
+        call expect_message('t6', m//"temperature_c = 41, "//tab//" /", [character(len=64) :: &
+                            "&material temperature_c = 41", "within the shift table", "0 to 40", &
+                            "not extrapolated"], error)
+        if (allocated(error)) return
+        call expect_message('t7', "&material model = 'one_term', shift = 'table', reference_temperature_c = -5, "// &
+                            tab//" /", [character(len=64) :: "&material reference_temperature_c = -5", &
+                            "within the shift table"], error)
+        if (allocated(error)) return
+        call expect_message('t8', m//tab//" / &sweep temperatures_c = 10, 60 /", [character(len=64) :: &
+                            "&sweep temperatures_c(2) = 60", "within the &material shift table"], error)
+        if (allocated(error)) return
+        call expect_message('t9', m//tab//", wlf_c1 = 8.86 /", [character(len=64) :: &
+                            "&material wlf_c1 has no use with shift = 'table'"], error)
+        if (allocated(error)) return
+        call expect_message('t10', "&material model = 'one_term', shift = 'arrhenius', reference_temperature_c = 20,"// &
+                            " activation_energy_j_mol = 1e5, "//tab//" /", [character(len=64) :: &
+                            "&material shift_temperatures_c has no use with shift = 'arrhenius'"], error)
+        if (allocated(error)) return
+        call expect_message('t11', "&material model = 'one_term', tau_s = 1e199, shift = 'table', "// &
+                            "reference_temperature_c = 20, temperature_c = 0, "//tab//" /", [character(len=64) :: &
+                            "&material temperature_c = 0", "beyond 1e-300 to 1e200 s"], error)
+    end subroutine test_material_shift_table
+
+    !> A relaxation series of 256 terms, times 1e-20..1e180 s (the most terms and about the
+    !> longest times &material takes), is read; a 257th term is refused
+    subroutine test_material_long_series(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=:), allocatable :: e, t
+        character(len=32) :: w
+        integer :: j
+        e = ''; t = ''
+        do j = 1, 256
+            write (w, '(es24.16)') 10.0_dp**(-20.0_dp + 200.0_dp*(j - 1)/255.0_dp)
+            t = t//trim(adjustl(w))//", "
+            e = e//"1e6, "
+        end do
+        call read_text('long', "&material model = 'relaxation', e0_pa = 1e6, relax_e_pa = "//e//" relax_rho_s = "// &
+                       t//" /", cfg, error)
+        if (allocated(error)) return
+        call check(error, size(cfg%material%prony_time_s) == 256, "256 terms read"); if (allocated(error)) return
+        call check(error, cfg%material%prony_time_s(256), 1.0e180_dp, "the last time", rel=1.0e-14_dp)
+        if (allocated(error)) return
+        call expect_message('long2', "&material model = 'relaxation', e0_pa = 1e6, relax_e_pa = "//e//"1e6, "// &
+                            "relax_rho_s = "//t//"1e181 /", [character(len=40) :: "&material relax_e_pa = 1e6, 1e6", &
+                            "(257 values)", "a list of up to 256 real numbers"], error)
+    end subroutine test_material_long_series
 
     subroutine test_grid_absurd(error)
         type(error_t), allocatable, intent(out) :: error

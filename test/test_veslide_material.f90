@@ -2,8 +2,9 @@
 !> the refusal of bad constants
 module test_veslide_material
     use veslide_kinds, only: dp
+    use, intrinsic :: iso_fortran_env, only: qp => real128
     use veslide_material, only: material_t, new_elastic, new_one_term, new_creep, new_relaxation, layer_factor, &
-                                BASE_BONDED, BASE_FRICTIONLESS
+                                BASE_BONDED, BASE_FRICTIONLESS, shift_factor, pchip_value
     use veslide_lapack, only: dgesv
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use reference_oracles, only: paper_solid, einf, tau
@@ -20,6 +21,9 @@ contains
             new_unittest("relaxation-equals-creep", test_relaxation_creep), &
             new_unittest("elastic-is-frequency-independent", test_elastic), &
             new_unittest("loss-peak-of-the-standard-solid", test_loss_peak), &
+            new_unittest("compliance-of-200-terms-over-40-decades", test_long_series), &
+            new_unittest("shift-table-of-wlf-values-is-wlf", test_table_is_wlf), &
+            new_unittest("pchip-as-scipy", test_pchip_scipy), &
             new_unittest("layer-factor-against-the-boundary-value-problem", test_layer_bvp), &
             new_unittest("layer-factor-limits", test_layer_limits), &
             new_unittest("creep-sum-must-stay-below-1/E0", test_creep_sum, should_fail=.true., &
@@ -98,6 +102,108 @@ contains
         call m%loss_peak(w, td)
         call check(error, w == 0.0_dp .and. td == 0.0_dp, "an elastic solid has no loss peak")
     end subroutine test_loss_peak
+
+    !> A relaxation and a creep series of 200 terms, times 1e-15..1e25 s (40 decades, 5 a decade),
+    !> against the same sums in quadruple precision by complex division: C(w) within 1e-13 at
+    !> w = 1e-30..1e30 rad/s (the real-arithmetic sums of material_compliance; measured 2e-16)
+    subroutine test_long_series(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 200
+        type(material_t) :: mr, mc
+        real(dp) :: tau(n), e(n), c(n), w, worst
+        complex(qp) :: s, cq
+        integer :: j, k
+        do j = 1, n
+            tau(j) = 10.0_dp**(-15.0_dp + 40.0_dp*(j - 1)/(n - 1))
+            e(j) = 1.0e6_dp*(1.0_dp + 0.5_dp*sin(0.1_dp*j))
+        end do
+        c = 1.0e-9_dp*e/sum(e)
+        call new_relaxation(mr, 1.0e6_dp, e, tau, 0.5_dp, error); if (allocated(error)) return
+        call new_creep(mc, 1.0e6_dp, c, tau, 0.5_dp, error); if (allocated(error)) return
+        worst = 0.0_dp
+        do k = -60, 60
+            w = 10.0_dp**(k/2.0_dp)
+            s = cmplx(1.0e6_qp, 0.0_qp, qp)
+            do j = 1, n
+                s = s + e(j)*cmplx(0.0_qp, w*real(tau(j), qp), qp)/cmplx(1.0_qp, w*real(tau(j), qp), qp)
+            end do
+            cq = 1.0_qp/s
+            worst = max(worst, real(abs(mr%compliance(w) - cq)/abs(cq), dp))
+            cq = cmplx(1.0_qp/mc%einf_pa, 0.0_qp, qp)
+            do j = 1, n
+                cq = cq + c(j)/cmplx(1.0_qp, w*real(tau(j), qp), qp)
+            end do
+            worst = max(worst, real(abs(mc%compliance(w) - cq)/abs(cq), dp))
+            worst = max(worst, real(abs(mc%compliance(-w) - conjg(cq))/abs(cq), dp))
+        end do
+        call report("largest relative difference", worst)
+        call check(error, worst <= 1.0e-13_dp, "C(w) of 200 terms differs from the quadruple-precision sum")
+    end subroutine test_long_series
+
+    !> A shift table holding WLF's values (C1 = 8.86, C2 = 101.6 K, Tref = 25 C at -50..100 C
+    !> every 7.5 K) gives WLF's a_T at its temperatures (log10 a_T within 1e-12), against the
+    !> reference 20 C and, moved, against 27.5 C; between them within 0.01 (PCHIP of a smooth law)
+    !> and monotone
+    subroutine test_table_is_wlf(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 21
+        real(dp), parameter :: c1 = 8.86_dp, c2 = 101.6_dp
+        real(dp) :: tc(n), la(n), worst, between, t, prev, lt
+        integer :: k
+        do k = 1, n
+            tc(k) = -50.0_dp + 7.5_dp*(k - 1)
+            la(k) = log10(shift_factor('wlf', tc(k), 25.0_dp, c1, c2, 0.0_dp))
+        end do
+        worst = 0.0_dp
+        do k = 1, n
+            worst = max(worst, abs(log10(shift_factor('table', tc(k), 25.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, tc, la)) - la(k)))
+            worst = max(worst, abs(log10(shift_factor('table', tc(k), 32.5_dp, 0.0_dp, 0.0_dp, 0.0_dp, tc, la)) - &
+                                   log10(shift_factor('wlf', tc(k), 32.5_dp, c1*c2/(c2 + 7.5_dp), c2 + 7.5_dp, 0.0_dp))))
+        end do
+        call report("largest |log10 a_T - WLF| at the table's points", worst)
+        call check(error, worst <= 1.0e-12_dp, "the table's a_T differs from WLF at its points"); if (allocated(error)) return
+        between = 0.0_dp; prev = huge(1.0_dp)
+        do k = 0, 1500
+            t = -50.0_dp + 0.1_dp*k
+            lt = log10(shift_factor('table', t, 25.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, tc, la))
+            between = max(between, abs(lt - log10(shift_factor('wlf', t, 25.0_dp, c1, c2, 0.0_dp))))
+            if (.not. lt < prev) then
+                call check(error, .false., "the table's log10 a_T is not decreasing at "//trim(adjustl(fmt(t)))); return
+            end if
+            prev = lt
+        end do
+        call report("largest |log10 a_T - WLF| between them", between)
+        call check(error, between <= 0.2_dp, "the table strays from WLF between its points")
+    contains
+        function fmt(x) result(txt)
+            real(dp), intent(in) :: x
+            character(len=24) :: txt
+            write (txt, '(g0)') x
+        end function fmt
+    end subroutine test_table_is_wlf
+
+    !> pchip_value against scipy's PchipInterpolator (scipy 1.17) on a non-uniform table with a
+    !> flat stretch (-1.1, -1.2): the same Fritsch-Butland slopes and end rule, within 1e-13
+    subroutine test_pchip_scipy(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: x(9) = [-50.0_dp, -35.0_dp, -30.0_dp, -10.0_dp, 5.0_dp, 20.0_dp, 45.0_dp, 60.0_dp, &
+                                       100.0_dp]
+        real(dp), parameter :: y(9) = [9.1_dp, 6.8_dp, 5.2_dp, 3.0_dp, 1.4_dp, 0.0_dp, -1.1_dp, -1.2_dp, -3.9_dp]
+        real(dp), parameter :: t(11) = [-50.0_dp, -42.3_dp, -30.0_dp, -31.7_dp, 0.4_dp, 20.0_dp, 33.3_dp, 59.9_dp, &
+                                        61.0_dp, 99.99_dp, 100.0_dp]
+        real(dp), parameter :: scipy(11) = [9.1_dp, 8.276017893691696_dp, 5.2_dp, 5.679448859583001_dp, &
+            1.873414595714621_dp, 0.0_dp, -0.7461953986402002_dp, -1.1989289476244374_dp, -1.2125149349051538_dp, &
+            -3.8988826552111324_dp, -3.8999999999999995_dp]
+        real(dp) :: worst
+        integer :: k
+        worst = 0.0_dp
+        do k = 1, size(t)
+            worst = max(worst, abs(pchip_value(x, y, t(k)) - scipy(k)))
+        end do
+        worst = max(worst, abs(pchip_value([0.0_dp, 10.0_dp], [1.0_dp, -2.0_dp], 3.7_dp) + 0.11_dp))
+        call report("largest difference", worst)
+        call check(error, worst <= 1.0e-13_dp, "pchip_value differs from scipy's PchipInterpolator")
+    end subroutine test_pchip_scipy
 
     subroutine test_creep_sum(error)
         type(error_t), allocatable, intent(out) :: error

@@ -9,6 +9,8 @@
     ref = veslide.refine("case.nml", [256, 512, 1024, 2048]); ref.estimate   # error bands by refinement
     scan = veslide.read_scan("scan.x3p"); veslide.prepare_scan(scan, nx=256).write("surf.h5")   # a measured scan
     m = veslide.fit_prony(f_hz, storage_pa, loss_pa); veslide.run({"material": m.to_namelist(), ...})
+    import veslide.material as vm                                    # a DMA export to a material
+    mc = vm.master_curve(vm.read_dma("export.csv"), 20); m = mc.fit_prony(shift="table")
 
 Arrays are indexed [ix, iy] everywhere in this package (the file's fields are [iy, ix] in h5py).
 """

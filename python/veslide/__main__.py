@@ -2,6 +2,8 @@
 python -m veslide topography SCAN --out SURF.h5 [--nx N] [--ny N] [--detrend curvature|plane|none]
                              [--periodic tukey|mirror|crop|none] [--taper F] [--k-cut K]
                              [--fill auto|harmonic|none] [--crop-valid] ...
+python -m veslide material EXPORT --reference-temperature T [--out material.nml]
+                           [--shift table|wlf|arrhenius] [--temperature T] [--drop-bad] ...
 
 refine: runs one case on several grids (or reuses the files already there from the same input)
 and prints the table and the error estimate of `veslide.refine`; exit status 1 on bad input, 2
@@ -11,7 +13,13 @@ when a solve did not converge, 3 when a file could not be written, 4 when the nu
 topography: reads a measured scan (any format SurfaceTopography reads), prepares it as
 `veslide.topography.prepare` does and writes the height file for `&surface kind='file'`, printing
 one line per choice with what it cost, and a line `warning: ...` on stderr for each
-VeslideWarning of the preparation; exit status 1 on bad input (one line on stderr, no file)."""
+VeslideWarning of the preparation; exit status 1 on bad input (one line on stderr, no file).
+
+material: reads a DMA export of isothermal sweeps (`veslide.material.read_dma`), shifts them into
+a master curve at the reference temperature (`master_curve`), fits WLF and Arrhenius to the
+shift factors and a Prony series to the master curve, and writes the `&material` group a study
+takes, printing one line per step and a line `warning: ...` on stderr for each VeslideWarning;
+exit status 1 on bad input (one line on stderr, no file)."""
 import argparse
 import os
 import re
@@ -76,9 +84,54 @@ def main(argv=None):
     t.add_argument("--crop-valid", action="store_true",
                    help="crop the scan to its largest fully measured rectangle before the detrending")
     t.add_argument("--overwrite", action="store_true", help="replace the dataset if the file has it")
+    mt = sub.add_parser(
+        "material", help="make a DMA export of isothermal sweeps the &material group of a study",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        description="Read a DMA export (CSV, TSV or Excel: columns found by name, units from a units row or\n"
+                    "the names), shift its sweeps into a master curve at the reference temperature (shift\n"
+                    "factors from the sweeps' overlap), fit WLF and Arrhenius to them and a Prony series to\n"
+                    "the master curve, and write the &material group, printing one line per step.",
+        epilog="refused (exit status 1, one line on stderr, no file written):\n"
+               "  a column missing, two columns for one role, a unit missing or of the wrong kind\n"
+               "  (--column, --unit); bad points (not positive, not numbers), unless --drop-bad;\n"
+               "  the reference outside the sweeps' temperatures; --shift table with shift factors\n"
+               "  that do not fall as the temperature rises; an existing --out without --overwrite.\n"
+               "warned (a line 'warning: [code] ...' on stderr, the file written):\n"
+               "  dma-dropped-points   the points --drop-bad dropped, each named\n"
+               "  poor-superposition   two sweeps that do not superpose (rms above 10 %)\n"
+               "  uncertain-shift      a shift factor known to worse than 0.1 decade\n"
+               "  shift-not-monotone   log10 a_T rising with temperature somewhere\n"
+               "  prony-fit-error      the series misses the master curve by more than 10 % rms\n"
+               "  rubbery-plateau      the data do not reach the rubbery plateau\n"
+               "  extrapolated-loss-peak  the series' tan delta peaks outside the data")
+    mt.add_argument("export", help="the instrument's export (.csv, .txt, .tsv, .xlsx)")
+    mt.add_argument("--reference-temperature", type=float, required=True, metavar="T",
+                    help="the master curve's reference temperature [C], within the sweeps' range")
+    mt.add_argument("--out", default=None, help="the namelist file to write (default: EXPORT's name with .nml)")
+    mt.add_argument("--shift", default="table", choices=["table", "wlf", "arrhenius"],
+                    help="the temperature law of the group: the measured shift factors (table, default), or "
+                         "the WLF or Arrhenius law fitted to them")
+    mt.add_argument("--temperature", type=float, default=None, metavar="T",
+                    help="temperature_c of the group (default: none, the reference; &sweep temperatures_c "
+                         "then gives a study's)")
+    mt.add_argument("--vertical", action="store_true", help="fit a vertical shift b_T too")
+    mt.add_argument("--drop-bad", action="store_true", help="drop bad points (each named in a warning)")
+    mt.add_argument("--column", action="append", default=[], metavar="ROLE=NAME",
+                    help="a column by name or 0-based index: frequency, storage, loss, temperature, sweep")
+    mt.add_argument("--unit", action="append", default=[], metavar="ROLE=UNIT",
+                    help="a column's unit: frequency Hz|rad/s, storage|loss Pa|kPa|MPa|GPa, temperature C|K")
+    mt.add_argument("--sheet", default="0", help="Excel: the sheet, by index or name (default 0)")
+    mt.add_argument("--form", default="relaxation", choices=["relaxation", "creep"], help="the series' form")
+    mt.add_argument("--terms-per-decade", type=float, default=None, help="Prony terms a decade (default 3)")
+    mt.add_argument("--poisson", type=float, default=0.5, help="Poisson ratio (default 0.5)")
+    mt.add_argument("--plot", default=None, metavar="FILE",
+                    help="draw the master curve and the shift factors into FILE (png, pdf, svg)")
+    mt.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     args = ap.parse_args(argv)
     if args.command == "topography":
         return _topography(args)
+    if args.command == "material":
+        return _material(args)
     warnings.simplefilter("ignore", ConvergenceWarning)       # the exit status and the notes say it
     try:
         ref = refine(args.namelist, args.sizes, args.output_dir, threads=args.threads, progress=None)
@@ -135,6 +188,88 @@ def _topography(args):
           % (s.nx, s.ny, path, args.dataset))
     sys.stdout.flush()
     for w in caught:                 # last, where they are seen
+        if issubclass(w.category, VeslideWarning):
+            print("warning: %s" % _cli_words(str(w.message)), file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return 0
+
+
+def _pairs(items, what):
+    out = {}
+    for item in items:
+        role, sep, value = item.partition("=")
+        if not sep or not value:
+            raise ValueError("--%s takes ROLE=VALUE, got %r" % (what, item))
+        out[role.strip()] = int(value) if what == "column" and value.strip().isdigit() else value.strip()
+    return out
+
+
+def _material(args):
+    """python -m veslide material: the route from a DMA export to the &material group."""
+    from .material import DmaError, master_curve, read_dma
+    out = args.out or os.path.splitext(args.export)[0] + ".nml"
+    lines, caught = [], []
+    try:
+        if os.path.exists(out) and not args.overwrite:
+            raise ValueError("%s exists: pass --overwrite to replace it" % out)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", VeslideWarning)
+            sheet = int(args.sheet) if args.sheet.isdigit() else args.sheet
+            table = read_dma(args.export, columns=_pairs(args.column, "column") or None,
+                             units=_pairs(args.unit, "unit") or None, sheet=sheet, drop_bad=args.drop_bad)
+            lines += table.attrs["lines"]
+            mc = master_curve(table, args.reference_temperature, vertical=args.vertical)
+            lines += mc.lines
+            wlf = arr = None
+            try:
+                wlf = mc.fit_wlf()
+                lines.append("WLF:      C1 = %.4g +- %.2g, C2 = %.4g +- %.2g K at %g C; misses log10 a_T by %.3f rms, "
+                             "%.3f at most" % (wlf.wlf_c1, wlf.wlf_c1_error, wlf.wlf_c2_k, wlf.wlf_c2_k_error,
+                                               wlf.reference_temperature_c, wlf.rms, wlf.max))
+            except (ValueError, RuntimeError) as e:
+                lines.append("WLF:      not fitted (%s)" % e)
+            arr = mc.fit_arrhenius()
+            lines.append("Arrhenius: Ea = %.4g +- %.2g kJ/mol; misses log10 a_T by %.3f rms, %.3f at most"
+                         % (1e-3 * arr.activation_energy_j_mol, 1e-3 * arr.activation_energy_error, arr.rms, arr.max))
+            law = {"wlf": wlf, "arrhenius": arr}.get(args.shift)
+            m = mc.fit_prony(args.shift, law=law, form=args.form, terms_per_decade=args.terms_per_decade,
+                             poisson=args.poisson)
+            r = m.fit
+            lines.append("series:   %d %s terms of %d candidates, times %.3g to %.3g s, E0 %.4g Pa, Einf %.4g Pa; "
+                         "over %d points E' %.2f %% rms (%.2f %% max), E'' %.2f %% rms (%.2f %% max)"
+                         % (r.n_terms, m.form, r.candidates, m.times_s.min(), m.times_s.max(), m.e0_pa, m.einf_pa,
+                            r.frequency_hz.size, 100 * r.rms_error_storage, 100 * r.max_error_storage,
+                            100 * r.rms_error_loss, 100 * r.max_error_loss))
+            f_peak, tan_peak = m.loss_peak(args.temperature)
+            lines.append("peak:     tan delta %.3g at %.3g Hz at %g C (within the data)"
+                         % (tan_peak, f_peak, args.temperature if args.temperature is not None
+                            else args.reference_temperature))
+            text = m.namelist_text(args.temperature)
+            if args.plot:
+                import matplotlib
+                matplotlib.use("Agg")
+                fig = mc.plot()
+                fig.savefig(args.plot, dpi=150)
+                lines.append("plot:     %s" % args.plot)
+        with open(out, "w") as fh:
+            fh.write(text if text.endswith("\n") else text + "\n")
+    except ImportError as e:
+        print("veslide material: %s" % e, file=sys.stderr)
+        return 1
+    except (DmaError, ValueError, OSError) as e:
+        for line in lines:
+            print(line)
+        print("veslide material: %s" % _cli_words(str(e)), file=sys.stderr)
+        return 1
+    for line in lines:
+        print(line)
+    t = m.shift_temperatures_c
+    span = " (temperature_c, &sweep temperatures_c within %.1f to %.1f C)" % (t[0], t[-1]) if t is not None else ""
+    print("written:  %s: &material model = '%s', %d terms, shift = '%s'%s" % (out, m.form, m.coefficients.size,
+                                                                              m.shift, span))
+    sys.stdout.flush()
+    for w in caught:
         if issubclass(w.category, VeslideWarning):
             print("warning: %s" % _cli_words(str(w.message)), file=sys.stderr)
         else:

@@ -81,7 +81,7 @@ contains
         out%shifted = m%shift /= 'none'
         out%temperature_c = temperature_c
         a = shift_factor(m%shift, temperature_c, m%reference_temperature_c, m%wlf_c1, m%wlf_c2_k, &
-                         m%activation_energy_j_mol)
+                         m%activation_energy_j_mol, m%shift_table_c, m%shift_table_log10)
         out%shift_factor = a
         select case (m%model)
         case ('elastic')

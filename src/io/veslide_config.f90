@@ -13,7 +13,7 @@ module veslide_config
     use veslide_config_common, only: require, group_text_t, scan_namelist, get_group
     use veslide_config_grid, only: grid_config_t, read_grid_config
     use veslide_config_surface, only: surface_config_t, read_surface_config
-    use veslide_config_material, only: material_config_t, read_material_config
+    use veslide_config_material, only: material_config_t, read_material_config, max_time
     use veslide_config_load, only: load_config_t, read_load_config
     use veslide_config_motion, only: motion_config_t, read_motion_config
     use veslide_config_solver, only: solver_config_t, read_solver_config
@@ -111,6 +111,7 @@ contains
         cfg%surface%file = ''; cfg%surface%dataset = '/height_m'; cfg%surface%preparation = ''
         cfg%material%model = 'elastic'; cfg%material%shift = 'none'; cfg%material%base = 'bonded'
         allocate (cfg%material%prony_coef(0), cfg%material%prony_time_s(0))
+        allocate (cfg%material%shift_table_c(0), cfg%material%shift_table_log10(0))
         cfg%solver%method = 'auto'; cfg%solver%kernel = 'spectral'; cfg%solver%fft_planner = 'measure'
         cfg%solver%device = 'auto'
         allocate (cfg%sweep%speeds(0), cfg%sweep%alphas(0), cfg%sweep%eccentricities(0), cfg%sweep%pressures(0), &
@@ -170,7 +171,7 @@ contains
                      "only with &surface kind = 'self_affine' (here '"//cfg%surface%kind//"')")
         call require(error, size(cfg%sweep%temperatures) == 0 .or. cfg%material%shift /= 'none', p, 'sweep', &
                      'temperatures_c', list_text(cfg%sweep%temperatures), &
-                     "only with a &material shift ('wlf' or 'arrhenius') and its reference")
+                     "only with a &material shift ('wlf', 'arrhenius' or 'table') and its reference")
         if (allocated(error)) return
         call check_shift(cfg%material%temperature_c, 'material', 'temperature_c')
         do k = 1, size(cfg%sweep%temperatures)
@@ -198,20 +199,31 @@ contains
         end subroutine check_shift
     end subroutine complete_config
 
-    !> The shifted times at temperature `t_c` within the range the input accepts for a time
-    !> (1e-300 to 1e15 s; a_T overflows near WLF's divergence and near 0 K)
+    !> The temperature `t_c` within a shift table (measured shift factors are not extrapolated),
+    !> and the shifted times there within the range the input accepts for a time (1e-300 to
+    !> 1e200 s; a_T overflows near WLF's divergence and near 0 K)
     subroutine check_shift_range(cfg, t_c, group, var, error)
         type(config_t), intent(in) :: cfg
         real(dp), intent(in) :: t_c
         character(len=*), intent(in) :: group, var
         type(error_t), allocatable, intent(inout) :: error
         real(dp) :: a, lo, hi
+        integer :: n
         if (allocated(error) .or. cfg%material%shift == 'none') return
         associate (m => cfg%material)
             if (m%shift == 'wlf') then
                 if (.not. t_c - m%reference_temperature_c > -m%wlf_c2_k) return   ! refused with its own message
             end if
-            a = shift_factor(m%shift, t_c, m%reference_temperature_c, m%wlf_c1, m%wlf_c2_k, m%activation_energy_j_mol)
+            if (m%shift == 'table') then
+                n = size(m%shift_table_c)
+                call require(error, t_c >= m%shift_table_c(1) .and. t_c <= m%shift_table_c(n), cfg%path, group, var, &
+                             str(t_c), "within the &material shift table, shift_temperatures_c = "// &
+                             str(m%shift_table_c(1))//" to "//str(m%shift_table_c(n))// &
+                             " [C]: measured shift factors are not extrapolated")
+                if (allocated(error)) return
+            end if
+            a = shift_factor(m%shift, t_c, m%reference_temperature_c, m%wlf_c1, m%wlf_c2_k, m%activation_energy_j_mol, &
+                             m%shift_table_c, m%shift_table_log10)
             select case (m%model)
             case ('one_term')
                 lo = m%tau_s; hi = m%tau_s
@@ -220,9 +232,9 @@ contains
             case default
                 return
             end select
-            if (.not. (a*hi <= 1.0e15_dp .and. a*lo >= 1.0e-300_dp)) call fatal_error(error, "veslide: "//cfg%path// &
+            if (.not. (a*hi <= max_time .and. a*lo >= 1.0e-300_dp)) call fatal_error(error, "veslide: "//cfg%path// &
                 ": &"//group//" "//var//" = "//str(t_c)//" shifts the material's times by a_T = "//str(a)// &
-                " beyond 1e-300 to 1e15 s (closer to where the "//m%shift//" law diverges than the material allows)")
+                " beyond 1e-300 to 1e200 s (closer to where the "//m%shift//" law diverges than the material allows)")
         end associate
     end subroutine check_shift_range
 
@@ -375,7 +387,8 @@ contains
                 names = [character(len=24) :: 'e0_pa', 'relax_e_pa', 'relax_rho_s']
             end select
             names = [character(len=24) :: names, 'model', 'poisson', 'shift', 'temperature_c', &
-                     'reference_temperature_c', 'wlf_c1', 'wlf_c2_k', 'activation_energy_j_mol', 'thickness_m', 'base']
+                     'reference_temperature_c', 'wlf_c1', 'wlf_c2_k', 'activation_energy_j_mol', 'thickness_m', 'base', &
+                     'shift_temperatures_c', 'shift_log10_at']
         end function material_reads
 
         !> One warning naming the variables of `group` the input gave and `what` does not read

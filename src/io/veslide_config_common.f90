@@ -10,11 +10,18 @@ module veslide_config_common
     implicit none
     private
     public :: group_text_t, scan_namelist, get_group, diagnose_read, try_interface, read_failed, split_lines
-    public :: range_error, require, choices_text, is_one_of, finite_in, max_list, max_text
+    public :: range_error, require, choices_text, is_one_of, finite_in, max_list, max_terms, max_text
     public :: unset_real, is_unset, list_length, check_list, check_text_length, assigned_names
 
-    !> Longest list a namelist array may hold (Prony terms, sweep lists)
+    !> Longest list a &sweep array may hold
     integer, parameter :: max_list = 64
+    !> Most Prony terms (and shift-table points) &material takes: a master curve over 40 decades at
+    !> 6 terms a decade, the most candidates `veslide.material.fit_prony` offers. The terms cost
+    !> only when a kernel is built (once per speed and temperature; the solve does not see them):
+    !> sliding along a grid axis the compliance is evaluated once per column, so 200 terms cost
+    !> what 20 do; at an oblique direction once per mode, about 1 ns per term and mode
+    !> (docs/benchmarks.md)
+    integer, parameter :: max_terms = 256
     !> Longest text a namelist string may hold (file paths)
     integer, parameter :: max_text = 1023
 
@@ -222,7 +229,7 @@ contains
             end if
             call try(["&"//group//" "//item//" /"], st, msg1)
             if (st /= 0 .and. .not. is_iostat_end(st)) then
-                call fatal_error(error, at//var//" = "//value//" cannot be read: "//trim(kinds(iv))// &
+                call fatal_error(error, at//var//" = "//short(value)//" cannot be read: "//trim(kinds(iv))// &
                                  " is expected"); return
             end if
         end do
@@ -233,6 +240,21 @@ contains
         call fatal_error(error, at//"cannot be read: "//trim(msg)//" (the variables of &"//group//": "// &
                          join(names)//")")
     contains
+        !> A long value (a list) as its first 48 characters and its count of values
+        pure function short(text) result(s)
+            character(len=*), intent(in) :: text
+            character(len=:), allocatable :: s
+            integer :: j, n
+            if (len(text) <= 72) then
+                s = text; return
+            end if
+            n = 1
+            do j = 1, len(text)
+                if (text(j:j) == ',') n = n + 1
+            end do
+            s = text(1:48)//" ... ("//str(n)//" values)"
+        end function short
+
         !> The value as one line of a message: without its comment, line ends and trailing commas
         pure function one_line(text) result(s)
             character(len=*), intent(in) :: text

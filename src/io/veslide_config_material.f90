@@ -4,7 +4,7 @@ module veslide_config_material
     use veslide_error, only: error_t, fatal_error
     use veslide_strings, only: str
     use veslide_config_common, only: group_text_t, diagnose_read, read_failed, split_lines, require, choices_text, is_one_of, &
-                                     finite_in, max_list, unset_real, list_length, check_list, check_text_length, &
+                                     finite_in, max_terms, unset_real, list_length, check_list, check_text_length, &
                                      max_text, is_unset, assigned_names
     use veslide_material, only: material_model_names, shift_names, base_names
     implicit none
@@ -23,27 +23,37 @@ module veslide_config_material
         real(dp), allocatable :: prony_time_s(:)         !! tau_k or rho_j [s]
         !> time-temperature superposition: the times above are the master curve's at the
         !> reference temperature; at `temperature_c` each is multiplied by the shift factor a_T
-        !> (`shift`: 'none', 'wlf' or 'arrhenius'; veslide_material's shift_factor)
+        !> (`shift`: 'none', 'wlf', 'arrhenius' or 'table'; veslide_material's shift_factor)
         character(len=:), allocatable :: shift
         real(dp) :: temperature_c = 0.0_dp, reference_temperature_c = 0.0_dp
         real(dp) :: wlf_c1 = 0.0_dp, wlf_c2_k = 0.0_dp, activation_energy_j_mol = 0.0_dp
+        !> shift = 'table': measured shift factors, log10 a_T at temperatures [C] (strictly
+        !> increasing temperatures, strictly decreasing log10 a_T; empty for the other laws)
+        real(dp), allocatable :: shift_table_c(:), shift_table_log10(:)
         !> a layer of this thickness on a rigid base [m] (0: a half-space), resting on it as `base`
         real(dp) :: thickness_m = 0.0_dp
         character(len=:), allocatable :: base
         character(len=:), allocatable :: given(:)        !! the variables the input assigned
     end type material_config_t
 
-    character(len=*), parameter :: names(19) = [character(len=23) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
+    character(len=*), parameter :: names(21) = [character(len=23) :: 'model', 'young_pa', 'poisson', 'einf_pa', &
         'ratio', 'tau_s', 'e0_pa', 'creep_c_per_pa', 'creep_tau_s', 'relax_e_pa', 'relax_rho_s', 'shift', &
         'temperature_c', 'reference_temperature_c', 'wlf_c1', 'wlf_c2_k', 'activation_energy_j_mol', 'thickness_m', &
-        'base']
-    character(len=*), parameter :: kinds(19) = [character(len=40) :: "a quoted text ('one_term')", &
+        'base', 'shift_temperatures_c', 'shift_log10_at']
+    character(len=*), parameter :: list256 = 'a list of up to 256 real numbers'
+    character(len=*), parameter :: kinds(21) = [character(len=40) :: "a quoted text ('one_term')", &
         'a real number', 'a real number', 'a real number', 'a real number', 'a real number', 'a real number', &
-        'a list of real numbers', 'a list of real numbers', 'a list of real numbers', 'a list of real numbers', &
+        list256, list256, list256, list256, &
         "a quoted text ('wlf')", 'a real number', 'a real number', 'a real number', 'a real number', &
-        'a real number', 'a real number', "a quoted text ('bonded')"]
-    !> Largest modulus and time accepted [Pa], [s]: beyond them double precision loses the physics
-    real(dp), parameter :: max_modulus = 1.0e15_dp, max_time = 1.0e15_dp
+        'a real number', 'a real number', "a quoted text ('bonded')", list256, list256]
+    !> Largest modulus accepted [Pa]: beyond it double precision loses the physics
+    real(dp), parameter :: max_modulus = 1.0e15_dp
+    !> Longest time accepted [s] (also after the shift to a temperature): the kernel takes w tau
+    !> with w = |q.v| below 1e27 rad/s for any grid and speed the input accepts, so up to 1e200 s
+    !> every product stays finite (and far from overflow) in double precision. A master curve
+    !> over 40 decades at a reference at its data's coldest end needs about 1e40 s.
+    real(dp), parameter, public :: max_time = 1.0e200_dp
+    character(len=*), parameter :: time_range = "> 0 and <= 1e200 [s]"
     !> No solid is softer than about 10 Pa (the softest hydrogels): a modulus below 1 Pa is a
     !> modulus in kPa or MPa read as Pa, refused with that hint
     real(dp), parameter :: min_modulus = 1.0_dp
@@ -60,15 +70,17 @@ contains
         type(error_t), allocatable, intent(out) :: error
         character(len=max_text + 1) :: model, shift, base
         real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
-        real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
+        real(dp) :: creep_c_per_pa(max_terms), creep_tau_s(max_terms), relax_e_pa(max_terms), relax_rho_s(max_terms)
         real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol, thickness_m
+        real(dp) :: shift_temperatures_c(max_terms), shift_log10_at(max_terms)
         integer :: stat
         character(len=512) :: msg
         character(len=:), allocatable :: lines(:)
         namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, creep_tau_s, &
             relax_e_pa, relax_rho_s, shift, temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, &
-            activation_energy_j_mol, thickness_m, base
+            activation_energy_j_mol, thickness_m, base, shift_temperatures_c, shift_log10_at
         thickness_m = 0.0_dp; base = 'bonded'
+        shift_temperatures_c = unset_real(); shift_log10_at = unset_real()
         shift = 'none'; temperature_c = unset_real(); reference_temperature_c = unset_real()
         wlf_c1 = unset_real(); wlf_c2_k = unset_real(); activation_energy_j_mol = unset_real()
         model = 'elastic'; young_pa = self%young_pa; poisson = self%poisson; einf_pa = self%einf_pa
@@ -126,7 +138,7 @@ contains
                              "at most einf_pa/1 Pa = "//str(einf_pa/min_modulus)//" (E0 = einf_pa/ratio = "// &
                              str(einf_pa/ratio)//" Pa; no solid is softer than about 10 Pa)")
             call require(error, finite_in(tau_s, 0.0_dp, max_time, open_low=.true.), path, 'material', 'tau_s', &
-                         str(tau_s), "> 0 and <= 1e15 [s]")
+                         str(tau_s), time_range)
         case ('creep', 'relaxation')
             call require(error, finite_in(e0_pa, min_modulus, max_modulus), path, 'material', 'e0_pa', &
                          str(e0_pa), modulus_range)
@@ -143,8 +155,13 @@ contains
         !> the reference's when not given
         subroutine read_shift()
             self%shift = trim(shift)
+            allocate (self%shift_table_c(0), self%shift_table_log10(0))
             call require(error, is_one_of(self%shift, shift_names), path, 'material', 'shift', "'"//self%shift//"'", &
                          choices_text(shift_names))
+            if (.not. allocated(error) .and. self%shift /= 'table') then
+                call unused_list(shift_temperatures_c, 'shift_temperatures_c')
+                call unused_list(shift_log10_at, 'shift_log10_at')
+            end if
             if (allocated(error) .or. self%shift == 'none') then
                 if (.not. allocated(error)) call unused(temperature_c, 'temperature_c')
                 if (.not. allocated(error)) call unused(reference_temperature_c, 'reference_temperature_c')
@@ -179,8 +196,68 @@ contains
                 call require(error, finite_in(activation_energy_j_mol, 0.0_dp, 1.0e7_dp, open_low=.true.), path, &
                              'material', 'activation_energy_j_mol', str(activation_energy_j_mol), "> 0 and <= 1e7 [J/mol]")
                 self%activation_energy_j_mol = activation_energy_j_mol
+            case ('table')
+                call unused(wlf_c1, 'wlf_c1'); call unused(wlf_c2_k, 'wlf_c2_k')
+                call unused(activation_energy_j_mol, 'activation_energy_j_mol'); if (allocated(error)) return
+                call read_table(); if (allocated(error)) return
+                call in_table(reference_temperature_c, 'reference_temperature_c')
+                call in_table(temperature_c, 'temperature_c')
             end select
         end subroutine read_shift
+
+        !> The measured shift factors: 2 to max_terms points, temperatures strictly increasing
+        !> and above 0 K, log10 a_T finite, within +-300 (a_T a double) and strictly decreasing:
+        !> every relaxation of a thermorheologically simple solid is faster when it is warmer
+        subroutine read_table()
+            integer :: nt, na, k
+            call check_list(error, shift_temperatures_c, path, 'material', 'shift_temperatures_c')
+            call check_list(error, shift_log10_at, path, 'material', 'shift_log10_at')
+            if (allocated(error)) return
+            nt = list_length(shift_temperatures_c); na = list_length(shift_log10_at)
+            if (nt < 2 .or. nt /= na) then
+                call fatal_error(error, "veslide: "//path//": &material shift_temperatures_c and shift_log10_at"// &
+                    " must list the same number (2 to "//str(max_terms)//") of points with shift = 'table', got "// &
+                    str(nt)//" and "//str(na)); return
+            end if
+            do k = 1, nt
+                call require(error, finite_in(shift_temperatures_c(k), -273.15_dp, 1.0e4_dp, open_low=.true.), &
+                             path, 'material', 'shift_temperatures_c('//str(k)//')', str(shift_temperatures_c(k)), &
+                             "> -273.15 [C]")
+                call require(error, finite_in(shift_log10_at(k), -300.0_dp, 300.0_dp), path, 'material', &
+                             'shift_log10_at('//str(k)//')', str(shift_log10_at(k)), "-300 to 300 (log10 of a_T)")
+                if (k == 1 .or. allocated(error)) cycle
+                call require(error, shift_temperatures_c(k) > shift_temperatures_c(k - 1), path, 'material', &
+                             'shift_temperatures_c('//str(k)//')', str(shift_temperatures_c(k)), &
+                             "above shift_temperatures_c("//str(k - 1)//") = "//str(shift_temperatures_c(k - 1))// &
+                             ": temperatures strictly increasing")
+                call require(error, shift_log10_at(k) < shift_log10_at(k - 1), path, 'material', &
+                             'shift_log10_at('//str(k)//')', str(shift_log10_at(k)), &
+                             "below shift_log10_at("//str(k - 1)//") = "//str(shift_log10_at(k - 1))// &
+                             ": a_T falls as the temperature rises (every relaxation is faster when warmer)")
+            end do
+            if (allocated(error)) return
+            self%shift_table_c = shift_temperatures_c(1:nt); self%shift_table_log10 = shift_log10_at(1:nt)
+        end subroutine read_table
+
+        !> A temperature of the material within the shift table (measured shift factors are not
+        !> extrapolated)
+        subroutine in_table(t, name)
+            real(dp), intent(in) :: t
+            character(len=*), intent(in) :: name
+            if (allocated(error)) return
+            call require(error, t >= self%shift_table_c(1) .and. t <= self%shift_table_c(size(self%shift_table_c)), &
+                         path, 'material', name, str(t), "within the shift table, shift_temperatures_c = "// &
+                         str(self%shift_table_c(1))//" to "//str(self%shift_table_c(size(self%shift_table_c)))// &
+                         " [C]: measured shift factors are not extrapolated")
+        end subroutine in_table
+
+        subroutine unused_list(x, name)
+            real(dp), intent(in) :: x(:)
+            character(len=*), intent(in) :: name
+            if (allocated(error)) return
+            if (list_length(x) > 0) call fatal_error(error, "veslide: "//path//": &material "//name// &
+                                                     " has no use with shift = '"//self%shift//"'")
+        end subroutine unused_list
 
         subroutine given(x, name)
             real(dp), intent(in) :: x
@@ -205,7 +282,8 @@ contains
             nc = list_length(c); nt = list_length(t)
             if (nc == 0 .or. nc /= nt) then
                 call fatal_error(error, "veslide: "//path//": &material "//name_c//" and "//name_t// &
-                    " must list the same number (1 to 64) of terms, got "//str(nc)//" and "//str(nt)); return
+                    " must list the same number (1 to "//str(max_terms)//") of terms, got "//str(nc)//" and "// &
+                    str(nt)); return
             end if
             self%prony_coef = c(1:nc); self%prony_time_s = t(1:nt)
         end subroutine take_series
@@ -220,7 +298,7 @@ contains
                 call require(error, finite_in(self%prony_coef(k), 0.0_dp, max_modulus, open_low=.true.), path, &
                              'material', trim(cn)//"("//str(k)//")", str(self%prony_coef(k)), "> 0 and finite")
                 call require(error, finite_in(self%prony_time_s(k), 0.0_dp, max_time, open_low=.true.), path, &
-                             'material', tn//"("//str(k)//")", str(self%prony_time_s(k)), "> 0 and <= 1e15 [s]")
+                             'material', tn//"("//str(k)//")", str(self%prony_time_s(k)), time_range)
             end do
         end subroutine check_terms
 
@@ -230,11 +308,12 @@ contains
             character(len=*), intent(out) :: msg
             character(len=max_text + 1) :: model, shift, base
             real(dp) :: young_pa, poisson, einf_pa, ratio, tau_s, e0_pa
-            real(dp) :: creep_c_per_pa(max_list), creep_tau_s(max_list), relax_e_pa(max_list), relax_rho_s(max_list)
+            real(dp) :: creep_c_per_pa(max_terms), creep_tau_s(max_terms), relax_e_pa(max_terms), &
+                        relax_rho_s(max_terms), shift_temperatures_c(max_terms), shift_log10_at(max_terms)
             real(dp) :: temperature_c, reference_temperature_c, wlf_c1, wlf_c2_k, activation_energy_j_mol, thickness_m
             namelist /material/ model, young_pa, poisson, einf_pa, ratio, tau_s, e0_pa, creep_c_per_pa, &
                 creep_tau_s, relax_e_pa, relax_rho_s, shift, temperature_c, reference_temperature_c, wlf_c1, &
-                wlf_c2_k, activation_energy_j_mol, thickness_m, base
+                wlf_c2_k, activation_energy_j_mol, thickness_m, base, shift_temperatures_c, shift_log10_at
             read (lines, nml=material, iostat=stat, iomsg=msg)
         end subroutine try
 

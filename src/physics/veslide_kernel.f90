@@ -102,14 +102,21 @@ contains
     end function sinc
 
     !> Continuous kernel 2(1-nu^2) C(-q.v) S(|q| d)/|q| (S: a layer's factor, 1 for a half-space)
-    !> times the cell factor of the variant
-    pure complex(dp) function term(mat, q, v, a, b, variant) result(t)
+    !> times the cell factor of the variant; `comp`: C(-q.v) when the caller has it
+    pure complex(dp) function term(mat, q, v, a, b, variant, comp) result(t)
         type(material_t), intent(in) :: mat
         real(dp), intent(in) :: q(2), v(2), a, b
         integer, intent(in) :: variant
+        complex(dp), intent(in), optional :: comp
         real(dp) :: s, qn
+        complex(dp) :: c
         qn = norm2(q)
-        t = 2.0_dp*(1.0_dp - mat%poisson**2)*mat%compliance(-dot_product(q, v))*mat%layer(qn)/qn
+        if (present(comp)) then
+            c = comp
+        else
+            c = mat%compliance(-dot_product(q, v))
+        end if
+        t = 2.0_dp*(1.0_dp - mat%poisson**2)*c*mat%layer(qn)/qn
         select case (variant)
         case (KERNEL_COLLOCATION, KERNEL_COLLOCATION_ALIAS)
             s = sinc(0.5_dp*q(1)*a)*sinc(0.5_dp*q(2)*b)
@@ -169,7 +176,12 @@ contains
         integer :: max_, i, j, m, nrep_x, nrep_y, rx, ry, nx, ny, na, nb, ia, ib, ij(2), sh(2)
         real(dp) :: q(2), qr(2)
         complex(dp), allocatable :: s_prev(:, :), r_prev(:, :), s_cur(:, :), r_cur(:, :)
-        logical :: use_x, use_y, aliased
+        ! C(-q.v) depends on q only through q.v: with v along x (or zero) it takes one value per
+        ! column of the spectrum, with v along y one per row, tabulated once for shell 0 (signed
+        ! twice for the Nyquist lines) and the same value bit for bit (q.v = q_x v_x + q_y 0):
+        ! a long Prony series then costs its terms per column, not per mode
+        complex(dp), allocatable :: c_line(:, :)
+        logical :: use_x, use_y, aliased, along_x, along_y
 
         tol_ = 1.0e-6_dp; if (present(alias_tol)) tol_ = alias_tol
         max_ = 64; if (present(alias_max)) max_ = alias_max
@@ -187,6 +199,22 @@ contains
         aliased = variant == KERNEL_COLLOCATION_ALIAS .or. variant == KERNEL_GALERKIN
         sh = grid%spectral_shape(); na = sh(1); nb = sh(2)
         allocate (self%kd(na, nb), s_cur(na, nb), r_cur(na, nb))
+        along_x = velocity_m_s(2) == 0.0_dp; along_y = velocity_m_s(1) == 0.0_dp .and. .not. along_x
+        if (along_x) then
+            allocate (c_line(nx/2 + 1, 2))
+            do i = 1, nx/2 + 1
+                q = grid%wavevector(i, 1)
+                c_line(i, 1) = mat%compliance(-dot_product(q, velocity_m_s))
+                c_line(i, 2) = mat%compliance(-dot_product([-q(1), q(2)], velocity_m_s))
+            end do
+        else if (along_y) then
+            allocate (c_line(ny, 2))
+            do j = 1, ny
+                q = grid%wavevector(1, j)
+                c_line(j, 1) = mat%compliance(-dot_product(q, velocity_m_s))
+                c_line(j, 2) = mat%compliance(-dot_product([q(1), -q(2)], velocity_m_s))
+            end do
+        end if
 
         ! Shell 0, then shells 1..M in doubling stages. On a Nyquist line the two signed
         ! representatives of the mode are averaged (this keeps the operator real, and makes
@@ -242,7 +270,13 @@ contains
                             if (rx == 2) qr(1) = -qr(1)
                             if (ry == 2) qr(2) = -qr(2)
                             do mm = m1, m2
-                                s = s + shell_sum(mat, qr, velocity_m_s, a, b, variant, mm, use_x, use_y)
+                                if (mm == 0 .and. along_x) then
+                                    s = s + term(mat, qr, velocity_m_s, a, b, variant, c_line(i, rx))
+                                else if (mm == 0 .and. along_y) then
+                                    s = s + term(mat, qr, velocity_m_s, a, b, variant, c_line(j, ry))
+                                else
+                                    s = s + shell_sum(mat, qr, velocity_m_s, a, b, variant, mm, use_x, use_y)
+                                end if
                             end do
                         end do
                     end do
