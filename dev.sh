@@ -78,6 +78,10 @@ case "$cmd" in
         ;;
     test)
         exe=$(veslide_exe)
+        # fpm 0.12 does not recompile a test whose library modules changed (gpu/build.sh says
+        # more): test objects older than the newest library source are made anew
+        newest=$(ls -t src/*/*.f90 src/*/*.F90 | head -1)
+        find build -path '*/veslide/test_*.o' ! -newer "$newest" -delete 2>/dev/null || true
         if [ "${1:-}" = python ]; then
             shift
             summary=$(mktemp)
