@@ -642,12 +642,15 @@ contains
         end do
     end subroutine test_repeat
 
-    !> What the device does not run is refused by name with 'gpu', and solved on the CPU by 'auto'
+    !> What the device does not run is refused by name with 'gpu', and solved on the CPU by 'auto';
+    !> a case is refused before it is built in the words of the solve (the solver table's)
     subroutine test_refusals(error)
         type(error_t), allocatable, intent(out) :: error
         type(contact_state_t) :: s
+        type(config_t) :: cfg
+        type(case_t) :: c
         real(dp) :: h(16, 16)
-        character(len=:), allocatable :: msg
+        character(len=:), allocatable :: msg, before, name
         call paper_rough(16, h, error); if (allocated(error)) return
         call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='pk', device='gpu')
         call refusal(error, msg, "pk on the device"); if (allocated(error)) return
@@ -656,6 +659,24 @@ contains
         call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='pk', device='auto')
         if (allocated(error)) return
         call check(error, s%device == 'cpu', "'auto' with pk did not take the CPU")
+        if (allocated(error)) return
+        ! the same refusal before the case is built (a solid at rest: pk takes it on the CPU)
+        call hard_case(1, 16, cfg, name, error); if (allocated(error)) return
+        cfg%solver%method = 'pk'; cfg%solver%device = 'gpu'
+        call run_case(cfg, c, error)
+        call refusal(error, before, "pk on the device, before the case is built"); if (allocated(error)) return
+        call check(error, before(index(before, "&solver method"):) == msg(index(msg, "&solver method"):), &
+                   "refused otherwise before the case is built: '"//before//"' and at the solve: '"//msg//"'")
+        if (allocated(error)) return
+        ! Anderson memory beyond the device passes', before the case is built and at the solve
+        cfg%solver%method = 'dr'; cfg%solver%anderson_memory = 9
+        call run_case(cfg, c, error)
+        call refusal(error, before, "anderson_memory = 9 on the device"); if (allocated(error)) return
+        call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='dr', device='gpu', anderson_memory=9)
+        call refusal(error, msg, "anderson_memory = 9 on the device, at the solve"); if (allocated(error)) return
+        call check(error, index(msg, "&solver anderson_memory = 9") > 0 .and. before(index(before, "&solver"):) == &
+                   msg(index(msg, "&solver"):), "refused otherwise before the case is built: '"//before// &
+                   "' and at the solve: '"//msg//"'")
     end subroutine test_refusals
 
     !> The device memory a solve holds is counted, and all of it is given back
