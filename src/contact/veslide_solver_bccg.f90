@@ -160,7 +160,7 @@ contains
         type(progress_ticker_t), intent(inout), optional :: ticker
         integer, parameter :: max_direct = 8     ! clipped points transformed directly, not by FFT
         real(dp) :: n, n2, a, a_new, gprev, s1, gmin, spg, sp, c1, gbar, rz, rz_old, beta, rv, rvo, vkv, alpha
-        real(dp) :: sr, mv, mz, t3(3), t4(4)
+        real(dp) :: sr, mv, mz, t3(3), t4(4), m3(3)
         real(dp), allocatable :: rows(:, :), rows4(:, :), cols(:), clip_rows(:), pts(:, :)
         integer :: nb, ny, nclip
         integer(i8) :: nact, cnt(1)
@@ -201,8 +201,10 @@ contains
             c1 = s1/real(max(nact, 1_i8), dp)
             gbar = gprev + c1
             self%approach = -gbar
-            self%penetration = max(0.0_dp, -(gmin - c1))
-            self%complementarity = abs(a*(spg - c1*sp))/(a*sp)
+            ! the law's measures in the units of the solve (h_s = p_mean = 1; p >= 0 is kept)
+            m3 = hard_wall%measures(gmin - c1, a*(spg - c1*sp), a*sp, 0.0_dp, 1.0_dp, 1.0_dp)
+            self%penetration = m3(1)
+            self%complementarity = m3(2)
             self%load_error = abs(a*sp/n - 1.0_dp)
             self%residual = max(self%penetration, self%complementarity, self%load_error)
             gprev = gbar
