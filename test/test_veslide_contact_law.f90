@@ -3,7 +3,8 @@
 module test_veslide_contact_law
     use veslide_kinds, only: dp
     use veslide_contact_law, only: contact_law_t, law_id, law_names, law_count, LAW_HARD_WALL, hard_wall_project, &
-                                   hard_wall_in_contact, hard_wall_below, hard_wall_penetrates
+                                   hard_wall_in_contact, hard_wall_in_contact_shifted, hard_wall_below, &
+                                   hard_wall_penetrates
     use testsuite, only: error_t, unittest_t, new_unittest, check
     implicit none
     private
@@ -41,6 +42,10 @@ contains
         call check(error, all(hard_wall_below(v) .eqv. [.true., .true., .false., .false., .false.]), "below")
         if (allocated(error)) return
         call check(error, all(hard_wall_penetrates(v) .eqv. [.true., .true., .false., .false., .false.]), "penetrates")
+        if (allocated(error)) return
+        ! contact after a shift c: where project(v - c) > 0, decided without forming v - c
+        call check(error, all(hard_wall_in_contact_shifted(v, 1.0_dp) .eqv. hard_wall_in_contact(hard_wall_project(v - 1.0_dp))) &
+                   .and. all(hard_wall_in_contact_shifted(v, -huge(1.0_dp)) .eqv. v > -huge(1.0_dp)), "in contact shifted")
     end subroutine test_maps
 
     subroutine test_fields(error)

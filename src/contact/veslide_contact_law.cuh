@@ -17,6 +17,8 @@ struct hard_wall {
     VS_HD double project(double v) const { return fmax(v, 0.0); }
     // what counts as contact
     VS_HD bool in_contact(double p) const { return p > 0.0; }
+    // does the projection of v - c put the cell in contact (decided without forming v - c)?
+    VS_HD bool in_contact_shifted(double v, double c) const { return v > c; }
     // a pressure past the bound p >= 0 (an active-set solver clips it)
     VS_HD bool below(double p) const { return p < 0.0; }
     // a gap past the bound g >= 0 (an active-set solver admits the cell)

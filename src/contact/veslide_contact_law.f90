@@ -7,7 +7,7 @@
 !>  - its per-cell maps (`veslide_contact_law_maps.inc`, included here and in the pass modules
 !>    so that they are inlined; their CUDA twins in `veslide_contact_law.cuh`):
 !>      project(v)     the proximal map the splitting solvers apply to a pressure-like value;
-!>      in_contact(p)  what counts as contact;
+!>      in_contact(p)  what counts as contact (in_contact_shifted(v, c): that of project(v - c));
 !>      below(p)       a pressure past the law's bound, which an active-set solver clips;
 !>      penetrates(g)  a gap past the law's bound, which an active-set solver admits to its set;
 !>  - its contribution to the residual (`measures`: penetration, complementarity, negative
@@ -31,7 +31,8 @@ module veslide_contact_law
     implicit none
     private
     public :: contact_law_t, law_id, law_names, law_count, law_max_params, LAW_HARD_WALL
-    public :: hard_wall_project, hard_wall_in_contact, hard_wall_below, hard_wall_penetrates
+    public :: hard_wall_project, hard_wall_in_contact, hard_wall_in_contact_shifted, hard_wall_below, &
+              hard_wall_penetrates
 
     integer, parameter :: LAW_HARD_WALL = 1
     !> The laws there are (LAW_* ids 1..law_count)

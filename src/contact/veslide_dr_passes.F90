@@ -187,17 +187,16 @@ contains
         real(dp), intent(in) :: x(:, :), z(:, :)
         real(dp), intent(in) :: c
         real(dp), intent(out) :: rows(:, :), vmax
-        real(dp) :: v, y, t(2)
+        real(dp) :: v, t(2)
         integer :: i, j
         vmax = -huge(1.0_dp)
-        !$omp parallel do schedule(guided) private(i, v, y, t) reduction(max:vmax)
+        !$omp parallel do schedule(guided) private(i, v, t) reduction(max:vmax)
         do j = 1, size(x, 2)
             t = 0.0_dp
             do i = 1, size(x, 1)
                 v = 2.0_dp*x(i, j) - z(i, j)
-                y = hard_wall_project(v - c)
-                if (hard_wall_in_contact(y)) then
-                    t(1) = t(1) + y; t(2) = t(2) + 1.0_dp
+                if (hard_wall_in_contact_shifted(v, c)) then
+                    t(1) = t(1) + hard_wall_project(v - c); t(2) = t(2) + 1.0_dp
                 end if
                 vmax = max(vmax, v)
             end do

@@ -47,7 +47,7 @@ struct elementwise_f {
     }
 };
 
-// v = 2x - z, y = prox(v - c); sums: [y over its contact cells, their count]; minima: [-v]
+// v = 2x - z; sums: [prox(v - c) over the cells it puts in contact, their count]; minima: [-v]
 template <class Law>
 struct load_sums_f {
     Law law;
@@ -57,9 +57,8 @@ struct load_sums_f {
     VS_HD void operator()(int i, int j, double *s, double *m) const {
         long n = i + (long)nx * j;
         double v = 2.0 * x[n] - z[n];
-        double y = law.project(v - c);
-        if (law.in_contact(y)) {
-            s[0] += y;
+        if (law.in_contact_shifted(v, c)) {
+            s[0] += law.project(v - c);
             s[1] += 1.0;
         }
         m[0] = fmin(m[0], -v);
