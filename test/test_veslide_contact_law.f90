@@ -44,8 +44,9 @@ contains
         call check(error, all(hard_wall_penetrates(v) .eqv. [.true., .true., .false., .false., .false.]), "penetrates")
         if (allocated(error)) return
         ! contact after a shift c: where project(v - c) > 0, decided without forming v - c
-        call check(error, all(hard_wall_in_contact_shifted(v, 1.0_dp) .eqv. hard_wall_in_contact(hard_wall_project(v - 1.0_dp))) &
-                   .and. all(hard_wall_in_contact_shifted(v, -huge(1.0_dp)) .eqv. v > -huge(1.0_dp)), "in contact shifted")
+        call check(error, all(hard_wall_in_contact_shifted(v, 1.0_dp) .eqv. &
+                              hard_wall_in_contact(hard_wall_project(v - 1.0_dp))) .and. &
+                   all(hard_wall_in_contact_shifted(v, -huge(1.0_dp)) .eqv. v > -huge(1.0_dp)), "in contact shifted")
     end subroutine test_maps
 
     subroutine test_fields(error)

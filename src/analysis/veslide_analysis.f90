@@ -33,9 +33,9 @@ contains
     end function contact_area_fraction
 
     !> Contact area fraction with the edge located within a cell. The contact boundary crosses every
-    !> grid segment between a contact cell (the law's: p > 0 for the hard wall) and a free one; the crossing is located from the
-    !> local form of a smooth contact edge, p^2 ~ d (1 + c d) inside and g^(2/3) ~ s (1 + c s)
-    !> outside (elastic and, at the scale of a cell, viscoelastic edges alike): the mean of the zero
+    !> grid segment between a contact cell (the law's: p > 0 for the hard wall) and a free one;
+    !> the crossing is located from the local form of a smooth contact edge, p^2 ~ d (1 + c d)
+    !> inside and g^(2/3) ~ s (1 + c s) outside (elastic and, at the scale of a cell, viscoelastic edges alike): the mean of the zero
     !> of the parabola through three values of g^(2/3) along the segment's line outside and of the
     !> one through p^2 inside, each falling back to the line through two values, or the segment's
     !> midpoint where neither side has two values; kept between half a cell inside the last

@@ -182,9 +182,9 @@ contains
 
         !> z <- z + c with the c that makes y = prox(2x - z) carry the load: with v = 2x - z,
         !> phi(c) = sum(prox(v - c)) - N = 0 (N cells). For the hard wall phi is convex, piecewise
-        !> linear and decreasing with slope -count(v > c) (the cells prox puts in contact): Newton's method from a c with phi >= 0 stays
-        !> below the root and is exact once that count stops changing (from phi < 0 its first
-        !> step lands below the root). Starts at c = 0, or without contact there (count 0) at
+        !> linear and decreasing with slope -count(v > c) (the cells prox puts in contact):
+        !> Newton's method from a c with phi >= 0 stays below the root and is exact once that
+        !> count stops changing (from phi < 0 its first step lands below the root). Starts at c = 0, or without contact there (count 0) at
         !> c = max v - N, where phi >= 0.
         subroutine carry_load()
             integer, parameter :: max_steps = 100
