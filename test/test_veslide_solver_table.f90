@@ -136,6 +136,15 @@ contains
                    len(method_refusal(SOLVER_DR, .false., LAW_HARD_WALL)) == 0 .and. &
                    len(method_refusal(SOLVER_AUTO, .false., LAW_HARD_WALL)) == 0, "a refusal where none is due")
         if (allocated(error)) return
+        ! a law no method takes: every method refused by the law's name, 'auto' too
+        m = method_refusal(SOLVER_DR, .false., law_count + 1)
+        call check(error, index(m, "does not take the contact law of id") > 0 .and. index(m, ": none") > 0, &
+                   "a law no method takes: "//m)
+        if (allocated(error)) return
+        m = method_refusal(SOLVER_AUTO, .true., law_count + 1)
+        call check(error, index(m, "&solver method = 'auto' finds no method that takes the contact law") == 1, &
+                   "'auto' for a law no method takes: "//m)
+        if (allocated(error)) return
         call check(error, operator_symmetric(.true., [0.1_dp]) .and. operator_symmetric(.false., [0.0_dp, 0.0_dp]) &
                    .and. .not. operator_symmetric(.false., [0.0_dp, 0.1_dp]), "the symmetric operator")
     end subroutine test_message

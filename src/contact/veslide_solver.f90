@@ -28,7 +28,6 @@ module veslide_solver
                                     memory_refusal, runs_on_device
     use veslide_anderson_passes, only: device_max_memory
     use veslide_device, only: device_enabled, device_count, device_emulated, device_check
-    use veslide_strings, only: str
     use veslide_contact_law, only: LAW_HARD_WALL
     use veslide_solver_pk, only: polonsky_keer
     use veslide_solver_dr, only: douglas_rachford

@@ -119,8 +119,9 @@ contains
         integer :: k
         message = ''
         if (method == SOLVER_AUTO) then
+            ! (dr takes any operator: what no method takes is the law)
             if (.not. method_takes(SOLVER_AUTO, symmetric, law)) message = "&solver method = 'auto' finds no"// &
-                " method that takes this case: every one "//refusal_reason(SOLVER_DR, .true., law)
+                " method that takes the contact law "//law_text(law)
             return
         end if
         why = refusal_reason(method, symmetric, law)
@@ -183,14 +184,25 @@ contains
         row = solver_info(method)
         why = ''
         if (law < 1 .or. law > law_count) then
-            why = "takes no contact law of id "//str(law)
+            why = "does not take the contact law "//law_text(law)
         else if (.not. row%laws(law)) then
-            why = "does not take the contact law '"//trim(law_names(law))//"'"
+            why = "does not take the contact law "//law_text(law)
         else if (row%symmetric_only .and. .not. symmetric) then
             why = "needs a symmetric operator (an elastic solid, or one at rest): the operator of a viscoelastic"// &
                   " solid in motion (&motion speed_m_s or &sweep speeds above 0) is not symmetric"
         end if
     end function refusal_reason
+
+    !> The contact law of id `law` by name ("'hard_wall'"), or by its id when it has none
+    pure function law_text(law) result(text)
+        integer, intent(in) :: law
+        character(len=:), allocatable :: text
+        if (law >= 1 .and. law <= law_count) then
+            text = "'"//trim(law_names(law))//"'"
+        else
+            text = "of id "//str(law)
+        end if
+    end function law_text
 
     !> "'auto', 'pdr' and 'dr'": the methods marked in `takes` (in the order of solver_methods),
     !> with 'auto' first when any is
