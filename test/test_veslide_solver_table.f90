@@ -38,6 +38,7 @@ contains
             new_unittest("refusal-names-method-reason-and-alternatives", test_message), &
             new_unittest("input-and-solve-refuse-alike-in-motion", test_motion), &
             new_unittest("input-and-study-refuse-alike-for-sweep-speeds", test_sweep), &
+            new_unittest("a-grid-the-motion-does-not-reach-is-symmetric", test_grid), &
             new_unittest("accepted-where-the-solve-takes-it", test_accepted), &
             new_unittest("device-refusals-from-the-table", test_device) &
             ]
@@ -168,6 +169,25 @@ contains
         type(error_t), allocatable, intent(out) :: error
         call same_refusal('sweep', scene//" &sweep speeds_m_s = 0.0, 0.1 / &solver method = 'bccg' /", .true., error)
     end subroutine test_sweep
+
+    !> On a grid of 2 cells along x sliding along x every mode is the mean or a Nyquist line along
+    !> the motion, which the kernel keeps real: the input takes bccg there, and so does the solve;
+    !> at an angle the motion reaches the rows' modes, and both refuse it alike
+    subroutine test_grid(error)
+        type(error_t), allocatable, intent(out) :: error
+        character(len=*), parameter :: two = "&grid nx = 2, ny = 16, lx_m = 0.01, ly_m = 0.01 / &surface kind = 'flat' /"// &
+            " &material model = 'one_term', einf_pa = 1.0e8, ratio = 11.0, tau_s = 0.01, poisson = 0.5 /"
+        type(config_t) :: cfg
+        type(case_t) :: c
+        call read_text('grid', two//" &motion speed_m_s = 0.1 / &solver method = 'bccg' /", cfg, error)
+        if (allocated(error)) return
+        call run_case(cfg, c, error); if (allocated(error)) return
+        call check(error, c%kernel%symmetric .and. c%state%method == 'bccg' .and. c%state%converged, &
+                   "a moving viscoelastic solid on 2 x 16 cells sliding along x: not solved by bccg")
+        if (allocated(error)) return
+        call same_refusal('grid-angle', two//" &motion speed_m_s = 0.1, direction_deg = 30.0 / &solver method = 'bccg' /", &
+                          .false., error)
+    end subroutine test_grid
 
     !> What the solve takes, the input takes: a solid at rest (also swept at speed 0 only) for
     !> bccg and pk, an elastic one in motion, the splittings and 'auto' in motion

@@ -13,8 +13,13 @@
 !>
 !> The operator is symmetric for an elastic solid or a solid at rest (`operator_symmetric`); a
 !> viscoelastic solid in motion gives a non-symmetric one, which Polonsky-Keer and BCCG (conjugate
-!> gradients) cannot take. Bytes per cell are a solver's own arrays beyond the solve's (heights,
-!> kernel, FFT buffers, p, u, g: veslide_memory), measured peaks in docs/solver-scaling.md:
+!> gradients) cannot take, on every grid with a mode the motion reaches (`motion_on_grid`): on a
+!> grid of at most 2 cells along x, and along y too unless the motion is exactly along x, every
+!> mode is the mean or a Nyquist line along the motion, which the kernel keeps real, and its
+!> operator is symmetric after all. The input refuses by these two; the solve reads the kernel's
+!> own symmetry (`kernel_t%symmetric`), the same verdict. Bytes per cell are a solver's own arrays
+!> beyond the solve's (heights, kernel, FFT buffers, p, u, g: veslide_memory), measured peaks in
+!> docs/solver-scaling.md:
 !> pk 16 (the direction t and one influence column); bccg 36 (direction, operator, the transforms
 !> of heights and pressure, the contact set); dr 40 + 8 m (z, the previous z and f, the transform
 !> of h, the resolvent, Anderson's single-precision history of memory m, 5 by default); pdr 41
@@ -25,15 +30,15 @@
 !> takes a memory of at most `device_max_memory`.
 !> A new solver is a row here; a new contact law a column of `laws` (veslide_contact_law).
 module veslide_solver_table
-    use veslide_kinds, only: dp
+    use veslide_kinds, only: dp, radians
     use veslide_strings, only: str
     use veslide_contact_law, only: law_count, law_names, LAW_HARD_WALL
     use veslide_solver_options, only: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, solver_method_names
     use veslide_anderson_passes, only: device_max_memory
     implicit none
     private
-    public :: solver_info_t, solver_info, solver_methods, operator_symmetric, method_takes, method_refusal, &
-              device_refusal, memory_refusal, solver_bytes_per_cell, runs_on_device
+    public :: solver_info_t, solver_info, solver_methods, operator_symmetric, motion_on_grid, method_takes, &
+              method_refusal, device_refusal, memory_refusal, solver_bytes_per_cell, runs_on_device
 
     !> What one method can take, and what it costs
     type :: solver_info_t
@@ -84,6 +89,20 @@ contains
         real(dp), intent(in) :: speeds(:)
         yes = elastic .or. all(speeds == 0.0_dp)
     end function operator_symmetric
+
+    !> Does the motion at `speeds` [m/s] along `direction_deg` [degree] reach a mode of an nx x ny
+    !> grid that makes a viscoelastic solid's discrete operator non-symmetric: a mode off the mean
+    !> and the Nyquist lines along a component of the velocity that is not zero (nx >= 3 with a
+    !> velocity along x, or ny >= 3 with one along y; the velocity as the kernel takes it,
+    !> speed [cos, sin] of the direction in radians)? On the other grids the kernel's Nyquist
+    !> averaging leaves every mode real.
+    pure logical function motion_on_grid(nx, ny, speeds, direction_deg) result(yes)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: speeds(:), direction_deg
+        real(dp) :: th
+        th = radians(direction_deg)
+        yes = (nx >= 3 .and. any(speeds*cos(th) /= 0.0_dp)) .or. (ny >= 3 .and. any(speeds*sin(th) /= 0.0_dp))
+    end function motion_on_grid
 
     !> Does `method` take a case whose operator is `symmetric` or not, with the contact law `law`
     !> (LAW_* id)? 'auto' takes what any method takes

@@ -31,8 +31,8 @@ module veslide_memory
     use veslide_kernel, only: KERNEL_SPECTRAL
     use veslide_solver, only: planned_methods, auto_takes_device, check_device_choice
     use veslide_solver_options, only: DEVICE_GPU, DEVICE_AUTO
-    use veslide_solver_table, only: solver_bytes_per_cell, operator_symmetric, runs_on_device, device_refusal, &
-                                    memory_refusal
+    use veslide_solver_table, only: solver_bytes_per_cell, operator_symmetric, motion_on_grid, runs_on_device, &
+                                    device_refusal, memory_refusal
     use veslide_device, only: device_info_t, device_info, device_memory
     use veslide_system, only: available_memory_bytes
     implicit none
@@ -120,14 +120,23 @@ contains
     end function solver_bytes
 
     !> Is the operator of the case `spec` (a study of its `speeds`) symmetric: an elastic solid, or
-    !> one at rest at every speed (veslide_solver_table)
-    pure logical function case_symmetric(spec, speeds) result(yes)
+    !> one at rest at every speed (veslide_solver_table). With `on_grid`, also on a grid no mode of
+    !> which the motion reaches (`motion_on_grid`: the refusals' rule, the input's and the
+    !> solve's); without, the solid's alone: the estimate sizes those few grids (at most 2 cells
+    !> along the motion) for the methods of a non-symmetric operator, more than 'auto' takes there
+    pure logical function case_symmetric(spec, speeds, on_grid) result(yes)
         type(case_spec_t), intent(in) :: spec
         real(dp), intent(in), optional :: speeds(:)
+        logical, intent(in), optional :: on_grid
+        real(dp), allocatable :: v(:)
         if (present(speeds)) then
-            yes = operator_symmetric(spec%material%model == 'elastic', speeds)
+            v = speeds
         else
-            yes = operator_symmetric(spec%material%model == 'elastic', [spec%speed_m_s])
+            v = [spec%speed_m_s]
+        end if
+        yes = operator_symmetric(spec%material%model == 'elastic', v)
+        if (present(on_grid)) then
+            if (on_grid) yes = yes .or. .not. motion_on_grid(spec%nx, spec%ny, v, spec%direction_deg)
         end if
     end function case_symmetric
 
@@ -219,7 +228,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         real(dp), intent(in), optional :: speeds(:)
         character(len=:), allocatable :: why
-        why = device_refusal(spec%solver%method, case_symmetric(spec, speeds), spec%law%kind)
+        why = device_refusal(spec%solver%method, case_symmetric(spec, speeds, on_grid=.true.), spec%law%kind)
         if (len(why) == 0) why = memory_refusal(spec%solver%method, spec%solver%anderson_memory)
         if (len(why) > 0) call fatal_error(error, "veslide:solver: "//why)
     end subroutine check_method_on_device

@@ -25,7 +25,7 @@ module veslide_config
     use veslide_validity, only: edge_jumps, edge_jump_limit
     use veslide_contact_law, only: contact_law_t
     use veslide_solver_options, only: solver_method_id
-    use veslide_solver_table, only: operator_symmetric, method_refusal
+    use veslide_solver_table, only: operator_symmetric, motion_on_grid, method_refusal
     implicit none
     private
     public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config, case_law, &
@@ -201,17 +201,19 @@ contains
     end subroutine complete_config
 
     !> &solver method against what every case of the input asks of it (its operator, symmetric or
-    !> not at each of its speeds; its contact law): the solver table's refusal (veslide_solver_table),
-    !> in the words the solve would use. Where the device runs the method is checked before a case is
-    !> built (veslide_memory), after the command line's --device.
+    !> not at each of its speeds on its grid; its contact law): the solver table's refusal
+    !> (veslide_solver_table), in the words the solve would use. Where the device runs the method
+    !> is checked before a case is built (veslide_memory), after the command line's --device.
     subroutine check_method(cfg, error)
         type(config_t), intent(in) :: cfg
         type(error_t), allocatable, intent(out) :: error
         type(contact_law_t) :: law
         character(len=:), allocatable :: why
+        logical :: symmetric
         law = case_law(cfg)
-        why = method_refusal(solver_method_id(cfg%solver%method), &
-                             operator_symmetric(cfg%material%model == 'elastic', case_speeds(cfg)), law%kind)
+        symmetric = operator_symmetric(cfg%material%model == 'elastic', case_speeds(cfg)) .or. &
+                    .not. motion_on_grid(cfg%grid%nx, cfg%grid%ny, case_speeds(cfg), cfg%motion%direction_deg)
+        why = method_refusal(solver_method_id(cfg%solver%method), symmetric, law%kind)
         if (len(why) > 0) call fatal_error(error, "veslide: "//cfg%path//": "//why)
     end subroutine check_method
 
