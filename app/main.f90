@@ -20,7 +20,8 @@ program veslide_main
     use veslide_version, only: version_string
     use veslide_strings, only: str
     use veslide_system, only: ignore_file_size_signal, exit_now, prefer_passive_wait
-    use veslide_solver_options, only: device_choice_id
+    use veslide_solver_options, only: device_choice_id, solver_method_id
+    use veslide_solver_table, only: runs_on_device
     use veslide_solver, only: gpu_visible
     use veslide_device, only: device_enabled, device_info_t, device_info, device_memory
     implicit none
@@ -210,7 +211,7 @@ contains
             if (.not. allocated(error)) call device_memory(free_b, total_b, error)
             if (.not. allocated(error) .and. free_b >= 0) write (stdout, '(a)') "free on the "//info%name// &
                 " here and now: "//format_gib(int(free_b, i8))//" of "//format_gib(int(total_b, i8))
-        else if (cfg%solver%method /= 'pk' .and. processes == 1) then
+        else if (runs_on_device(solver_method_id(cfg%solver%method)) .and. processes == 1) then
             if (cfg%sweep%is_study()) then
                 on_device = device_estimate_bytes(spec, speeds=plan%speeds)
             else

@@ -78,7 +78,8 @@ objects=()
 changed=0
 for s in "${sources[@]}"; do
     o="$obj/$(basename "${s%.cu}").o"
-    if [ ! -e "$o" ] || [ "$s" -nt "$o" ] || [ src/core/veslide_device.cuh -nt "$o" ]; then
+    if [ ! -e "$o" ] || [ "$s" -nt "$o" ] || [ src/core/veslide_device.cuh -nt "$o" ] ||
+       [ src/contact/veslide_contact_law.cuh -nt "$o" ]; then
         echo "veslide gpu build: compiling $s ($mode)" >&2
         compile "$s" "$o"
         changed=1

@@ -12,6 +12,8 @@ program veslide_tests
     use test_veslide_kernel, only: collect_kernel
     use test_veslide_surface, only: collect_surface
     use test_veslide_contact, only: collect_contact, collect_quantities, collect_analysis
+    use test_veslide_contact_law, only: collect_contact_law
+    use test_veslide_solver_table, only: collect_solver_table
     use test_veslide_anderson, only: collect_anderson
     use test_veslide_solver_pk, only: collect_solver_pk
     use test_veslide_solver_dr, only: collect_solver_dr
@@ -46,11 +48,13 @@ program veslide_tests
         new_testsuite("kernel", collect_kernel), &
         new_testsuite("surface", collect_surface), &
         new_testsuite("contact", collect_contact), &
+        new_testsuite("contact-law", collect_contact_law), &
         new_testsuite("anderson", collect_anderson), &
         new_testsuite("solver-pk", collect_solver_pk), &
         new_testsuite("solver-dr", collect_solver_dr), &
         new_testsuite("solver-bccg", collect_solver_bccg), &
         new_testsuite("solver-pdr", collect_solver_pdr), &
+        new_testsuite("solver-table", collect_solver_table), &
         new_testsuite("analysis", collect_analysis), &
         new_testsuite("anisotropy", collect_anisotropy), &
         new_testsuite("persson", collect_persson), &

@@ -26,7 +26,7 @@ contains
 
     !> Solve h on an (lx, ly) cell against material `mat` (default: elastic with E* = estar, nu = 0)
     subroutine solve_case(h, lx, ly, p_mean, state, error, estar, mat, velocity, variant, tol, method, p_init, kernel, &
-                          device)
+                          device, anderson_memory)
         real(dp), intent(in) :: h(:, :), lx, ly, p_mean
         type(contact_state_t), intent(out) :: state
         type(error_t), allocatable, intent(out) :: error
@@ -37,6 +37,8 @@ contains
         type(kernel_t), intent(out), optional :: kernel
         !> where to solve: 'auto' (default), 'cpu' or 'gpu'
         character(len=*), intent(in), optional :: device
+        !> the options' Anderson memory (default: each method's own)
+        integer, intent(in), optional :: anderson_memory
         type(material_t) :: m
         type(kernel_t) :: k
         type(fft2d_t) :: fft
@@ -55,6 +57,7 @@ contains
         opts%tolerance = 1.0e-12_dp; if (present(tol)) opts%tolerance = tol
         if (present(method)) opts%method = solver_method_id(method)
         if (present(device)) opts%device = device_choice_id(device)
+        if (present(anderson_memory)) opts%anderson_memory = anderson_memory
         call solve_contact(problem, fft, opts, state, error, p_init=p_init)
         if (allocated(error)) return
         if (.not. state%converged) call fatal_error(error, "solver did not converge")

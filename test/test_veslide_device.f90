@@ -17,10 +17,11 @@ module test_veslide_device
     use veslide_arrays, only: rarray_t, carray_t, iarray_t, sarray_t
     use veslide_transform, only: transform_t
     use veslide_passes, only: fill, scale, divide, subtract, scaled_copy, divided_copy, centre_scale, centre_divide, &
-                              clip_and_sum, row_sums, count_below, complex_scale, complex_add, complex_divide, &
+                              row_sums, count_below, complex_scale, complex_add, complex_divide, &
                               multiply_spectrum
     use veslide_kernel_passes, only: resolvent_multiplier, resolvent_apply
-    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
+    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures, project_and_sum
+    use veslide_contact_law, only: contact_law_t
     use veslide_bccg_passes, only: metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
                                    update_transform, step_transform, gap_multiply, add_points, clipped_points
     use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
@@ -223,6 +224,7 @@ contains
 
     subroutine test_passes_shared(error)
         type(error_t), allocatable, intent(out) :: error
+        type(contact_law_t) :: law          ! (the hard wall)
         real(dp), allocatable, target :: a(:, :), b(:, :)
         complex(dp), allocatable, target :: c(:, :), d(:, :)
         type(rarray_t) :: ah, ad, bh, bd
@@ -242,8 +244,8 @@ contains
         call same_real(error, ah, ad, "centre_scale")
         call centre_divide(ah, bh, 0.1_dp, 3.0_dp); call centre_divide(ad, bd, 0.1_dp, 3.0_dp)
         call same_real(error, ah, ad, "centre_divide")
-        call clip_and_sum(ah, rh); call clip_and_sum(ad, rdv)
-        call same_real(error, ah, ad, "clip"); call same_values(error, rdv, rh, "clip_and_sum")
+        call project_and_sum(law, ah, rh); call project_and_sum(law, ad, rdv)
+        call same_real(error, ah, ad, "project"); call same_values(error, rdv, rh, "project_and_sum")
         call row_sums(bh, rh); call row_sums(bd, rdv); call same_values(error, rdv, rh, "row_sums")
         n1 = count_below(bh, 0.1_dp); n2 = count_below(bd, 0.1_dp)
         if (.not. allocated(error)) call check(error, n1 == n2 .and. n1 > 0, "count_below")
@@ -260,6 +262,7 @@ contains
 
     subroutine test_passes_contact(error)
         type(error_t), allocatable, intent(out) :: error
+        type(contact_law_t) :: law          ! (the hard wall)
         real(dp), allocatable, target :: u(:, :), h(:, :), p(:, :), g(:, :)
         complex(dp), allocatable, target :: kd(:, :), m(:, :), k(:, :), rk(:, :)
         type(rarray_t) :: uh, ud, hh, hd, ph, pd, gh, gd
@@ -268,12 +271,12 @@ contains
         integer(i8) :: nc(2)
         call twin_real(nx, ny, u, uh, ud); call twin_real(nx, ny, h, hh, hd)
         call twin_real(nx, ny, p, ph, pd); call twin_real(nx, ny, g, gh, gd)
-        call gap_and_contact_sums(uh, hh, 0.1_dp, ph, gh, rh, nc(1), gmax(1))
-        call gap_and_contact_sums(ud, hd, 0.1_dp, pd, gd, rdv, nc(2), gmax(2))
+        call gap_and_contact_sums(law, uh, hh, 0.1_dp, ph, gh, rh, nc(1), gmax(1))
+        call gap_and_contact_sums(law, ud, hd, 0.1_dp, pd, gd, rdv, nc(2), gmax(2))
         call same_real(error, gh, gd, "gap"); call same_values(error, rdv, rh, "contact sums")
         if (.not. allocated(error)) call check(error, nc(1) == nc(2) .and. gmax(1) == gmax(2), "contact count, max g")
-        call gap_measures(ph, gh, 0.05_dp, r3h, mins(1), mins(2))
-        call gap_measures(pd, gd, 0.05_dp, r3d, mins(3), mins(4))
+        call gap_measures(law, ph, gh, 0.05_dp, r3h, mins(1), mins(2))
+        call gap_measures(law, pd, gd, 0.05_dp, r3d, mins(3), mins(4))
         call same_real(error, gh, gd, "gap + d"); call same_values(error, reshape(r3d, [3*ny]), reshape(r3h, [3*ny]), &
                                                                    "gap measures")
         if (.not. allocated(error)) call check(error, all(mins(1:2) == mins(3:4)), "min g, min p")
@@ -412,6 +415,7 @@ contains
 
     subroutine test_passes_dr(error)
         type(error_t), allocatable, intent(out) :: error
+        type(contact_law_t) :: law          ! (the hard wall)
         integer, parameter :: m = 3
         real(dp), allocatable, target :: x(:, :), z(:, :), zp(:, :), fp(:, :), p(:, :), g(:, :)
         type(rarray_t) :: xh, xd, zh, zd, zph, zpd, fph, fpd, ph, pd, gh, gd
@@ -430,32 +434,34 @@ contains
         call upload_single(dfd, hist); call upload_single(gmd, hist)
         ! Anderson's passes, the residual reflected from x (dr) and given (pdr's mixing: g as f)
         do mk = 0, m
-            call anderson_columns(xh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, .true., rows_h, rp(1), rg(1))
-            call anderson_columns(xd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, .true., rows_d, rp(2), rg(2))
+            call anderson_columns(xh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, rows_h, rp(1), rg(1), law)
+            call anderson_columns(xd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, rows_d, rp(2), rg(2), law)
             call same_values(error, reshape(rows_d(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), &
                              reshape(rows_h(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), "Anderson columns, reflected")
             if (.not. allocated(error)) call check(error, rp(1) == rp(2) .and. rg(1) == rg(2), "dr map rp, rg")
             call same_history(dfh, dfd, "dF"); call same_history(gmh, gmd, "G")
-            call anderson_columns(gh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, .false., rows_h, rp(1), rg(1))
-            call anderson_columns(gd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, .false., rows_d, rp(2), rg(2))
+            call anderson_columns(gh, zh, dfh, gmh, zph, fph, max(mk, 1), mk, rows_h, rp(1), rg(1))
+            call anderson_columns(gd, zd, dfd, gmd, zpd, fpd, max(mk, 1), mk, rows_d, rp(2), rg(2))
             call same_values(error, reshape(rows_d(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), &
                              reshape(rows_h(1:1 + 2*mk, :), [(1 + 2*mk)*ny]), "Anderson columns, given")
             call same_history(dfh, dfd, "dF"); call same_history(gmh, gmd, "G")
         end do
         coef = [0.3_dp, -0.2_dp, 0.1_dp]
-        call anderson_update(xh, zh, gmh, zph, fph, coef, m, .true.)
-        call anderson_update(xd, zd, gmd, zpd, fpd, coef, m, .true.)
+        call anderson_update(xh, zh, gmh, zph, fph, coef, m, law)
+        call anderson_update(xd, zd, gmd, zpd, fpd, coef, m, law)
         call same_real(error, zh, zd, "Anderson update z"); call same_real(error, fph, fpd, "Anderson update f")
         call same_real(error, xh, xd, "Anderson update x")
-        call anderson_update(gh, zh, gmh, zph, fph, coef, m, .false.)
-        call anderson_update(gd, zd, gmd, zpd, fpd, coef, m, .false.)
+        call anderson_update(gh, zh, gmh, zph, fph, coef, m)
+        call anderson_update(gd, zd, gmd, zpd, fpd, coef, m)
         call same_real(error, zh, zd, "Anderson update z, given f")
-        call dr_rebalance(xh, zh, 3.0_dp); call dr_rebalance(xd, zd, 3.0_dp); call same_real(error, zh, zd, "rebalance")
-        call dr_project(ph, xh, zh, 2.0_dp); call dr_project(pd, xd, zd, 2.0_dp); call same_real(error, ph, pd, "project")
+        call dr_rebalance(law, xh, zh, 3.0_dp); call dr_rebalance(law, xd, zd, 3.0_dp)
+        call same_real(error, zh, zd, "rebalance")
+        call dr_project(law, ph, xh, zh, 2.0_dp); call dr_project(law, pd, xd, zd, 2.0_dp)
+        call same_real(error, ph, pd, "project")
         call dr_restore(xh, zh, zph, fph); call dr_restore(xd, zd, zpd, fpd); call same_real(error, xh, xd, "restore")
         call dr_add_gap(zh, gh, 0.7_dp, 3.0_dp); call dr_add_gap(zd, gd, 0.7_dp, 3.0_dp)
         call same_real(error, zh, zd, "add_gap")
-        call dr_load_sums(xh, zh, 0.2_dp, load_h, vmax(1)); call dr_load_sums(xd, zd, 0.2_dp, load_d, vmax(2))
+        call dr_load_sums(law, xh, zh, 0.2_dp, load_h, vmax(1)); call dr_load_sums(law, xd, zd, 0.2_dp, load_d, vmax(2))
         call same_values(error, reshape(load_d, [2*ny]), reshape(load_h, [2*ny]), "load_sums")
         if (.not. allocated(error)) call check(error, vmax(1) == vmax(2), "load_sums: max v")
         call dr_shift(zh, -0.3_dp); call dr_shift(zd, -0.3_dp); call same_real(error, zh, zd, "shift")
@@ -636,12 +642,15 @@ contains
         end do
     end subroutine test_repeat
 
-    !> What the device does not run is refused by name with 'gpu', and solved on the CPU by 'auto'
+    !> What the device does not run is refused by name with 'gpu', and solved on the CPU by 'auto';
+    !> a case is refused before it is built in the words of the solve (the solver table's)
     subroutine test_refusals(error)
         type(error_t), allocatable, intent(out) :: error
         type(contact_state_t) :: s
+        type(config_t) :: cfg
+        type(case_t) :: c
         real(dp) :: h(16, 16)
-        character(len=:), allocatable :: msg
+        character(len=:), allocatable :: msg, before, name
         call paper_rough(16, h, error); if (allocated(error)) return
         call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='pk', device='gpu')
         call refusal(error, msg, "pk on the device"); if (allocated(error)) return
@@ -650,6 +659,24 @@ contains
         call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='pk', device='auto')
         if (allocated(error)) return
         call check(error, s%device == 'cpu', "'auto' with pk did not take the CPU")
+        if (allocated(error)) return
+        ! the same refusal before the case is built (a solid at rest: pk takes it on the CPU)
+        call hard_case(1, 16, cfg, name, error); if (allocated(error)) return
+        cfg%solver%method = 'pk'; cfg%solver%device = 'gpu'
+        call run_case(cfg, c, error)
+        call refusal(error, before, "pk on the device, before the case is built"); if (allocated(error)) return
+        call check(error, before(index(before, "&solver method"):) == msg(index(msg, "&solver method"):), &
+                   "refused otherwise before the case is built: '"//before//"' and at the solve: '"//msg//"'")
+        if (allocated(error)) return
+        ! Anderson memory beyond the device passes', before the case is built and at the solve
+        cfg%solver%method = 'dr'; cfg%solver%anderson_memory = 9
+        call run_case(cfg, c, error)
+        call refusal(error, before, "anderson_memory = 9 on the device"); if (allocated(error)) return
+        call solve_case(h, 0.01_dp, 0.01_dp, 1.0e5_dp, s, error, method='dr', device='gpu', anderson_memory=9)
+        call refusal(error, msg, "anderson_memory = 9 on the device, at the solve"); if (allocated(error)) return
+        call check(error, index(msg, "&solver anderson_memory = 9") > 0 .and. before(index(before, "&solver"):) == &
+                   msg(index(msg, "&solver"):), "refused otherwise before the case is built: '"//before// &
+                   "' and at the solve: '"//msg//"'")
     end subroutine test_refusals
 
     !> The device memory a solve holds is counted, and all of it is given back

@@ -28,7 +28,7 @@ contains
             new_unittest("auto-takes-bccg-when-symmetric", test_auto), &
             new_unittest("iterations-flat-in-the-grid", test_flat_iterations), &
             new_unittest("non-symmetric-kernel-refused", test_refuse, should_fail=.true., &
-                         expect="method 'bccg' needs a symmetric") &
+                         expect="&solver method = 'bccg' needs a symmetric operator") &
             ]
     end subroutine collect_solver_bccg
 

@@ -1,33 +1,41 @@
 !> Quantities derived from a contact solution: area, separation, the slope-force estimator.
 !> (The exact tangential force of the discrete operator is the kernel's `tangential_force`.)
+!> What counts as contact is the contact law's (veslide_contact_law; the hard wall by default:
+!> the cells that carry pressure).
 module veslide_analysis
     use veslide_kinds, only: dp
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
     use veslide_collective, only: ordered_sum, halo_rows
     use veslide_fields, only: field_count, field_mean, field_dot
+    use veslide_contact_law, only: contact_law_t
     implicit none
     private
     public :: contact_area_fraction, contact_area_subcell, mean_separation, slope_force
 
 contains
 
-    !> Fraction of cells carrying pressure (over the whole grid when `grid` is given: the
-    !> process's rows of a distributed grid)
-    real(dp) function contact_area_fraction(p, grid) result(a)
+    !> Fraction of cells in contact (the law's contact cells of the pressure `p`: those carrying
+    !> pressure, for the hard wall); over the whole grid when `grid` is given (the process's rows
+    !> of a distributed grid)
+    real(dp) function contact_area_fraction(p, grid, law) result(a)
         real(dp), intent(in) :: p(:, :)
         type(grid_t), intent(in), optional :: grid
+        !> the contact law (default: the hard wall)
+        type(contact_law_t), intent(in), optional :: law
+        type(contact_law_t) :: law_
+        if (present(law)) law_ = law
         if (present(grid)) then
-            a = real(field_count(grid, p > 0.0_dp), dp)/grid%cells()
+            a = real(field_count(grid, law_%contact(p)), dp)/grid%cells()
         else
-            a = real(count(p > 0.0_dp), dp)/real(size(p), dp)
+            a = real(count(law_%contact(p)), dp)/real(size(p), dp)
         end if
     end function contact_area_fraction
 
     !> Contact area fraction with the edge located within a cell. The contact boundary crosses every
-    !> grid segment between a contact cell (p > 0) and a free one; the crossing is located from the
-    !> local form of a smooth contact edge, p^2 ~ d (1 + c d) inside and g^(2/3) ~ s (1 + c s)
-    !> outside (elastic and, at the scale of a cell, viscoelastic edges alike): the mean of the zero
+    !> grid segment between a contact cell (the law's: p > 0 for the hard wall) and a free one;
+    !> the crossing is located from the local form of a smooth contact edge, p^2 ~ d (1 + c d)
+    !> inside and g^(2/3) ~ s (1 + c s) outside (elastic and, at the scale of a cell, viscoelastic edges alike): the mean of the zero
     !> of the parabola through three values of g^(2/3) along the segment's line outside and of the
     !> one through p^2 inside, each falling back to the line through two values, or the segment's
     !> midpoint where neither side has two values; kept between half a cell inside the last
@@ -38,25 +46,32 @@ contains
     !> still, the error depending on where the edge falls in its cell) and to second order on fields
     !> with the exact edge asymptotics (docs/validation.md). With `grid`, over the
     !> whole grid (a distributed grid's neighbouring rows come from the other processes).
-    real(dp) function contact_area_subcell(p, g, grid) result(a)
-        !> pressure and gap on the grid (p > 0 marks contact)
+    real(dp) function contact_area_subcell(p, g, grid, law) result(a)
+        !> pressure and gap on the grid (the law's contact cells of p mark contact)
         real(dp), intent(in) :: p(:, :), g(:, :)
         type(grid_t), intent(in), optional :: grid
+        !> the contact law (default: the hard wall)
+        type(contact_law_t), intent(in), optional :: law
         integer, parameter :: depth = 4       ! rows a square's crossings look beyond its own
         real(dp), allocatable :: pe(:, :), ge(:, :)
+        logical, allocatable :: ce(:, :)
         real(dp) :: rows(1, size(p, 2)), t(1)
         type(grid_t) :: serial
+        type(contact_law_t) :: law_
         integer :: nx, j
         nx = size(p, 1)
+        if (present(law)) law_ = law
         if (present(grid)) then
             call halo_rows(grid, p, depth, pe); call halo_rows(grid, g, depth, ge)
         else
             serial%nx = nx; serial%ny = size(p, 2)       ! one process: periodic rows
             call halo_rows(serial, p, depth, pe); call halo_rows(serial, g, depth, ge)
         end if
+        allocate (ce(size(pe, 1), lbound(pe, 2):ubound(pe, 2)))
+        ce = law_%contact(pe)
         !$omp parallel do schedule(guided)
         do j = 1, size(p, 2)
-            rows(1, j) = subcell_row(pe, ge, j, depth)
+            rows(1, j) = subcell_row(pe, ge, ce, j, depth)
         end do
         !$omp end parallel do
         if (present(grid)) then
@@ -72,10 +87,11 @@ contains
     end function contact_area_subcell
 
     !> Area (in cells) cut from the squares whose lower-left centre lies in row j of the extended
-    !> fields p, g (rows 1-depth .. n+depth; periodic along x)
-    pure real(dp) function subcell_row(p, g, j, depth) result(a)
+    !> fields p, g and contact cells c (rows 1-depth .. n+depth; periodic along x)
+    pure real(dp) function subcell_row(p, g, c_in, j, depth) result(a)
         integer, intent(in) :: j, depth
         real(dp), intent(in) :: p(:, 1 - depth:), g(:, 1 - depth:)
+        logical, intent(in) :: c_in(:, 1 - depth:)
         integer :: nx, i, c, c2, m
         integer, parameter :: ci(4) = [0, 1, 1, 0], cj(4) = [0, 0, 1, 1]
         real(dp) :: xs(8), ys(8), t
@@ -84,7 +100,7 @@ contains
         a = 0.0_dp
         do i = 1, nx
             do c = 1, 4
-                inside(c) = p(at(i + ci(c)), j + cj(c)) > 0.0_dp
+                inside(c) = c_in(at(i + ci(c)), j + cj(c))
             end do
             if (all(inside)) then
                 a = a + 1.0_dp; cycle
@@ -127,7 +143,7 @@ contains
             est = 0.0_dp; nest = 0
             mm = 0
             do k = 1, 3
-                if (p(at(i0 + k*di), j0 + k*dj) > 0.0_dp) exit
+                if (c_in(at(i0 + k*di), j0 + k*dj)) exit
                 v = g(at(i0 + k*di), j0 + k*dj)
                 if (.not. v > 0.0_dp) exit
                 mm = mm + 1; y(mm) = v**(2.0_dp/3.0_dp)
@@ -139,8 +155,8 @@ contains
             end if
             mm = 0
             do k = 0, 2
+                if (.not. c_in(at(i0 - k*di), j0 - k*dj)) exit
                 v = p(at(i0 - k*di), j0 - k*dj)
-                if (.not. v > 0.0_dp) exit
                 mm = mm + 1; y(mm) = v**2
             end do
             if (mm >= 2) then

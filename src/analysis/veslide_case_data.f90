@@ -17,6 +17,7 @@ module veslide_case_data
     use veslide_material, only: material_t
     use veslide_kernel, only: kernel_t, KERNEL_SPECTRAL, kernel_names
     use veslide_contact, only: contact_state_t
+    use veslide_contact_law, only: contact_law_t
     use veslide_solver_options, only: solver_options_t
     use veslide_patches, only: patch_stats_t
     use veslide_persson, only: persson_t
@@ -72,6 +73,7 @@ module veslide_case_data
         real(dp) :: speed_m_s = 0.0_dp                   !! of the rigid surface [m/s]
         real(dp) :: direction_deg = 0.0_dp               !! of the velocity from x [degree]
         real(dp) :: mean_pressure_pa = 0.0_dp            !! the nominal pressure [Pa]
+        type(contact_law_t) :: law                       !! the contact law (the hard wall)
         type(solver_options_t) :: solver
         integer :: kernel_variant = KERNEL_SPECTRAL      !! KERNEL_* id
         real(dp) :: alias_tol = 1.0e-6_dp

@@ -208,8 +208,8 @@ contains
         real(dp) :: along, across, d, peak
         integer :: j, n_warnings
         associate (solid => c%spec%material%solid)
-        call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g, c%grid), '-')
-        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p, c%grid), '-')
+        call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g, c%grid, c%spec%law), '-')
+        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p, c%grid, c%spec%law), '-')
         call r%add('mean_separation_m', mean_separation(c%state%g, c%grid), 'm')
         call r%add('rms_height_m', field_rms(c%grid, c%h), 'm')
         call r%add('max_pressure_pa', field_max(c%grid, c%state%p), 'Pa')

@@ -26,6 +26,7 @@ module veslide_validity
     use veslide_collective, only: halo_rows, ordered_sum, global_max
     use veslide_fields, only: field_max
     use veslide_material, only: material_t, layer_factor
+    use veslide_contact_law, only: contact_law_t
     use veslide_warning, only: warning_t, measure_t, add_warning, add_measure, WARNS_NEVER, WARNS_ABOVE, &
                                WARNS_BELOW
     use veslide_case_data, only: case_t, case_spec_t
@@ -185,7 +186,7 @@ contains
             ! slopes: the small-slope half-space
             rms_h = surface_rms_slope(c%grid, fft, c%h)
             rms_u = surface_rms_slope(c%grid, fft, c%state%u)
-            call contact_statistics(c%grid, c%state%p, c%h, c%state%u, stats)
+            call contact_statistics(c%grid, c%spec%law, c%state%p, c%h, c%state%u, stats)
             ncontact = nint(stats(1), i8)
             if (kind == 'paraboloid' .or. kind == 'cylinder' .or. kind == 'flat') then
                 call measure('surface_rms_slope', rms_h, '-')    ! (its slopes far from the apex never touch)
@@ -331,30 +332,36 @@ contains
         end subroutine loss_measure
     end subroutine case_validity
 
-    !> Sums and extrema of the contact in one pass over the rows: [contact cells, faces between a
-    !> contact cell and a free one, the largest slope of h over the contact cells, the largest
-    !> slope of u over the cell] (central differences; periodic; collective on a distributed grid,
-    !> whose neighbouring rows come from the other processes)
-    subroutine contact_statistics(grid, p, h, u, stats)
+    !> Sums and extrema of the contact (the contact cells of the pressure p, by the contact law
+    !> `law`) in one pass over the rows: [contact cells, faces between a contact cell and a free
+    !> one, the largest slope of h over the contact cells, the largest slope of u over the cell]
+    !> (central differences; periodic; collective on a distributed grid, whose neighbouring rows
+    !> come from the other processes)
+    subroutine contact_statistics(grid, law, p, h, u, stats)
         type(grid_t), intent(in) :: grid
+        type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: p(:, :), h(:, :), u(:, :)
         real(dp), intent(out) :: stats(4)
         real(dp), allocatable :: pe(:, :), he(:, :), ue(:, :)
+        logical, allocatable :: ce(:, :), cl(:, :)
         real(dp) :: rows(2, size(p, 2)), peak(2, size(p, 2)), t(2)
         integer :: j, nl
         nl = size(p, 2)
         if (grid%is_distributed()) then
             call halo_rows(grid, p, 1, pe); call halo_rows(grid, h, 1, he); call halo_rows(grid, u, 1, ue)
+            allocate (ce(size(pe, 1), lbound(pe, 2):ubound(pe, 2)))
+            ce = law%contact(pe)
             !$omp parallel do schedule(static)
             do j = 1, nl
-                call row_statistics(grid, pe(:, j - 1:j + 1), he(:, j - 1:j + 1), ue(:, j - 1:j + 1), &
+                call row_statistics(grid, ce(:, j - 1:j + 1), he(:, j - 1:j + 1), ue(:, j - 1:j + 1), &
                                     rows(:, j), peak(:, j))
             end do
             !$omp end parallel do
         else                    ! one process: the neighbouring rows are the periodic ones
+            cl = law%contact(p)
             !$omp parallel do schedule(static)
             do j = 1, nl
-                call row_statistics(grid, p(:, [modulo(j - 2, nl) + 1, j, modulo(j, nl) + 1]), &
+                call row_statistics(grid, cl(:, [modulo(j - 2, nl) + 1, j, modulo(j, nl) + 1]), &
                                     h(:, [modulo(j - 2, nl) + 1, j, modulo(j, nl) + 1]), &
                                     u(:, [modulo(j - 2, nl) + 1, j, modulo(j, nl) + 1]), rows(:, j), peak(:, j))
             end do
@@ -370,26 +377,27 @@ contains
     end subroutine contact_statistics
 
     !> One row's part of contact_statistics from the rows below, at and above it (columns 1, 2,
-    !> 3 of p, h, u): its contact cells and contact edge faces (to the right and above), and the
-    !> largest squared slopes of h over its contact cells and of u
-    pure subroutine row_statistics(grid, p, h, u, sums, peak)
+    !> 3 of the contact cells c, h, u): its contact cells and contact edge faces (to the right and
+    !> above), and the largest squared slopes of h over its contact cells and of u
+    pure subroutine row_statistics(grid, c, h, u, sums, peak)
         type(grid_t), intent(in) :: grid
-        real(dp), intent(in) :: p(:, :), h(:, :), u(:, :)
+        logical, intent(in) :: c(:, :)
+        real(dp), intent(in) :: h(:, :), u(:, :)
         real(dp), intent(out) :: sums(2), peak(2)
         real(dp) :: cx, cy, s2, cells, faces
         integer :: nx, i, ip, im
         logical :: in, two_d
-        nx = size(p, 1)
+        nx = size(c, 1)
         cx = 0.5_dp*grid%nx/grid%lx_m; cy = 0.5_dp*grid%ny/grid%ly_m     ! 1/(2 dx), 1/(2 dy)
         two_d = grid%ny > 1
         cells = 0.0_dp; faces = 0.0_dp; peak = 0.0_dp
         do i = 1, nx
             ip = i + 1; if (i == nx) ip = 1
             im = i - 1; if (i == 1) im = nx
-            in = p(i, 2) > 0.0_dp
+            in = c(i, 2)
             if (in) cells = cells + 1.0_dp
-            if (in .neqv. p(ip, 2) > 0.0_dp) faces = faces + 1.0_dp
-            if (two_d .and. (in .neqv. p(i, 3) > 0.0_dp)) faces = faces + 1.0_dp
+            if (in .neqv. c(ip, 2)) faces = faces + 1.0_dp
+            if (two_d .and. (in .neqv. c(i, 3))) faces = faces + 1.0_dp
             s2 = (cx*(u(ip, 2) - u(im, 2)))**2
             if (two_d) s2 = s2 + (cy*(u(i, 3) - u(i, 1)))**2
             peak(2) = max(peak(2), s2)

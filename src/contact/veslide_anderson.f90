@@ -24,6 +24,7 @@ module veslide_anderson
     use veslide_collective, only: ordered_sum
     use veslide_arrays, only: rarray_t, sarray_t
     use veslide_anderson_passes, only: anderson_columns, anderson_update
+    use veslide_contact_law, only: contact_law_t
     implicit none
     private
     public :: anderson_t, anderson_coefficients
@@ -105,17 +106,18 @@ contains
         if (mk > 0) self%slot = modulo(self%slot - 2, self%memory) + 1
     end subroutine anderson_again
 
-    !> The columns pass at the point z with the residual `src` (or, with `reflect`, the
-    !> Douglas-Rachford reflection of x = `src`): the sums over the grid `part` = [|f|^2, dF_k.dF_slot,
-    !> dF_k.f] (1 + 2 mk), and with `reflect` the largest |x| where y = 0 and |f| where y > 0
-    subroutine anderson_columns_step(self, src, z, mk, reflect, part, rp, rg)
+    !> The columns pass at the point z with the residual `src` (or, with `law`, the
+    !> Douglas-Rachford reflection of x = `src` through the contact law's proximal map): the sums
+    !> over the grid `part` = [|f|^2, dF_k.dF_slot, dF_k.f] (1 + 2 mk), and with `law` the largest |x|
+    !> where y is out of contact and |f| where it is in contact
+    subroutine anderson_columns_step(self, src, z, mk, part, rp, rg, law)
         class(anderson_t), intent(inout) :: self
         type(rarray_t), intent(in) :: src, z
         integer, intent(in) :: mk
-        logical, intent(in) :: reflect
         real(dp), intent(out) :: part(:), rp, rg
-        call anderson_columns(src, z, self%df, self%gm, self%zprev, self%fprev, self%slot, mk, reflect, self%rows, &
-                              rp, rg)
+        type(contact_law_t), intent(in), optional :: law
+        call anderson_columns(src, z, self%df, self%gm, self%zprev, self%fprev, self%slot, mk, self%rows, rp, rg, &
+                              law)
         call ordered_sum(self%grid, self%rows(1:1 + 2*mk, :), part(1:1 + 2*mk))
     end subroutine anderson_columns_step
 
@@ -141,15 +143,16 @@ contains
         end if
     end function anderson_mix
 
-    !> z <- z + f - G c with the first mk columns (f given, or the reflection of x = `src`, which
-    !> then becomes the new z), keeping (z, f) as the previous point
-    subroutine anderson_update_step(self, src, z, coef, mk, reflect)
+    !> z <- z + f - G c with the first mk columns (f given, or with `law` the reflection of
+    !> x = `src` through the law's proximal map, x then becoming the new z), keeping (z, f) as the
+    !> previous point
+    subroutine anderson_update_step(self, src, z, coef, mk, law)
         class(anderson_t), intent(inout) :: self
         type(rarray_t), intent(inout) :: src, z
         real(dp), intent(in) :: coef(:)
         integer, intent(in) :: mk
-        logical, intent(in) :: reflect
-        call anderson_update(src, z, self%gm, self%zprev, self%fprev, coef, mk, reflect)
+        type(contact_law_t), intent(in), optional :: law
+        call anderson_update(src, z, self%gm, self%zprev, self%fprev, coef, mk, law)
         self%have_prev = .true.
     end subroutine anderson_update_step
 
@@ -162,9 +165,9 @@ contains
         real(dp) :: coef(max(self%memory, 1)), part(1 + 2*max(self%memory, 1)), rp, rg
         integer :: mk
         mk = self%begin()
-        call self%columns(f, z, mk, .false., part, rp, rg)
+        call self%columns(f, z, mk, part, rp, rg)
         mk = self%mix(part, mk, coef)
-        call self%update(f, z, coef, mk, .false.)
+        call self%update(f, z, coef, mk)
         accelerated = mk > 0
     end function step_fields
 

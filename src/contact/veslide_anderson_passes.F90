@@ -1,14 +1,16 @@
 !> The two passes of Anderson mixing (veslide_anderson), on either backend: the CPU twins here,
 !> the CUDA twins in veslide_anderson_passes.cu (memory m of at most `device_max_memory` there).
-!> The residual f of the fixed-point map is either given (`reflect` false: the array `src`), or
-!> the Douglas-Rachford reflection of the resolvent's output x = `src` and the iterate z
-!> (`reflect` true: y = max(2x - z, 0), f = y - x, never stored).
+!> The residual f of the fixed-point map is either given (no contact law: the array `src`), or
+!> the Douglas-Rachford reflection of the resolvent's output x = `src` and the iterate z through
+!> the contact law's proximal map (a law given: y = prox(2x - z), the hard wall's max(2x - z, 0);
+!> f = y - x, never stored), the law chosen once per call (the CPU twin's maps; the CUDA functors'
+!> template argument, vs::with_law).
 !>  columns  per row |f|^2, and with mk > 0 the new history columns dF = f - f_prev and
 !>           G = (z - z_prev) + dF in slot `slot` (single precision) with their products
-!>           dF_k.dF_slot and dF_k.f, k = 1..mk; with `reflect`, max |x| where y = 0 (rp) and
-!>           max |f| where y > 0 (rg)
-!>  update   z <- z + f - G c, keeping (z, f) as the previous point; with `reflect`, x = the new
-!>           z (the next map's input)
+!>           dF_k.dF_slot and dF_k.f, k = 1..mk; reflecting, max |x| where y is out of contact
+!>           (rp) and max |f| where it is in contact (rg)
+!>  update   z <- z + f - G c, keeping (z, f) as the previous point; reflecting, x = the new z
+!>           (the next map's input)
 !> Unknowns are the rows of a field (n1, n2), row by row: the per-row partials are added in order
 !> by the caller, so the mixing is the same on any number of threads or processes.
 module veslide_anderson_passes
@@ -16,6 +18,7 @@ module veslide_anderson_passes
     use, intrinsic :: iso_fortran_env, only: real32
     use veslide_kinds, only: dp
     use veslide_arrays, only: rarray_t, sarray_t, elements
+    use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL
     implicit none
     private
     public :: anderson_columns, anderson_update, device_max_memory
@@ -25,16 +28,22 @@ module veslide_anderson_passes
 
 #ifdef VESLIDE_CUDA
     interface
-        !> rows(1 + 2 mk + 2, ny): [|f|^2, dF_k.dF_slot, dF_k.f, min -|x| (y = 0), min -|f| (y > 0)]
-        subroutine columns_gpu(nx, ny, src, z, df, gm, zprev, fprev, slot, mk, history, reflect, rows) &
+        !> rows(1 + 2 mk + 2, ny): [|f|^2, dF_k.dF_slot, dF_k.f, min -|x| (y out of contact),
+        !> min -|f| (y in contact)]
+        subroutine columns_gpu(law, param, nx, ny, src, z, df, gm, zprev, fprev, slot, mk, history, reflect, rows) &
             bind(c, name='veslide_anderson_columns')
             import :: c_int, c_ptr, c_double
+            integer(c_int), value :: law
+            real(c_double), intent(in) :: param(*)
             integer(c_int), value :: nx, ny, slot, mk, history, reflect
             type(c_ptr), value :: src, z, df, gm, zprev, fprev
             real(c_double), intent(out) :: rows(*)
         end subroutine columns_gpu
-        subroutine update_gpu(n, src, z, gm, zprev, fprev, coef, mk, reflect) bind(c, name='veslide_anderson_update')
+        subroutine update_gpu(law, param, n, src, z, gm, zprev, fprev, coef, mk, reflect) &
+            bind(c, name='veslide_anderson_update')
             import :: c_long, c_int, c_ptr, c_double
+            integer(c_int), value :: law
+            real(c_double), intent(in) :: param(*)
             integer(c_long), value :: n
             type(c_ptr), value :: src, z, gm, zprev, fprev
             real(c_double), intent(in) :: coef(*)
@@ -46,43 +55,72 @@ module veslide_anderson_passes
 contains
 
     !> The residual's norm per row and, with mk > 0, the new history column `slot` with its
-    !> products; rows(1 + 2 mk, n2) the per-row partials; rp, rg with `reflect` (else 0)
-    subroutine anderson_columns(src, z, df, gm, zprev, fprev, slot, mk, reflect, rows, rp, rg)
+    !> products; rows(1 + 2 mk, n2) the per-row partials; rp, rg when reflecting through `law`
+    !> (else 0)
+    subroutine anderson_columns(src, z, df, gm, zprev, fprev, slot, mk, rows, rp, rg, law)
         type(rarray_t), intent(in) :: src, z, zprev, fprev
         type(sarray_t), intent(inout) :: df, gm
         integer, intent(in) :: slot, mk
-        logical, intent(in) :: reflect
         real(dp), intent(out) :: rows(:, :), rp, rg
+        !> the contact law to reflect through (absent: f given in `src`)
+        type(contact_law_t), intent(in), optional :: law
 #ifdef VESLIDE_CUDA
         real(dp), allocatable :: out(:, :)
+        type(contact_law_t) :: l
         if (z%device) then
+            if (present(law)) l = law
             allocate (out(3 + 2*mk, z%n2))
-            call columns_gpu(z%n1, z%n2, src%d, z%d, df%d, gm%d, zprev%d, fprev%d, slot, mk, df%n1, &
-                             merge(1_c_int, 0_c_int, reflect), out)
+            call columns_gpu(l%kind, l%param, z%n1, z%n2, src%d, z%d, df%d, gm%d, zprev%d, fprev%d, slot, mk, df%n1, &
+                             merge(1_c_int, 0_c_int, present(law)), out)
             rows(1:1 + 2*mk, :) = out(1:1 + 2*mk, :)
             rp = max(0.0_dp, -minval(out(2 + 2*mk, :))); rg = max(0.0_dp, -minval(out(3 + 2*mk, :)))
             return
         end if
 #endif
-        call columns_cpu(z%n1, z%n2, src%h, z%h, df%h, gm%h, zprev%h, fprev%h, slot, mk, reflect, rows, rp, rg)
+        if (.not. present(law)) then
+            call columns_cpu(z%n1, z%n2, src%h, z%h, df%h, gm%h, zprev%h, fprev%h, slot, mk, .false., rows, rp, rg)
+            return
+        end if
+        select case (law%kind)
+        case (LAW_HARD_WALL)      ! (columns_cpu reflects through the hard wall's maps)
+            call columns_cpu(z%n1, z%n2, src%h, z%h, df%h, gm%h, zprev%h, fprev%h, slot, mk, .true., rows, rp, rg)
+        case default
+            error stop "veslide:anderson_passes:anderson_columns: a contact law this pass does not take"
+        end select
     end subroutine anderson_columns
 
-    !> z <- z + f - G c (f given, or the reflection of src = x and z), keeping (z, f) as the
-    !> previous point; with `reflect`, x = the new z
-    subroutine anderson_update(src, z, gm, zprev, fprev, coef, mk, reflect)
+    !> z <- z + f - G c (f given, or the reflection of src = x and z through `law`), keeping (z, f)
+    !> as the previous point; reflecting, x = the new z
+    subroutine anderson_update(src, z, gm, zprev, fprev, coef, mk, law)
         type(rarray_t), intent(inout) :: src, z, zprev, fprev
         type(sarray_t), intent(in) :: gm
         real(dp), intent(in) :: coef(:)
         integer, intent(in) :: mk
-        logical, intent(in) :: reflect
+        !> the contact law to reflect through (absent: f given in `src`)
+        type(contact_law_t), intent(in), optional :: law
 #ifdef VESLIDE_CUDA
+        type(contact_law_t) :: l
         if (z%device) then
-            call update_gpu(elements(z), src%d, z%d, gm%d, zprev%d, fprev%d, coef, mk, merge(1_c_int, 0_c_int, reflect))
+            if (present(law)) l = law
+            call update_gpu(l%kind, l%param, elements(z), src%d, z%d, gm%d, zprev%d, fprev%d, coef, mk, &
+                            merge(1_c_int, 0_c_int, present(law)))
             return
         end if
 #endif
-        call update_cpu(elements(z), src%h, z%h, gm%h, zprev%h, fprev%h, coef, mk, reflect)
+        if (.not. present(law)) then
+            call update_cpu(elements(z), src%h, z%h, gm%h, zprev%h, fprev%h, coef, mk, .false.)
+            return
+        end if
+        select case (law%kind)
+        case (LAW_HARD_WALL)      ! (update_cpu reflects through the hard wall's maps)
+            call update_cpu(elements(z), src%h, z%h, gm%h, zprev%h, fprev%h, coef, mk, .true.)
+        case default
+            error stop "veslide:anderson_passes:anderson_update: a contact law this pass does not take"
+        end select
     end subroutine anderson_update
+
+    ! ---- CPU twins: with `reflect`, through the hard wall's maps (another law's reflection
+    ! would be another pair, chosen by the dispatchers above) --------------------------------
 
     subroutine columns_cpu(nx, ny, src, z, df, gm, zprev, fprev, slot, mk, reflect, rows, rp, rg)
         integer, intent(in) :: nx, ny, slot, mk
@@ -100,9 +138,9 @@ contains
                 zv = z(i)
                 if (reflect) then
                     xv = src(i)
-                    yv = max(2.0_dp*xv - zv, 0.0_dp)
+                    yv = hard_wall_project(2.0_dp*xv - zv)
                     fv = yv - xv
-                    if (yv > 0.0_dp) then
+                    if (hard_wall_in_contact(yv)) then
                         rg = max(rg, abs(fv))
                     else
                         rp = max(rp, abs(xv))
@@ -140,7 +178,7 @@ contains
             zv = z(i)
             if (reflect) then
                 xv = src(i)
-                fv = max(2.0_dp*xv - zv, 0.0_dp) - xv
+                fv = hard_wall_project(2.0_dp*xv - zv) - xv
             else
                 fv = src(i)
             end if
@@ -154,5 +192,7 @@ contains
         end do
         !$omp end parallel do
     end subroutine update_cpu
+
+    include 'veslide_contact_law_maps.inc'
 
 end module veslide_anderson_passes

@@ -2,7 +2,10 @@
 !> dispatcher on the arrays' backend, its CPU twin here (`*_cpu`, the loops of the solver as they
 !> were, OpenMP over rows) and its CUDA twin in veslide_bccg_passes.cu (same arguments, device
 !> memory). Real fields are (nx, ny), spectra (na, nb) = the grid's spectral storage; row (or
-!> spectral column) partial sums come back one per row, added in order by the solver.
+!> spectral column) partial sums come back one per row, added in order by the solver. BCCG is
+!> an active-set method for the hard wall, the one contact law it takes (veslide_solver_table):
+!> its passes apply the hard wall's maps (contact, the pressure bound it clips at, the gap bound
+!> it admits cells by; veslide_contact_law_maps.inc, and vs::hard_wall in the CUDA twins).
 !>  statistics  g = x - gprev: per row [sum of g on the set, sum p g, sum p]; set size; min g
 !>  residual    the set grows by the points outside it with g < 0; x = r = -g on it, 0 outside;
 !>              per row [r.v_old, sum of r, sum of v_old, set size] over the (grown) set
@@ -127,7 +130,7 @@ contains
         call metric_cpu(ks%h, kd%h, f, modulus)
     end subroutine metric
 
-    !> act = 1 where p > 0, else 0
+    !> act = 1 where p is in contact (the hard wall: p > 0), else 0
     subroutine set_contact(act, p)
         type(iarray_t), intent(inout) :: act
         type(rarray_t), intent(in) :: p
@@ -136,7 +139,7 @@ contains
             call set_contact_gpu(elements(act), act%d, p%d); return
         end if
 #endif
-        act%h = merge(1_int8, 0_int8, p%h > 0.0_dp)
+        act%h = merge(1_int8, 0_int8, hard_wall_in_contact(p%h))
     end subroutine set_contact
 
     subroutine statistics(x, act, p, gprev, rows, nact, gmin)
@@ -412,7 +415,7 @@ contains
             w = 0.0_dp
             do i = 1, size(x, 1)
                 g = x(i, j) - gbar
-                if (act(i, j) == 0 .and. g < 0.0_dp) act(i, j) = 1_int8
+                if (act(i, j) == 0 .and. hard_wall_penetrates(g)) act(i, j) = 1_int8
                 if (act(i, j) /= 0) then
                     x(i, j) = -g
                     w(1) = w(1) - g*v(i, j)
@@ -519,10 +522,10 @@ contains
                 x(i, j) = 0.0_dp
                 if (act(i, j) /= 0) then
                     pt = a*p(i, j) + alpha*v(i, j)
-                    if (pt < 0.0_dp) then
+                    if (hard_wall_below(pt)) then
                         x(i, j) = -pt
                         nclip = nclip + 1
-                        pt = 0.0_dp
+                        pt = hard_wall_project(pt)
                         act(i, j) = 0_int8
                         v(i, j) = 0.0_dp
                     end if
@@ -593,5 +596,7 @@ contains
         end do
         !$omp end parallel do
     end subroutine add_points_cpu
+
+    include 'veslide_contact_law_maps.inc'
 
 end module veslide_bccg_passes

@@ -1,6 +1,8 @@
 // CUDA twins of veslide_bccg_passes.F90 (the bound-constrained CG's passes); each functor does
-// for one element what the CPU twin's loop body does, in the same order of operations.
+// for one element what the CPU twin's loop body does, in the same order of operations, with the
+// hard wall's maps (vs::hard_wall: BCCG takes that law only).
 #include "../core/veslide_device.cuh"
+#include "veslide_contact_law.cuh"
 #include <stdint.h>
 
 namespace {
@@ -18,7 +20,7 @@ struct metric_f {
 struct set_contact_f {
     int8_t *act;
     const double *p;
-    VS_HD void operator()(long n) const { act[n] = p[n] > 0.0 ? 1 : 0; }
+    VS_HD void operator()(long n) const { act[n] = vs::hard_wall{}.in_contact(p[n]) ? 1 : 0; }
 };
 
 // sums: [g on the set, p g, p, set size]; minima: [g]
@@ -50,7 +52,7 @@ struct residual_f {
         long n = i + (long)nx * j;
         double g = x[n] - gbar;
         int8_t a = act[n];
-        if (a == 0 && g < 0.0) {
+        if (a == 0 && vs::hard_wall{}.penetrates(g)) {
             a = 1;
             act[n] = 1;
         }
@@ -124,10 +126,10 @@ struct step_f {
         double pt, xv = 0.0;
         if (act[n] != 0) {
             pt = a * p[n] + alpha * v[n];
-            if (pt < 0.0) {
+            if (vs::hard_wall{}.below(pt)) {
                 xv = -pt;
                 s[1] += 1.0;
-                pt = 0.0;
+                pt = vs::hard_wall{}.project(pt);
                 act[n] = 0;
                 v[n] = 0.0;
             }

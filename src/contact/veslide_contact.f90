@@ -1,18 +1,19 @@
 !> The load-controlled periodic contact problem of a rigid surface on a half-space, and the one
 !> residual definition every solver reports.
 !>
-!> Find p >= 0 with mean(p) = p_mean, and an approach d, such that the gap
-!> g = K p - h + d >= 0 and p g = 0 everywhere. K is the kernel (zero on the mean mode), h the
-!> heights with their mean removed; d is then the mean gap (the mean separation). The problem
+!> Find p with mean(p) = p_mean, and an approach d, such that the gap g = K p - h + d and p
+!> obey the problem's contact law (`law`, veslide_contact_law; the hard wall: p >= 0, g >= 0 and
+!> p g = 0 everywhere). K is the kernel (zero on the mean mode), h the heights with their mean
+!> removed; d is then the mean gap over the contact set (the law's contact cells). The problem
 !> keeps the heights as given with their mean beside them and centres them where they are used
 !> (h - h_mean, the same rounding as a centred copy), so that it can hold the case's own array.
 !>
 !> Residual (`residual_measures`): max(penetration, complementarity, negative pressure, load error),
+!> the first three the law's measures (`contact_law_t%measures`; the hard wall:
 !>   penetration = max(-g)/h_s, complementarity = |sum p g|/(sum p * h_s),
-!>   negative pressure = max(-p)/p_mean, load error = |mean p - p_mean|/p_mean,
+!>   negative pressure = max(-p)/p_mean), load error = |mean p - p_mean|/p_mean,
 !> h_s = rms height (or the displacement scale p_mean*max|K| for a flat surface), always evaluated
-!> on a freshly computed K p before a solver reports convergence. A new contact law (adhesion, a
-!> different constraint) is a new projection in the solvers and new measures here.
+!> on a freshly computed K p before a solver reports convergence.
 !> Fields are the process's rows (nx, ny_local) of the kernel's grid; every sum, extremum and
 !> count is over the whole grid (veslide_collective), so every process takes the same decisions.
 module veslide_contact
@@ -27,6 +28,7 @@ module veslide_contact
     use veslide_transform, only: transform_t
     use veslide_passes, only: multiply_spectrum
     use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
+    use veslide_contact_law, only: contact_law_t
     use veslide_device, only: device_check
     use veslide_clock, only: wall_seconds
     implicit none
@@ -34,9 +36,10 @@ module veslide_contact
     public :: contact_problem_t, contact_state_t, contact_fields_t, new_contact_problem, new_contact_problem_moving, &
               residual_measures
 
-    !> One contact problem: the operator, the heights and the load
+    !> One contact problem: the operator, the heights, the load and the contact law
     type :: contact_problem_t
         type(kernel_t) :: kernel                   !! the influence operator
+        type(contact_law_t) :: law                 !! the contact law (default: the hard wall)
         real(dp), allocatable :: h(:, :)           !! heights as given (any mean) [m]
         real(dp) :: h_mean = 0.0_dp                !! their mean; the problem's heights are h - h_mean [m]
         real(dp) :: p_mean_pa = 0.0_dp             !! nominal pressure [Pa]
@@ -87,30 +90,35 @@ module veslide_contact
 contains
 
     !> The problem of heights `h` (any mean) under nominal pressure `p_mean` with operator `kernel`
-    subroutine new_contact_problem(self, kernel, h, p_mean, error)
+    !> and the contact law `law` (default: the hard wall)
+    subroutine new_contact_problem(self, kernel, h, p_mean, error, law)
         type(contact_problem_t), intent(out) :: self
         type(kernel_t), intent(in) :: kernel
         real(dp), intent(in) :: h(:, :)
         real(dp), intent(in) :: p_mean
         type(error_t), allocatable, intent(out) :: error
+        type(contact_law_t), intent(in), optional :: law
         call check_problem(kernel, h, p_mean, error); if (allocated(error)) return
         self%kernel = kernel
         self%h = h
+        if (present(law)) self%law = law
         call set_mean_and_load(self, p_mean)
     end subroutine new_contact_problem
 
     !> The same, the problem taking `kernel`'s multiplier and the array `h` instead of copies of
     !> them (16 bytes per cell fewer while it lives); `problem%release(kernel, h)` gives them back
     !> unchanged. On an error both are kept.
-    subroutine new_contact_problem_moving(self, kernel, h, p_mean, error)
+    subroutine new_contact_problem_moving(self, kernel, h, p_mean, error, law)
         type(contact_problem_t), intent(out) :: self
         type(kernel_t), intent(inout) :: kernel
         real(dp), allocatable, intent(inout) :: h(:, :)
         real(dp), intent(in) :: p_mean
         type(error_t), allocatable, intent(out) :: error
+        type(contact_law_t), intent(in), optional :: law
         call check_problem(kernel, h, p_mean, error); if (allocated(error)) return
         call kernel%move_to(self%kernel)
         call move_alloc(h, self%h)
+        if (present(law)) self%law = law
         call set_mean_and_load(self, p_mean)
     end subroutine new_contact_problem_moving
 
@@ -162,8 +170,8 @@ contains
         grid = self%kernel%grid
     end function problem_grid
 
-    !> A fresh state: fields allocated, pressure uniform or from `p_init` (clipped at zero and
-    !> rescaled to the load)
+    !> A fresh state: fields allocated, pressure uniform or from `p_init` (made admissible by the
+    !> law's proximal map, clipped at zero for the hard wall, and rescaled to the load)
     subroutine problem_start(self, state, p_init)
         class(contact_problem_t), intent(in) :: self
         type(contact_state_t), intent(out) :: state
@@ -180,9 +188,9 @@ contains
         !$omp end parallel do
         if (present(p_init)) then
             if (all(shape(p_init) == [nx, ny])) then
-                total = field_sum(self%kernel%grid, max(p_init, 0.0_dp))
+                total = field_sum(self%kernel%grid, self%law%project(p_init))
                 if (total > 0.0_dp) then
-                    state%p = max(p_init, 0.0_dp)
+                    state%p = self%law%project(p_init)
                     state%p = state%p*(self%p_mean_pa*self%kernel%grid%cells()/total)
                 end if
             end if
@@ -190,13 +198,17 @@ contains
     end subroutine problem_start
 
     !> The four measures and the residual from sums over the grid: min gap `gmin`, sum(p g) `spg`,
-    !> sum(|p|) `sp`, min pressure `pmin`, sum(p) `sum_p` over `n` points (the one definition)
-    pure subroutine residual_measures(state, gmin, spg, sp, pmin, sum_p, n, p_mean, hs)
+    !> sum(|p|) `sp`, min pressure `pmin`, sum(p) `sum_p` over `n` points (the one definition):
+    !> the law's three measures and the load error
+    pure subroutine residual_measures(law, state, gmin, spg, sp, pmin, sum_p, n, p_mean, hs)
+        type(contact_law_t), intent(in) :: law
         type(contact_state_t), intent(inout) :: state
         real(dp), intent(in) :: gmin, spg, sp, pmin, sum_p, n, p_mean, hs
-        state%penetration = max(0.0_dp, -gmin)/hs
-        state%complementarity = abs(spg)/(sp*hs)
-        state%negative_pressure = max(0.0_dp, -pmin)/p_mean
+        real(dp) :: m(3)
+        m = law%measures(gmin, spg, sp, pmin, hs, p_mean)
+        state%penetration = m(1)
+        state%complementarity = m(2)
+        state%negative_pressure = m(3)
         state%load_error = abs(sum_p/n - p_mean)/p_mean
         state%residual = max(state%penetration, state%complementarity, state%negative_pressure, state%load_error)
     end subroutine residual_measures
@@ -304,7 +316,7 @@ contains
         integer(i8) :: nc(1)
         real(dp) :: rows(3, f%g%n2), t(3), ext(2), gmax
         associate (grid => self%kernel%grid)
-            call gap_and_contact_sums(f%u, f%h, self%h_mean, f%p, f%g, rows(1, :), nc(1), gmax)
+            call gap_and_contact_sums(self%law, f%u, f%h, self%h_mean, f%p, f%g, rows(1, :), nc(1), gmax)
             call global_count(grid, nc)
             if (nc(1) > 0) then
                 call ordered_sum(grid, rows(1:1, :), t(1:1))
@@ -314,10 +326,10 @@ contains
                 call global_max(grid, t(1))
                 state%approach_m = -t(1)
             end if
-            call gap_measures(f%p, f%g, state%approach_m, rows, ext(1), ext(2))
+            call gap_measures(self%law, f%p, f%g, state%approach_m, rows, ext(1), ext(2))
             call ordered_sum(grid, rows, t)
             call global_min(grid, ext)
-            call residual_measures(state, ext(1), t(1), t(2), ext(2), t(3), grid%cells(), self%p_mean_pa, &
+            call residual_measures(self%law, state, ext(1), t(1), t(2), ext(2), t(3), grid%cells(), self%p_mean_pa, &
                                    self%height_scale_m)
         end associate
     end subroutine problem_residuals_on

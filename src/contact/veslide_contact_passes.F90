@@ -1,43 +1,64 @@
-!> The passes of the contact problem's residual (veslide_contact), on either backend: the CPU
-!> twins here, the CUDA twins in veslide_contact_passes.cu (same arguments, device memory).
+!> The passes of the contact problem's residual (veslide_contact) and of its law alone
+!> (veslide_contact_law), on either backend: the CPU twins here, the CUDA twins in
+!> veslide_contact_passes.cu (same arguments, device memory). Each takes the contact law and
+!> chooses its maps once per call: a `select case` on the law's kind around the loop over cells
+!> (one CPU twin per law), a template argument of the functor in the CUDA twins (`vs::with_law`).
 !>  - `gap_and_contact_sums`: g = u - (h - h_mean); per row the sum of g over the contact set
-!>    (p > 0); the size of that set, and the largest g (for a problem with no contact);
-!>  - `gap_measures`: g = g + d; per row sum(p g), sum(|p|), sum(p); the smallest g and p.
+!>    (the law's contact); the size of that set, and the largest g (for a problem with no contact);
+!>  - `gap_measures`: g = g + d; per row the sums the law's measures take (the hard wall:
+!>    sum(p g), sum(|p|), sum(p)); the smallest g and p;
+!>  - `project_and_sum`: a field made admissible by the law's proximal map (a solver's start:
+!>    the hard wall clips it at zero), and its row sums.
 module veslide_contact_passes
     use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double
     use veslide_kinds, only: dp, i8
     use veslide_arrays, only: rarray_t
+    use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL
     implicit none
     private
-    public :: gap_and_contact_sums, gap_measures
+    public :: gap_and_contact_sums, gap_measures, project_and_sum
 
 #ifdef VESLIDE_CUDA
     interface
-        !> rows(3, ny): [sum of g over p > 0, count of p > 0, min of -g]
-        subroutine gap_and_contact_sums_gpu(nx, ny, u, h, h_mean, p, g, rows) &
+        !> rows(3, ny): [sum of g over the contact set, its size, min of -g]
+        subroutine gap_and_contact_sums_gpu(law, param, nx, ny, u, h, h_mean, p, g, rows) &
             bind(c, name='veslide_contact_gap_and_contact_sums')
             import :: c_int, c_ptr, c_double
-            integer(c_int), value :: nx, ny
+            integer(c_int), value :: law, nx, ny
+            real(c_double), intent(in) :: param(*)
             type(c_ptr), value :: u, h, p, g
             real(c_double), value :: h_mean
             real(c_double), intent(out) :: rows(*)
         end subroutine gap_and_contact_sums_gpu
         !> rows(5, ny): [sum p g, sum |p|, sum p, min g, min p]
-        subroutine gap_measures_gpu(nx, ny, p, g, approach, rows) bind(c, name='veslide_contact_gap_measures')
+        subroutine gap_measures_gpu(law, param, nx, ny, p, g, approach, rows) &
+            bind(c, name='veslide_contact_gap_measures')
             import :: c_int, c_ptr, c_double
-            integer(c_int), value :: nx, ny
+            integer(c_int), value :: law, nx, ny
+            real(c_double), intent(in) :: param(*)
             type(c_ptr), value :: p, g
             real(c_double), value :: approach
             real(c_double), intent(out) :: rows(*)
         end subroutine gap_measures_gpu
+        !> rows(ny): the row sums of the projected field
+        subroutine project_and_sum_gpu(law, param, nx, ny, a, rows) bind(c, name='veslide_contact_project_and_sum')
+            import :: c_int, c_ptr, c_double
+            integer(c_int), value :: law, nx, ny
+            real(c_double), intent(in) :: param(*)
+            type(c_ptr), value :: a
+            real(c_double), intent(out) :: rows(*)
+        end subroutine project_and_sum_gpu
     end interface
 #endif
 
 contains
 
+    ! ---- dispatchers --------------------------------------------------------------------
+
     !> g = u - (h - h_mean); rows(j) = sum of g over the contact cells of row j; nc = the
     !> number of contact cells; gmax = max g (this process's)
-    subroutine gap_and_contact_sums(u, h, h_mean, p, g, rows, nc, gmax)
+    subroutine gap_and_contact_sums(law, u, h, h_mean, p, g, rows, nc, gmax)
+        type(contact_law_t), intent(in) :: law
         type(rarray_t), intent(in) :: u, h, p
         type(rarray_t), intent(inout) :: g
         real(dp), intent(in) :: h_mean
@@ -48,16 +69,23 @@ contains
         real(dp), allocatable :: out(:, :)
         if (g%device) then
             allocate (out(3, g%n2))
-            call gap_and_contact_sums_gpu(g%n1, g%n2, u%d, h%d, h_mean, p%d, g%d, out)
+            call gap_and_contact_sums_gpu(law%kind, law%param, g%n1, g%n2, u%d, h%d, h_mean, p%d, g%d, out)
             rows = out(1, :); nc = nint(sum(out(2, :)), i8); gmax = -minval(out(3, :))
             return
         end if
 #endif
-        call gap_and_contact_sums_cpu(u%h, h%h, h_mean, p%h, g%h, rows, nc, gmax)
+        select case (law%kind)
+        case (LAW_HARD_WALL)
+            call gap_and_contact_sums_hard_wall(u%h, h%h, h_mean, p%h, g%h, rows, nc, gmax)
+        case default
+            error stop "veslide:contact_passes:gap_and_contact_sums: a contact law this pass does not take"
+        end select
     end subroutine gap_and_contact_sums
 
-    !> g = g + approach; rows(:, j) = [sum p g, sum |p|, sum p] of row j; the smallest g and p
-    subroutine gap_measures(p, g, approach, rows, gmin, pmin)
+    !> g = g + approach; rows(:, j) = the sums of row j the law's measures take (the hard wall:
+    !> [sum p g, sum |p|, sum p]); the smallest g and p
+    subroutine gap_measures(law, p, g, approach, rows, gmin, pmin)
+        type(contact_law_t), intent(in) :: law
         type(rarray_t), intent(in) :: p
         type(rarray_t), intent(inout) :: g
         real(dp), intent(in) :: approach
@@ -66,15 +94,41 @@ contains
         real(dp), allocatable :: out(:, :)
         if (g%device) then
             allocate (out(5, g%n2))
-            call gap_measures_gpu(g%n1, g%n2, p%d, g%d, approach, out)
+            call gap_measures_gpu(law%kind, law%param, g%n1, g%n2, p%d, g%d, approach, out)
             rows = out(1:3, :); gmin = minval(out(4, :)); pmin = minval(out(5, :))
             return
         end if
 #endif
-        call gap_measures_cpu(p%h, g%h, approach, rows, gmin, pmin)
+        select case (law%kind)
+        case (LAW_HARD_WALL)
+            call gap_measures_hard_wall(p%h, g%h, approach, rows, gmin, pmin)
+        case default
+            error stop "veslide:contact_passes:gap_measures: a contact law this pass does not take"
+        end select
     end subroutine gap_measures
 
-    subroutine gap_and_contact_sums_cpu(u, h, h_mean, p, g, rows, nc, gmax)
+    !> a = the law's proximal map of a, cell by cell (the hard wall: max(a, 0)); rows(j) = the sum
+    !> of row j
+    subroutine project_and_sum(law, a, rows)
+        type(contact_law_t), intent(in) :: law
+        type(rarray_t), intent(inout) :: a
+        real(dp), intent(out) :: rows(:)
+#ifdef VESLIDE_CUDA
+        if (a%device) then
+            call project_and_sum_gpu(law%kind, law%param, a%n1, a%n2, a%d, rows); return
+        end if
+#endif
+        select case (law%kind)
+        case (LAW_HARD_WALL)
+            call project_and_sum_hard_wall(a%h, rows)
+        case default
+            error stop "veslide:contact_passes:project_and_sum: a contact law this pass does not take"
+        end select
+    end subroutine project_and_sum
+
+    ! ---- CPU twins, one per law ---------------------------------------------------------
+
+    subroutine gap_and_contact_sums_hard_wall(u, h, h_mean, p, g, rows, nc, gmax)
         real(dp), intent(in) :: u(:, :), h(:, :), p(:, :)
         real(dp), intent(out) :: g(:, :)
         real(dp), intent(in) :: h_mean
@@ -89,7 +143,7 @@ contains
             s = 0.0_dp
             do i = 1, size(g, 1)
                 g(i, j) = u(i, j) - (h(i, j) - h_mean)
-                if (p(i, j) > 0.0_dp) then
+                if (hard_wall_in_contact(p(i, j))) then
                     nc = nc + 1; s = s + g(i, j)
                 end if
                 gmax = max(gmax, g(i, j))
@@ -97,9 +151,9 @@ contains
             rows(j) = s
         end do
         !$omp end parallel do
-    end subroutine gap_and_contact_sums_cpu
+    end subroutine gap_and_contact_sums_hard_wall
 
-    subroutine gap_measures_cpu(p, g, approach, rows, gmin, pmin)
+    subroutine gap_measures_hard_wall(p, g, approach, rows, gmin, pmin)
         real(dp), intent(in) :: p(:, :)
         real(dp), intent(inout) :: g(:, :)
         real(dp), intent(in) :: approach
@@ -120,6 +174,24 @@ contains
             rows(:, j) = t
         end do
         !$omp end parallel do
-    end subroutine gap_measures_cpu
+    end subroutine gap_measures_hard_wall
+
+    subroutine project_and_sum_hard_wall(a, rows)
+        real(dp), intent(inout) :: a(:, :)
+        real(dp), intent(out) :: rows(:)
+        integer :: j
+        !$omp parallel do schedule(static)
+        do j = 1, size(a, 2)
+            a(:, j) = hard_wall_project(a(:, j))
+        end do
+        !$omp end parallel do
+        !$omp parallel do schedule(guided)
+        do j = 1, size(a, 2)
+            rows(j) = sum(a(:, j))
+        end do
+        !$omp end parallel do
+    end subroutine project_and_sum_hard_wall
+
+    include 'veslide_contact_law_maps.inc'
 
 end module veslide_contact_passes

@@ -1,10 +1,15 @@
-// CUDA twins of veslide_contact_passes.F90 (the contact problem's residual)
+// CUDA twins of veslide_contact_passes.F90 (the contact problem's residual, and the law's
+// projection of a field); each functor takes the contact law as its template argument, chosen
+// once per call by vs::with_law (veslide_contact_law.cuh)
 #include "../core/veslide_device.cuh"
+#include "veslide_contact_law.cuh"
 
 namespace {
 
-// g = u - (h - h_mean); sums: [g over p > 0, count p > 0]; minima: [-g]
+// g = u - (h - h_mean); sums: [g over the contact set, its size]; minima: [-g]
+template <class Law>
 struct gap_sums_f {
+    Law law;
     const double *u, *h, *p;
     double *g;
     double h_mean;
@@ -13,7 +18,7 @@ struct gap_sums_f {
         long n = i + (long)nx * j;
         double gv = u[n] - (h[n] - h_mean);
         g[n] = gv;
-        if (p[n] > 0.0) {
+        if (law.in_contact(p[n])) {
             s[1] += 1.0;
             s[0] += gv;
         }
@@ -21,21 +26,33 @@ struct gap_sums_f {
     }
 };
 
-// g = g + d; sums: [p g, |p|, p]; minima: [g, p]
+// g = g + d; sums and minima: the law's residual sums (the hard wall: [p g, |p|, p], [g, p])
+template <class Law>
 struct gap_measures_f {
+    Law law;
     const double *p;
     double *g;
     double d;
     int nx;
     VS_HD void operator()(int i, int j, double *s, double *m) const {
         long n = i + (long)nx * j;
-        double gv = g[n] + d, pv = p[n];
+        double gv = g[n] + d;
         g[n] = gv;
-        s[0] += pv * gv;
-        s[1] += fabs(pv);
-        s[2] += pv;
-        m[0] = fmin(m[0], gv);
-        m[1] = fmin(m[1], pv);
+        law.residual_sums(p[n], gv, s, m);
+    }
+};
+
+// a = the law's proximal map of a; sums: [a]
+template <class Law>
+struct project_sum_f {
+    Law law;
+    double *a;
+    int nx;
+    VS_HD void operator()(int i, int j, double *s, double *) const {
+        long n = i + (long)nx * j;
+        double v = law.project(a[n]);
+        a[n] = v;
+        s[0] += v;
     }
 };
 
@@ -43,13 +60,24 @@ struct gap_measures_f {
 
 extern "C" {
 
-void veslide_contact_gap_and_contact_sums(int nx, int ny, const double *u, const double *h, double h_mean,
-                                          const double *p, double *g, double *rows) {
-    vs::reduce_rows<2, 1>(gap_sums_f{u, h, p, g, h_mean, nx}, nx, ny, rows);
+void veslide_contact_gap_and_contact_sums(int law, const double *param, int nx, int ny, const double *u,
+                                          const double *h, double h_mean, const double *p, double *g, double *rows) {
+    vs::with_law(law, param, "contact gap_and_contact_sums", [&](auto l) {
+        vs::reduce_rows<2, 1>(gap_sums_f<decltype(l)>{l, u, h, p, g, h_mean, nx}, nx, ny, rows);
+    });
 }
 
-void veslide_contact_gap_measures(int nx, int ny, const double *p, double *g, double d, double *rows) {
-    vs::reduce_rows<3, 2>(gap_measures_f{p, g, d, nx}, nx, ny, rows);
+void veslide_contact_gap_measures(int law, const double *param, int nx, int ny, const double *p, double *g, double d,
+                                  double *rows) {
+    vs::with_law(law, param, "contact gap_measures", [&](auto l) {
+        vs::reduce_rows<3, 2>(gap_measures_f<decltype(l)>{l, p, g, d, nx}, nx, ny, rows);
+    });
+}
+
+void veslide_contact_project_and_sum(int law, const double *param, int nx, int ny, double *a, double *rows) {
+    vs::with_law(law, param, "contact project_and_sum", [&](auto l) {
+        vs::reduce_rows<1, 0>(project_sum_f<decltype(l)>{l, a, nx}, nx, ny, rows);
+    });
 }
 
 }  // extern "C"

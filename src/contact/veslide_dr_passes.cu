@@ -1,26 +1,37 @@
 // CUDA twins of veslide_dr_passes.F90 (the splitting's passes besides its map and mixing, which
-// are Anderson's: veslide_anderson_passes.cu)
+// are Anderson's: veslide_anderson_passes.cu). The passes through the contact law's proximal map
+// take the law as their functor's template argument, chosen once per call (vs::with_law).
 #include "../core/veslide_device.cuh"
+#include "veslide_contact_law.cuh"
 
 namespace {
 
-struct elementwise_f {
+// y = prox(2x - z), the law's proximal map; mode 0: rebalance, 1: project
+template <class Law>
+struct reflect_f {
+    Law law;
     double *x, *z, *p;
+    double s;
+    int mode;
+    VS_HD void operator()(long n) const {
+        if (mode == 0) {   // rebalance
+            double yv = law.project(2.0 * x[n] - z[n]);
+            double zn = yv + s * (z[n] - yv);
+            z[n] = zn;
+            x[n] = zn;
+        } else {   // project
+            p[n] = s * law.project(2.0 * x[n] - z[n]);
+        }
+    }
+};
+
+struct elementwise_f {
+    double *x, *z;
     const double *a, *b;
     double s, t;
     int mode;
     VS_HD void operator()(long n) const {
         switch (mode) {
-        case 0: {   // rebalance
-            double yv = fmax(2.0 * x[n] - z[n], 0.0);
-            double zn = yv + s * (z[n] - yv);
-            z[n] = zn;
-            x[n] = zn;
-            break;
-        }
-        case 1:   // project
-            p[n] = s * fmax(2.0 * x[n] - z[n], 0.0);
-            break;
         case 2: {   // restore
             double zn = a[n] + b[n];
             z[n] = zn;
@@ -36,16 +47,18 @@ struct elementwise_f {
     }
 };
 
-// v = 2x - z; sums: [max(v - c, 0), count v > c]; minima: [-v]
+// v = 2x - z; sums: [prox(v - c) over the cells it puts in contact, their count]; minima: [-v]
+template <class Law>
 struct load_sums_f {
+    Law law;
     const double *x, *z;
     double c;
     int nx;
     VS_HD void operator()(int i, int j, double *s, double *m) const {
         long n = i + (long)nx * j;
         double v = 2.0 * x[n] - z[n];
-        if (v > c) {
-            s[0] += v - c;
+        if (law.in_contact_shifted(v, c)) {
+            s[0] += law.project(v - c);
             s[1] += 1.0;
         }
         m[0] = fmin(m[0], -v);
@@ -56,13 +69,23 @@ struct load_sums_f {
 
 extern "C" {
 
-void veslide_dr_elementwise(long n, int mode, double *x, double *z, double *p, const double *a, const double *b,
-                            double s, double t) {
-    vs::for_each(elementwise_f{x, z, p, a, b, s, t, mode}, n);
+void veslide_dr_reflect(int law, const double *param, long n, int mode, double *x, double *z, double *p, double s) {
+    vs::with_law(law, param, "dr reflect", [&](auto l) {
+        vs::for_each(reflect_f<decltype(l)>{l, x, z, p, s, mode}, n);
+    });
 }
 
-void veslide_dr_load_sums(int nx, int ny, const double *x, const double *z, double c, double *rows) {
-    vs::reduce_rows<2, 1>(load_sums_f{x, z, c, nx}, nx, ny, rows);
+void veslide_dr_elementwise(long n, int mode, double *x, double *z, double *p, const double *a, const double *b,
+                            double s, double t) {
+    (void)p;
+    vs::for_each(elementwise_f{x, z, a, b, s, t, mode}, n);
+}
+
+void veslide_dr_load_sums(int law, const double *param, int nx, int ny, const double *x, const double *z, double c,
+                          double *rows) {
+    vs::with_law(law, param, "dr load_sums", [&](auto l) {
+        vs::reduce_rows<2, 1>(load_sums_f<decltype(l)>{l, x, z, c, nx}, nx, ny, rows);
+    });
 }
 
 }  // extern "C"

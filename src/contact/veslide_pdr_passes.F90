@@ -6,7 +6,8 @@
 !>  resolvent       from z^ in k: hk = z^, k = x^/N = M z^/((M + gamma K) N) + cm, then the
 !>                  inner heights hk = M (2 x^ - z^)
 !>  scaled_product  k = (s K_d) p^ (the transform of K y, from the inner solve's p^)
-!>  residual_sums   per row the sum of K y - H over the contact set, and its size
+!>  residual_sums   per row the sum of K y - H over the contact set, and its size (pdr takes the
+!>                  hard wall only, veslide_solver_table: its contact, veslide_contact_law_maps.inc)
 !>  residual_gap    per row sum(y g), sum(y), g = K y - H + d; the smallest g
 !>  relax           z = z + lambda (y - x)
 !>  full_contact    k = h^/((N^2 s) K_d) (the pressure of full contact, less its mean)
@@ -297,7 +298,7 @@ contains
         do j = 1, size(x, 2)
             g = 0.0_dp
             do i = 1, size(x, 1)
-                if (p(i, j) > 0.0_dp) then
+                if (hard_wall_in_contact(p(i, j))) then
                     nc = nc + 1; g = g + (x(i, j) - (h(i, j) - h_mean)/hs)
                 end if
             end do
@@ -354,5 +355,7 @@ contains
         end do
         !$omp end parallel do
     end subroutine combine_cpu
+
+    include 'veslide_contact_law_maps.inc'
 
 end module veslide_pdr_passes

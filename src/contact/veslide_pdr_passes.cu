@@ -1,6 +1,7 @@
 // CUDA twins of veslide_pdr_passes.F90 (the preconditioned splitting's passes); each functor does
 // for one element what the CPU twin does, in the same order of operations.
 #include "../core/veslide_device.cuh"
+#include "veslide_contact_law.cuh"
 
 namespace {
 
@@ -47,14 +48,14 @@ struct pdr_spectral_f {
     }
 };
 
-// sums: [x - (h - h_mean)/hs over p > 0, count]
+// sums: [x - (h - h_mean)/hs over the contact set (the hard wall's: pdr takes that law only), count]
 struct residual_sums_f {
     const double *x, *h, *p;
     double h_mean, hs;
     int nx;
     VS_HD void operator()(int i, int j, double *s, double *) const {
         long n = i + (long)nx * j;
-        if (p[n] > 0.0) {
+        if (vs::hard_wall{}.in_contact(p[n])) {
             s[1] += 1.0;
             s[0] += x[n] - (h[n] - h_mean) / hs;
         }

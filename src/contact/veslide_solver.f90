@@ -9,10 +9,14 @@
 !>    (any operator), `veslide_solver_pdr`: its iteration count barely grows with the grid;
 !>  - 'auto': bccg when the kernel is symmetric; else pdr on grids of at least `pdr_min_cells`
 !>    cells whose operator is not too anisotropic (`modulus_spread` at most `pdr_max_spread`),
-!>    and dr otherwise (docs/solver-scaling.md: the measurements behind the two thresholds).
+!>    and dr otherwise (docs/solver-scaling.md: the measurements behind the two thresholds);
+!>    of these the first the solver table says takes the case (its operator, its contact law).
 !> Where: on the CPU, or on the device (a GPU: `&solver device`, `solve_on_device`), the same
 !> control flow on arrays held there (`contact_fields_t`); pk runs on the CPU only.
-!> A new solver is one module with the signature of the ones above and one `case` here.
+!> What each method takes (a symmetric operator or any, which contact laws, the device) is the
+!> solver table's (veslide_solver_table): the refusals here are its, worded as at the input.
+!> A new solver is one module with the signature of the ones above, one `case` here and its row
+!> in the table.
 module veslide_solver
     use veslide_kinds, only: dp
     use veslide_error, only: error_t, fatal_error
@@ -20,9 +24,11 @@ module veslide_solver
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, &
                                       DEVICE_CPU, DEVICE_GPU
+    use veslide_solver_table, only: solver_info_t, solver_info, method_takes, method_refusal, device_refusal, &
+                                    memory_refusal, runs_on_device
     use veslide_anderson_passes, only: device_max_memory
     use veslide_device, only: device_enabled, device_count, device_emulated, device_check
-    use veslide_strings, only: str
+    use veslide_contact_law, only: LAW_HARD_WALL
     use veslide_solver_pk, only: polonsky_keer
     use veslide_solver_dr, only: douglas_rachford
     use veslide_solver_bccg, only: bccg_solve
@@ -30,8 +36,9 @@ module veslide_solver
     use veslide_threads, only: restore_threads
     implicit none
     private
-    public :: solve_contact, auto_method, planned_methods, pdr_min_cells, pdr_max_spread, default_anderson_memory, &
-              solve_on_device, gpu_visible, check_device_choice, auto_takes_device
+    public :: solve_contact, auto_method, auto_rule, planned_methods, pdr_min_cells, pdr_max_spread, &
+              default_anderson_memory, solve_on_device, gpu_visible, check_device_choice, auto_takes_device, &
+              method_check
 
     !> 'auto' takes pdr for a non-symmetric kernel from this many cells up (256^2: there pdr took
     !> 0.56 of dr's time over the 16 hard cases it is chosen for, though more on contacts near
@@ -40,11 +47,6 @@ module veslide_solver
     !> ...when the operator's anisotropy is at most this (pdr's inner problems slow down for
     !> strongly anisotropic operators: Einf/E0 of 100 and more in motion)
     real(dp), parameter :: pdr_max_spread = 20.0_dp
-    !> Anderson memory when the options leave it to the method (anderson_memory < 0): dr mixes 5
-    !> steps; pdr takes the over-relaxed plain step, which spends as many FFT pairs as mixing on
-    !> the hard cases (within 1 %) and fewer on the paper scene, for 52 bytes per cell less
-    !> (docs/solver-scaling.md)
-    integer, parameter :: dr_anderson_memory = 5, pdr_anderson_memory = 0
 
 contains
 
@@ -70,19 +72,14 @@ contains
         if (problem%kernel%grid%nx /= fft%nx .or. problem%kernel%grid%ny /= fft%ny) then
             call fatal_error(error, "veslide:solver:solve_contact: problem and FFT grids differ"); return
         end if
+        ! what the method takes (the solver table), then where it runs
+        call method_check(opts%method, problem%kernel%symmetric, problem%law%kind, error)
+        if (allocated(error)) return
         method = opts%method
         if (method == SOLVER_AUTO) method = auto_method(problem)
         o = opts
         o%anderson_memory = default_anderson_memory(method, opts%anderson_memory)
         call solve_on_device(opts%device, problem, device, error, method, o); if (allocated(error)) return
-        if (method == SOLVER_PK .and. .not. problem%kernel%symmetric) then
-            call fatal_error(error, "veslide:solver:solve_contact: method 'pk' needs a symmetric (elastic)"// &
-                " kernel; use 'dr' or 'auto'"); return
-        end if
-        if (method == SOLVER_BCCG .and. .not. problem%kernel%symmetric) then
-            call fatal_error(error, "veslide:solver:solve_contact: method 'bccg' needs a symmetric (elastic)"// &
-                " kernel; use 'pdr', 'dr' or 'auto'"); return
-        end if
         call problem%start(state, p_init)
         if (method == SOLVER_PK) call polonsky_keer(problem, fft, o, state)
         call problem%fields(f, fft, state, device, error); if (allocated(error)) return
@@ -132,7 +129,8 @@ contains
                     " is not available (an MPI study gives each rank its own GPU); use 'cpu'"); return
             end if
             if (present(method) .and. present(o)) then
-                call device_limits(method, o, error); if (allocated(error)) return
+                call device_limits(method, o, problem%kernel%symmetric, problem%law%kind, error)
+                if (allocated(error)) return
             end if
             device = .true.
         case default
@@ -145,14 +143,26 @@ contains
     end subroutine solve_on_device
 
     !> Does 'auto' solve on the device: a GPU is visible, the grid is not shared by processes, and
-    !> the device runs `method` (SOLVER_*; SOLVER_AUTO: one the rule picks, all of which it runs)
-    !> with Anderson memory `memory` (negative: the method's own). The one rule, also for the
+    !> the device runs `method` (the solver table; SOLVER_AUTO: one the rule picks, all of which it
+    !> runs) with Anderson memory `memory` (negative: the method's own). The one rule, also for the
     !> memory a case is sized for before it is built (veslide_case).
     logical function auto_takes_device(method, memory, distributed) result(yes)
         integer, intent(in) :: method, memory
         logical, intent(in) :: distributed
-        yes = gpu_visible() .and. .not. distributed .and. method /= SOLVER_PK .and. memory <= device_max_memory
+        yes = gpu_visible() .and. .not. distributed .and. runs_on_device(method) .and. memory <= device_max_memory
     end function auto_takes_device
+
+    !> `method` (SOLVER_*) refused, in the solver table's words, where it cannot take a case whose
+    !> operator is `symmetric` or not, with the contact law `law` (LAW_* id): the one check of the
+    !> input (veslide_config), of a case before it is built and of a solve
+    subroutine method_check(method, symmetric, law, error)
+        integer, intent(in) :: method, law
+        logical, intent(in) :: symmetric
+        type(error_t), allocatable, intent(out) :: error
+        character(len=:), allocatable :: why
+        why = method_refusal(method, symmetric, law)
+        if (len(why) > 0) call fatal_error(error, "veslide:solver: "//why)
+    end subroutine method_check
 
     !> The choice `choice` (DEVICE_*) refused where it cannot be had: 'gpu' in a build without GPU
     !> support, or where no GPU is visible (before anything is built for the case)
@@ -178,33 +188,31 @@ contains
         yes = device_count() > 0
     end function gpu_visible
 
-    !> What the device does not run: pk, and Anderson mixing beyond the device passes' memory
-    subroutine device_limits(method, o, error)
-        integer, intent(in) :: method
+    !> What the device does not run (the solver table): a method without device passes (pk), and
+    !> Anderson mixing beyond the device passes' memory; the alternatives named for a case whose
+    !> operator is `symmetric` or not, with the contact law `law`
+    subroutine device_limits(method, o, symmetric, law, error)
+        integer, intent(in) :: method, law
         type(solver_options_t), intent(in) :: o
+        logical, intent(in) :: symmetric
         type(error_t), allocatable, intent(out) :: error
-        if (method == SOLVER_PK) then
-            call fatal_error(error, "veslide:solver: &solver method = 'pk' does not run on the device; use 'bccg'"// &
-                " or 'auto' (the same problem, fewer FFT pairs), or &solver device = 'cpu'")
-        else if ((method == SOLVER_DR .or. method == SOLVER_PDR) .and. o%anderson_memory > device_max_memory) then
-            call fatal_error(error, "veslide:solver: &solver anderson_memory = "//str(o%anderson_memory)// &
-                " does not run on the device (0.."//str(device_max_memory)//" does, and -1, each method's own),"// &
-                " or set &solver device = 'cpu'")
-        end if
+        character(len=:), allocatable :: why
+        why = device_refusal(method, symmetric, law)
+        if (len(why) == 0) why = memory_refusal(method, o%anderson_memory)
+        if (len(why) > 0) call fatal_error(error, "veslide:solver: "//why)
     end subroutine device_limits
 
     !> The Anderson memory `method` (SOLVER_*) runs with when the options ask for `memory`
-    !> (negative: the method's default)
+    !> (negative: the method's default, the solver table's: dr mixes 5 steps; pdr takes the
+    !> over-relaxed plain step, which spends as many FFT pairs as mixing on the hard cases (within
+    !> 1 %) and fewer on the paper scene, for 52 bytes per cell less, docs/solver-scaling.md)
     pure integer function default_anderson_memory(method, memory) result(m)
         integer, intent(in) :: method, memory
+        type(solver_info_t) :: row
         m = memory
         if (m >= 0) return
-        select case (method)
-        case (SOLVER_PDR)
-            m = pdr_anderson_memory
-        case default
-            m = dr_anderson_memory
-        end select
+        row = solver_info(method)
+        m = row%anderson_default
     end function default_anderson_memory
 
     !> The method 'auto' takes for a problem (see the module's header)
@@ -214,40 +222,56 @@ contains
         spread = 1.0_dp        ! (the spread is measured only where the rule reads it)
         if (.not. problem%kernel%symmetric .and. problem%kernel%grid%cells() >= pdr_min_cells) &
             spread = problem%kernel%modulus_spread()
-        method = auto_rule(problem%kernel%symmetric, problem%kernel%grid%cells(), spread)
+        method = auto_rule(problem%kernel%symmetric, problem%kernel%grid%cells(), spread, problem%law%kind)
     end function auto_method
 
     !> The rule of 'auto' for a kernel that is `symmetric` or not, on `cells` cells, whose modulus
-    !> spread is `spread`
-    pure integer function auto_rule(symmetric, cells, spread) result(method)
+    !> spread is `spread`, with the contact law `law` (LAW_* id; default the hard wall): bccg for a
+    !> symmetric kernel, pdr on a large grid whose operator is not too anisotropic, dr otherwise, of
+    !> these the first the solver table says takes the case (0 when none does)
+    pure integer function auto_rule(symmetric, cells, spread, law) result(method)
         logical, intent(in) :: symmetric
         real(dp), intent(in) :: cells
         real(dp), intent(in) :: spread
+        integer, intent(in), optional :: law
+        integer :: law_, k
+        integer :: order(3)
+        law_ = LAW_HARD_WALL; if (present(law)) law_ = law
         if (symmetric) then
-            method = SOLVER_BCCG
+            order = [SOLVER_BCCG, SOLVER_PDR, SOLVER_DR]
         else if (cells >= pdr_min_cells .and. spread <= pdr_max_spread) then
-            method = SOLVER_PDR
+            order = [SOLVER_PDR, SOLVER_DR, SOLVER_BCCG]
         else
-            method = SOLVER_DR
+            order = [SOLVER_DR, SOLVER_PDR, SOLVER_BCCG]
         end if
+        method = 0
+        do k = 1, size(order)
+            if (method_takes(order(k), symmetric, law_)) then
+                method = order(k); return
+            end if
+        end do
     end function auto_rule
 
     !> The methods a solve may run, known before its kernel is built (to size its memory): `method`
     !> itself, or for 'auto' what its rule takes for a kernel `symmetric` or not on `cells` cells
     !> whose spread is at most `spread_bound` (Einf/E0 for the spectral kernel of a viscoelastic
-    !> solid; huge() when unknown): one method, or both pdr and dr when the bound does not decide
-    pure function planned_methods(method, symmetric, cells, spread_bound) result(methods)
+    !> solid; huge() when unknown), with the contact law `law` (default the hard wall): one method,
+    !> or both pdr and dr when the bound does not decide
+    pure function planned_methods(method, symmetric, cells, spread_bound, law) result(methods)
         integer, intent(in) :: method
         logical, intent(in) :: symmetric
         real(dp), intent(in) :: cells
         real(dp), intent(in) :: spread_bound
+        integer, intent(in), optional :: law
         integer, allocatable :: methods(:)
+        integer :: law_
+        law_ = LAW_HARD_WALL; if (present(law)) law_ = law
         if (method /= SOLVER_AUTO) then
             methods = [method]
-        else if (auto_rule(symmetric, cells, spread_bound) /= auto_rule(symmetric, cells, 1.0_dp)) then
-            methods = [auto_rule(symmetric, cells, 1.0_dp), auto_rule(symmetric, cells, spread_bound)]
+        else if (auto_rule(symmetric, cells, spread_bound, law_) /= auto_rule(symmetric, cells, 1.0_dp, law_)) then
+            methods = [auto_rule(symmetric, cells, 1.0_dp, law_), auto_rule(symmetric, cells, spread_bound, law_)]
         else
-            methods = [auto_rule(symmetric, cells, spread_bound)]
+            methods = [auto_rule(symmetric, cells, spread_bound, law_)]
         end if
     end function planned_methods
 

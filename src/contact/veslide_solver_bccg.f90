@@ -40,8 +40,10 @@ module veslide_solver_bccg
     use veslide_arrays, only: rarray_t, carray_t, iarray_t
     use veslide_transform, only: transform_t
     use veslide_device, only: device_failed
-    use veslide_passes, only: fill, scale, divide, subtract, clip_and_sum, row_sums, complex_scale, complex_add, &
+    use veslide_passes, only: fill, scale, divide, subtract, row_sums, complex_scale, complex_add, &
                               complex_divide, centre_scale, zero_mean_mode
+    use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL
+    use veslide_contact_passes, only: project_and_sum
     use veslide_bccg_passes, only: metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, &
                                    step, update_transform, step_transform, gap_multiply, add_points, clipped_points
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
@@ -49,6 +51,10 @@ module veslide_solver_bccg
     implicit none
     private
     public :: bccg_t, bccg_solve
+
+    !> The one contact law BCCG takes (an active-set method for its bounds p >= 0, g >= 0;
+    !> veslide_solver_table): its passes apply the hard wall's maps
+    type(contact_law_t), parameter :: hard_wall = contact_law_t(kind=LAW_HARD_WALL)
 
     !> One symmetric contact operator with its preconditioner, heights and work arrays (reused
     !> by an outer iteration that solves many problems with the same operator), held where the
@@ -154,7 +160,7 @@ contains
         type(progress_ticker_t), intent(inout), optional :: ticker
         integer, parameter :: max_direct = 8     ! clipped points transformed directly, not by FFT
         real(dp) :: n, n2, a, a_new, gprev, s1, gmin, spg, sp, c1, gbar, rz, rz_old, beta, rv, rvo, vkv, alpha
-        real(dp) :: sr, mv, mz, t3(3), t4(4)
+        real(dp) :: sr, mv, mz, t3(3), t4(4), m3(3)
         real(dp), allocatable :: rows(:, :), rows4(:, :), cols(:), clip_rows(:), pts(:, :)
         integer :: nb, ny, nclip
         integer(i8) :: nact, cnt(1)
@@ -167,7 +173,7 @@ contains
         reuse = .false.
         if (present(same_start)) reuse = same_start .and. self%pk_valid
         if (.not. reuse) then
-            call clip_and_sum(p, rows(1, :))
+            call project_and_sum(hard_wall, p, rows(1, :))
             sp = ordered_sum_scalar(self%grid, rows(1, :))
             if (.not. (sp > 0.0_dp)) then
                 call fill(p, 1.0_dp); sp = n
@@ -195,8 +201,10 @@ contains
             c1 = s1/real(max(nact, 1_i8), dp)
             gbar = gprev + c1
             self%approach = -gbar
-            self%penetration = max(0.0_dp, -(gmin - c1))
-            self%complementarity = abs(a*(spg - c1*sp))/(a*sp)
+            ! the law's measures in the units of the solve (h_s = p_mean = 1; p >= 0 is kept)
+            m3 = hard_wall%measures(gmin - c1, a*(spg - c1*sp), a*sp, 0.0_dp, 1.0_dp, 1.0_dp)
+            self%penetration = m3(1)
+            self%complementarity = m3(2)
             self%load_error = abs(a*sp/n - 1.0_dp)
             self%residual = max(self%penetration, self%complementarity, self%load_error)
             gprev = gbar

@@ -2,12 +2,14 @@
 !> problem whatever the symmetry of its operator (the viscoelastic case).
 !>
 !> The contact problem is the inclusion 0 in A(p) + B(p), A(p) = K p - h + (normal cone of
-!> mean(p) = p_mean), B = normal cone of p >= 0. A is monotone because Re K > 0, whether or
-!> not K is symmetric, so the splitting converges without symmetry. In units p/p_mean,
-!> h/h_s, with step gamma, one iteration is
+!> mean(p) = p_mean), B = the contact law's (the hard wall's: the normal cone of p >= 0). A is
+!> monotone because Re K > 0, whether or not K is symmetric, so the splitting converges without
+!> symmetry. In units p/p_mean, h/h_s, with step gamma, one iteration is
 !>   x = (I + gamma K)^-1 (z + gamma h), mean(x) = 1   (one FFT pair: the kernel's resolvent)
-!>   z <- z + c, c such that mean(max(2x - z - c, 0)) = 1   (the approach for the load)
-!>   y = max(2x - z, 0),  f = y - x,   z <- z + f      (accelerated by Anderson mixing).
+!>   z <- z + c, c such that mean(prox(2x - z - c)) = 1   (the approach for the load)
+!>   y = prox(2x - z),  f = y - x,   z <- z + f      (accelerated by Anderson mixing),
+!> prox the law's proximal map (problem%law, veslide_contact_law; the hard wall's max(v, 0)),
+!> applied by the passes that take the law.
 !> At the fixed point x = y = p and z = p + gamma g. The resolvent fixes the mean of x, never
 !> that of z: the mean of z is gamma times the mean gap (the approach), which the plain step
 !> alone would move by mean(y) - 1 per iteration, the mean gap by (mean(y) - 1) h_s/gamma.
@@ -19,8 +21,8 @@
 !> function of c, about 2.3 passes over x and z per iteration); it moves only the mean of z,
 !> which x does not see, and is 0 at the fixed point. So y always carries the load, as the
 !> projection of `solver_pdr` does. The step is balanced every
-!> `balance_every` iterations between the pressure residual (x where y = 0) and the gap
-!> residual (f/gamma where y > 0), by factors of `balance_factor`, with z remapped to the new
+!> `balance_every` iterations between the pressure residual (x where y is out of contact) and
+!> the gap residual (f/gamma where it is in contact), by factors of `balance_factor`, with z remapped to the new
 !> step. An accelerated step whose residual grew by more than `aa_growth` is replaced by the
 !> plain step and the memory cleared. Convergence is confirmed on y with a fresh K y.
 !> Lions & Mercier, SIAM J. Numer. Anal. 16 (1979) 964; docs/solvers.md for the measurements.
@@ -106,7 +108,7 @@ contains
 
             ! pass A: y, f = y - x and the residuals; the new history column and its products
             mk = aa%begin()
-            call aa%columns(f%t%x, z, mk, .true., part, rp, rg)
+            call aa%columns(f%t%x, z, mk, part, rp, rg, law=problem%law)
             ext = [rp, rg]
             call global_max(problem%kernel%grid, ext)
             rsq = part(1); rp = ext(1); rg = ext(2)/gamma
@@ -125,7 +127,7 @@ contains
             end if
 
             if (max(rp, rg) <= inner_tol) then
-                call dr_project(f%p, f%t%x, z, p_mean)
+                call dr_project(problem%law, f%p, f%t%x, z, p_mean)
                 call problem%confirm(f, state, opts%tolerance)
                 if (state%converged) exit
                 inner_tol = inner_tol/10.0_dp
@@ -136,7 +138,7 @@ contains
                 cycle
             end if
             if (state%iterations >= opts%max_iterations) then
-                call dr_project(f%p, f%t%x, z, p_mean)
+                call dr_project(problem%law, f%p, f%t%x, z, p_mean)
                 call problem%confirm(f, state, opts%tolerance)
                 exit
             end if
@@ -152,7 +154,7 @@ contains
                 if (rp > opts%balance_ratio*rg) s = 1.0_dp/opts%balance_factor
                 if (s /= 1.0_dp) then
                     ! z = y + s (z - y): z = p + gamma g remapped to the new gamma
-                    call dr_rebalance(f%t%x, z, s)
+                    call dr_rebalance(problem%law, f%t%x, z, s)
                     gamma = gamma*s
                     call res%set(f%kd, gamma, scale, problem%kernel%grid%cells(), &
                                  problem%kernel%grid%owns_mean_mode())
@@ -166,7 +168,7 @@ contains
             ! map's input into the buffer
             mk = aa%mix(part, mk, coef)
             accelerated = mk > 0
-            call aa%update(f%t%x, z, coef, mk, .true.)
+            call aa%update(f%t%x, z, coef, mk, law=problem%law)
             fnorm_prev = fnorm
         end do
         call z%destroy(); call aa%destroy(); call hkern%destroy(); call res%destroy()
@@ -178,11 +180,11 @@ contains
             call aa%reset(); accelerated = .false.
         end subroutine clear_history
 
-        !> z <- z + c with the c that makes y = max(2x - z, 0) carry the load: with v = 2x - z,
-        !> phi(c) = sum(max(v - c, 0)) - N = 0 (N cells). phi is convex, piecewise linear and
-        !> decreasing with slope -count(v > c): Newton's method from a c with phi >= 0 stays
-        !> below the root and is exact once that count stops changing (from phi < 0 its first
-        !> step lands below the root). Starts at c = 0, or without contact there (count 0) at
+        !> z <- z + c with the c that makes y = prox(2x - z) carry the load: with v = 2x - z,
+        !> phi(c) = sum(prox(v - c)) - N = 0 (N cells). For the hard wall phi is convex, piecewise
+        !> linear and decreasing with slope -count(v > c) (the cells prox puts in contact):
+        !> Newton's method from a c with phi >= 0 stays below the root and is exact once that
+        !> count stops changing (from phi < 0 its first step lands below the root). Starts at c = 0, or without contact there (count 0) at
         !> c = max v - N, where phi >= 0.
         subroutine carry_load()
             integer, parameter :: max_steps = 100
@@ -212,7 +214,7 @@ contains
             real(dp), intent(in) :: c
             real(dp), intent(out) :: phi, cnt, vmax
             real(dp) :: rows(2, ny), t(2)
-            call dr_load_sums(f%t%x, z, c, rows, vmax)
+            call dr_load_sums(problem%law, f%t%x, z, c, rows, vmax)
             call ordered_sum(problem%kernel%grid, rows, t)
             call global_max(problem%kernel%grid, vmax)
             phi = t(1) - problem%kernel%grid%cells(); cnt = t(2)

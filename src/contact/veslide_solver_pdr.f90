@@ -21,7 +21,8 @@
 !> outer residual (0.3 of it, and never below a third of the target); every outer
 !> iteration confirms the residual of y on a fresh K y. Measured in docs/solver-scaling.md.
 !> Sums row by row and then over the rows in order (veslide_collective): the same path for any
-!> number of threads or processes.
+!> number of threads or processes. Its projection is BCCG's, an active-set method for the hard
+!> wall: pdr takes that contact law only (veslide_solver_table).
 module veslide_solver_pdr
     use, intrinsic :: iso_fortran_env, only: i8 => int64
     use veslide_kinds, only: dp
@@ -136,7 +137,8 @@ contains
             call global_min(problem%kernel%grid, gmin)
             spg = t2(1); sp = t2(2)
             ! (y >= 0 by construction: the negative-pressure measure is 0)
-            call residual_measures(state, hs*gmin, p_mean*hs*spg, p_mean*sp, 0.0_dp, p_mean*sp, n, p_mean, hs)
+            call residual_measures(problem%law, state, hs*gmin, p_mean*hs*spg, p_mean*sp, 0.0_dp, p_mean*sp, n, &
+                                   p_mean, hs)
             if (f%device) then
                 if (device_failed()) exit
             end if
@@ -174,7 +176,8 @@ contains
     contains
 
         !> y = the solution in full contact, P = 1 + H/K (one inverse transform of h^, which t%k
-        !> holds), when it is admissible (P >= 0 everywhere): then it is the solution, confirmed by
+        !> holds), when it is admissible (P >= 0 everywhere, the hard wall's bound: pdr takes that
+        !> law only, veslide_solver_table): then it is the solution, confirmed by
         !> the first outer iteration. (Started from it clipped at zero when it is negative on up to
         !> half the cells, the hard cases near full contact took as many FFT pairs as from the
         !> uniform pressure: docs/solver-scaling.md.)

@@ -2,6 +2,9 @@
 !> problem, load control. The displacement is updated linearly (u <- s (u - tau K t)), so an
 !> iteration costs one operator application (one FFT pair) unless the active set changed, when the
 !> correction K c of the clipped/re-admitted points costs one more.
+!> It is an active-set method for the hard wall, the one contact law it takes
+!> (veslide_solver_table): its loops apply the hard wall's maps (what counts as contact, the
+!> pressure bound it clips at, the gap bound it re-admits cells by; veslide_contact_law_maps.inc).
 !> Polonsky & Keer, Wear 231 (1999) 206-219.
 module veslide_solver_pk
     use veslide_kinds, only: dp
@@ -58,8 +61,9 @@ contains
         fresh = .true.; since_fresh = 0
         t = 0.0_dp; delta = 0.0_dp; gg_old = 1.0_dp; a = 1.0_dp
         do j = 1, ny
-            rows(1, j) = sum(state%u(:, j) - (problem%h(:, j) - problem%h_mean), mask=state%p(:, j) > 0.0_dp)
-            rows(2, j) = count(state%p(:, j) > 0.0_dp)
+            rows(1, j) = sum(state%u(:, j) - (problem%h(:, j) - problem%h_mean), &
+                             mask=hard_wall_in_contact(state%p(:, j)))
+            rows(2, j) = count(hard_wall_in_contact(state%p(:, j)))
         end do
         call ordered_sum(grid, rows(1:2, :), tot(1:2))
         gp = tot(1)/max(1.0_dp, tot(2))
@@ -73,7 +77,7 @@ contains
                 do i = 1, nx
                     pv = a*state%p(i, j)
                     g = a*state%u(i, j) - (problem%h(i, j) - problem%h_mean) - gp
-                    if (pv > 0.0_dp) then
+                    if (hard_wall_in_contact(pv)) then
                         r1 = r1 + 1.0_dp; r2 = r2 + g; r3 = r3 + g*g
                     end if
                     e1 = min(e1, g)
@@ -92,7 +96,7 @@ contains
             gbar = gp + c1
             gg = max(s2 - s1*c1, 0.0_dp)
             state%approach_m = -gbar
-            call residual_measures(state, gmin - c1, spg - c1*sp, sp, pmin, sp, cells, p_mean, hs)
+            call residual_measures(problem%law, state, gmin - c1, spg - c1*sp, sp, pmin, sp, cells, p_mean, hs)
             gp = gbar
             if (state%residual <= opts%tolerance) then
                 if (fresh) then
@@ -111,7 +115,7 @@ contains
             do j = 1, ny
                 r1 = 0.0_dp; r2 = 0.0_dp
                 do i = 1, nx
-                    if (state%p(i, j) > 0.0_dp) then
+                    if (hard_wall_in_contact(state%p(i, j))) then
                         g = a*state%u(i, j) - (problem%h(i, j) - problem%h_mean) - gbar
                         t(i, j) = g + beta*t(i, j)
                         r1 = r1 + g*t(i, j)
@@ -134,7 +138,7 @@ contains
             do j = 1, ny
                 r1 = 0.0_dp; r2 = 0.0_dp
                 do i = 1, nx
-                    if (state%p(i, j) > 0.0_dp) then
+                    if (hard_wall_in_contact(state%p(i, j))) then
                         r1 = r1 + fft%x(i, j)
                         r2 = r2 + fft%x(i, j)*t(i, j)
                     end if
@@ -164,13 +168,13 @@ contains
                     pn = a*state%p(i, j) - tau*t(i, j)
                     state%u(i, j) = uo - tau*fft%x(i, j)
                     c = 0.0_dp
-                    if (pn < 0.0_dp) then
+                    if (hard_wall_below(pn)) then
                         c = -pn
-                        pn = 0.0_dp
+                        pn = hard_wall_project(pn)
                     end if
-                    if (pn == 0.0_dp) then
+                    if (pn == 0.0_dp) then            ! (at the bound: re-admitted where it penetrates)
                         g = uo - (problem%h(i, j) - problem%h_mean) - gbar
-                        if (g < 0.0_dp) then
+                        if (hard_wall_penetrates(g)) then
                             r3 = r3 + 1.0_dp
                             c = c - tau*g
                             pn = -tau*g
@@ -242,5 +246,7 @@ contains
         end subroutine add_correction
 
     end subroutine polonsky_keer
+
+    include 'veslide_contact_law_maps.inc'
 
 end module veslide_solver_pk

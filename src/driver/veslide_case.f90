@@ -180,7 +180,7 @@ contains
         real(dp) :: t0
         c%grid = c%kernel%grid
         ! the problem holds the case's kernel and heights while it lives (no copies)
-        call new_contact_problem_moving(problem, c%kernel, c%h, c%spec%mean_pressure_pa, error)
+        call new_contact_problem_moving(problem, c%kernel, c%h, c%spec%mean_pressure_pa, error, law=c%spec%law)
         call add_context(error, "veslide: "//c%spec%input_path//": ")
         if (allocated(error)) return
         t0 = wall_seconds()
@@ -205,9 +205,10 @@ contains
             call persson_analysis(fft, c, error); if (allocated(error)) return
         end if
         if (c%spec%analysis%patches) then
-            call contact_patches(c%state%p > 0.0_dp, c%grid%lx_m, c%grid%ly_m, c%patches, c%grid)
-            c%percolates_x = percolates(.not. (c%state%p > 0.0_dp), 1, c%grid)
-            c%percolates_y = percolates(.not. (c%state%p > 0.0_dp), 2, c%grid)
+            ! the contact cells are the law's
+            call contact_patches(c%spec%law%contact(c%state%p), c%grid%lx_m, c%grid%ly_m, c%patches, c%grid)
+            c%percolates_x = percolates(.not. c%spec%law%contact(c%state%p), 1, c%grid)
+            c%percolates_y = percolates(.not. c%spec%law%contact(c%state%p), 2, c%grid)
             c%have_patches = .true.
         end if
     end subroutine solve_prepared

@@ -5,15 +5,11 @@
 !> The estimate is the largest of the phases of a run, in bytes per grid cell (N = nx ny), plus a
 !> fixed allowance for the libraries, the FFTW plans and the output. Resident during a solve: the
 !> heights (8) and the kernel (8; the contact problem holds the case's, not copies), the FFT
-!> buffers (16), the solution p, u, g (24); then per solver (measured peaks at
-!> 512^2 and 1024^2 in docs/solver-scaling.md): bccg 36 (direction, operator, the transforms of
-!> heights and pressure, the contact set; the pressure is solved in place); the splitting dr 40 + 8 m
-!> (z, the previous z and f, the transform of h, the resolvent, and Anderson's single-precision
-!> history of memory m, 5 by default); pdr 41 (bccg's fields with M = |K|, the resolvent's
-!> constant part; y, z and f live in the state's p, g and u, K is the kernel's own, borrowed),
-!> and 16 + 8 m more when Anderson mixes its steps (m > 0; by default it does not); Polonsky-Keer
-!> 16 (t and one influence column). Surface generation is transient (16 for its
-!> own transform), and the splitting's last step holds one more field (8) in a temporary. Aliased
+!> buffers (16), the solution p, u, g (24); then the solver's own arrays, its row of the solver
+!> table (veslide_solver_table: measured peaks at 512^2 and 1024^2 in docs/solver-scaling.md;
+!> pk 16, bccg 36, dr 40 + 8 m, pdr 41 and 16 + 8 m more when it mixes). Surface generation is
+!> transient (16 for its own transform), and the splitting's last step holds one more field (8)
+!> in a temporary. Aliased
 !> kernels hold 32 while they are summed. Analyses after the solve:
 !> slope force 8, patches 32, Persson 24. A study adds one kernel per speed (8 each), the previous
 !> speed's p and g (16) and the case's copies of heights and kernel (16). The method is the one
@@ -23,19 +19,20 @@
 !> A solve on the device (veslide_device) holds its solver's arrays there, not on the host: the
 !> host keeps the case (heights, kernel, FFT buffers for the analyses, p, u, g) and the device
 !> holds, per cell, the heights (8), the kernel's multiplier (8), the transform's buffers (16), p,
-!> u, g (24), and per solver: bccg 29 (M 4, the transforms of the heights and of the pressure 16,
-!> the direction 8, the contact set 1), pdr bccg's and the resolvent's constant part (37; with
-!> Anderson mixing 16 + 8 m more), dr
-!> 40 + 8 m (z, the previous z and f, the transform of h, the resolvent's multiplier, the history
-!> in single precision); plus cuFFT's work area (at most 8, one for both plans, `cufft_work`).
+!> u, g (24), and the solver's own arrays there (the table's: bccg 29, dr 40 + 8 m, pdr 37 and
+!> 16 + 8 m more when it mixes); plus cuFFT's work area (at most 8, one for both plans,
+!> `cufft_work`). Before anything is built the case's method is checked against the device it
+!> will run on (`size_and_check_memory`, the solver table's refusal).
 module veslide_memory
     use veslide_kinds, only: dp, i8
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_strings, only: str
     use veslide_case_data, only: case_spec_t
     use veslide_kernel, only: KERNEL_SPECTRAL
-    use veslide_solver, only: planned_methods, default_anderson_memory, auto_takes_device, check_device_choice
-    use veslide_solver_options, only: SOLVER_PK, SOLVER_BCCG, SOLVER_DR, SOLVER_PDR, DEVICE_GPU, DEVICE_AUTO
+    use veslide_solver, only: planned_methods, auto_takes_device, check_device_choice
+    use veslide_solver_options, only: DEVICE_GPU, DEVICE_AUTO
+    use veslide_solver_table, only: solver_bytes_per_cell, operator_symmetric, motion_on_grid, runs_on_device, &
+                                    device_refusal, memory_refusal
     use veslide_device, only: device_info_t, device_info, device_memory
     use veslide_system, only: available_memory_bytes
     implicit none
@@ -65,8 +62,7 @@ contains
         real(dp) :: n, solve, solver, analysis, kernel_build, study, per_cell
         n = real(spec%nx, dp)*real(spec%ny, dp)
         solve = 8 + 8 + 16 + 24
-        ! per solver: pk 16, bccg 36, dr 40 + 8 m, pdr 41 (+ 16 + 8 m with mixing)
-        solver = solver_bytes(spec, [16.0_dp, 36.0_dp, 40.0_dp, 41.0_dp], speeds)
+        solver = solver_bytes(spec, .false., speeds)
         if (present(device)) then
             if (device) solver = 0
         end if
@@ -94,46 +90,55 @@ contains
         real(dp), intent(in), optional :: speeds(:)
         real(dp) :: n, per_cell
         n = real(spec%nx, dp)*real(spec%ny, dp)
-        ! per solver: bccg 29 (pk does not run there: bccg's), dr 40 + 8 m, pdr 37 (+ 16 + 8 m)
-        per_cell = 8 + 8 + 16 + 24 + solver_bytes(spec, [29.0_dp, 29.0_dp, 40.0_dp, 37.0_dp], speeds) + cufft_work
+        per_cell = 8 + 8 + 16 + 24 + solver_bytes(spec, .true., speeds) + cufft_work
         bytes = device_fixed_bytes + int(per_cell*n, i8)
     end function device_estimate_bytes
 
     !> The bytes per cell of the solver the case `spec` runs (the largest of those veslide_solver
-    !> may run, `planned_methods`), from the fixed parts `base` = [pk, bccg, dr, pdr]: dr adds 8 m
-    !> for its Anderson history, pdr 16 + 8 m when it mixes (m > 0). The kernel is symmetric for
-    !> an elastic solid or a solid at rest (every speed of a study 0).
-    pure real(dp) function solver_bytes(spec, base, speeds) result(b)
+    !> may run, `planned_methods`), on the host or the `device`: the solver table's. The kernel is
+    !> symmetric for an elastic solid or a solid at rest (every speed of a study 0).
+    pure real(dp) function solver_bytes(spec, device, speeds) result(b)
         type(case_spec_t), intent(in) :: spec
-        real(dp), intent(in) :: base(4)
+        logical, intent(in) :: device
         real(dp), intent(in), optional :: speeds(:)
         integer, allocatable :: methods(:)
         logical :: symmetric
         real(dp) :: bound
-        integer :: k, m
-        symmetric = spec%material%model == 'elastic' .or. spec%speed_m_s == 0.0_dp
-        if (present(speeds)) symmetric = spec%material%model == 'elastic' .or. all(speeds == 0.0_dp)
+        integer :: k
+        symmetric = case_symmetric(spec, speeds)
         ! the operator's spread is at most Einf/E0 for the spectral kernel of a half-space; unknown
         ! for the other variants and for a layer (whose factor varies across a shell of |q|)
         bound = huge(1.0_dp)
         if (spec%kernel_variant == KERNEL_SPECTRAL .and. spec%material%solid%thickness_m == 0.0_dp .and. &
             spec%material%solid%e0_pa > 0.0_dp) bound = spec%material%solid%einf_pa/spec%material%solid%e0_pa
-        methods = planned_methods(spec%solver%method, symmetric, real(spec%nx, dp)*real(spec%ny, dp), bound)
+        methods = planned_methods(spec%solver%method, symmetric, real(spec%nx, dp)*real(spec%ny, dp), bound, &
+                                  spec%law%kind)
         b = 0
         do k = 1, size(methods)
-            select case (methods(k))
-            case (SOLVER_PK)
-                b = max(b, base(1))
-            case (SOLVER_BCCG)
-                b = max(b, base(2))
-            case (SOLVER_DR)
-                b = max(b, base(3) + 8*default_anderson_memory(SOLVER_DR, spec%solver%anderson_memory))
-            case (SOLVER_PDR)
-                m = default_anderson_memory(SOLVER_PDR, spec%solver%anderson_memory)
-                b = max(b, base(4) + merge(16 + 8*m, 0, m > 0))
-            end select
+            b = max(b, solver_bytes_per_cell(methods(k), spec%solver%anderson_memory, device))
         end do
     end function solver_bytes
+
+    !> Is the operator of the case `spec` (a study of its `speeds`) symmetric: an elastic solid, or
+    !> one at rest at every speed (veslide_solver_table). With `on_grid`, also on a grid no mode of
+    !> which the motion reaches (`motion_on_grid`: the refusals' rule, the input's and the
+    !> solve's); without, the solid's alone: the estimate sizes those few grids (at most 2 cells
+    !> along the motion) for the methods of a non-symmetric operator, more than 'auto' takes there
+    pure logical function case_symmetric(spec, speeds, on_grid) result(yes)
+        type(case_spec_t), intent(in) :: spec
+        real(dp), intent(in), optional :: speeds(:)
+        logical, intent(in), optional :: on_grid
+        real(dp), allocatable :: v(:)
+        if (present(speeds)) then
+            v = speeds
+        else
+            v = [spec%speed_m_s]
+        end if
+        yes = operator_symmetric(spec%material%model == 'elastic', v)
+        if (present(on_grid)) then
+            if (on_grid) yes = yes .or. .not. motion_on_grid(spec%nx, spec%ny, v, spec%direction_deg)
+        end if
+    end function case_symmetric
 
     !> Will the case `spec` be solved on the device (on `ranks` processes: never shared)?
     logical function case_on_device(spec, ranks) result(yes)
@@ -145,7 +150,7 @@ contains
         end if
         select case (spec%solver%device)
         case (DEVICE_GPU)
-            yes = spec%solver%method /= SOLVER_PK          ! (what it does not run is refused at the solve)
+            yes = runs_on_device(spec%solver%method)     ! (what it does not run is refused before)
         case (DEVICE_AUTO)
             yes = auto_takes_device(spec%solver%method, spec%solver%anderson_memory, .false.)
         end select
@@ -189,6 +194,8 @@ contains
         estimate = 0
         if (present(device_estimate)) device_estimate = 0
         call check_device_choice(spec%solver%device, error)
+        if (.not. allocated(error) .and. spec%solver%device == DEVICE_GPU .and. ranks_ == 1) &
+            call check_method_on_device(spec, error, speeds)
         call add_context(error, "veslide: "//spec%input_path//": ")
         if (allocated(error)) return
         what = "&grid nx, ny = "
@@ -213,6 +220,18 @@ contains
                 ": choose a smaller &grid nx, ny, use more processes, or run where more memory is free")
         end if
     end subroutine size_and_check_memory
+
+    !> The case's method refused where the device does not run it (&solver device = 'gpu', before
+    !> anything is built: the solver table's refusal, as the solve's)
+    subroutine check_method_on_device(spec, error, speeds)
+        type(case_spec_t), intent(in) :: spec
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: speeds(:)
+        character(len=:), allocatable :: why
+        why = device_refusal(spec%solver%method, case_symmetric(spec, speeds, on_grid=.true.), spec%law%kind)
+        if (len(why) == 0) why = memory_refusal(spec%solver%method, spec%solver%anderson_memory)
+        if (len(why) > 0) call fatal_error(error, "veslide:solver: "//why)
+    end subroutine check_method_on_device
 
     !> The device estimate `dev` against the device's free memory (refused in one line naming both)
     subroutine check_device_memory(spec, dev, error)

@@ -16,7 +16,7 @@ module veslide_study
     use veslide_kinds, only: dp, i8, pi, radians
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
-    use veslide_config, only: config_t
+    use veslide_config, only: config_t, case_speeds
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
     use veslide_kernel, only: kernel_t
@@ -95,7 +95,7 @@ contains
         type(study_plan_t), intent(out) :: plan
         real(dp), allocatable :: alphas(:), eccs(:), pressures(:), temps(:)
         integer :: is, ie, ia, ip, it, k
-        plan%speeds = list_or(cfg%sweep%speeds, cfg%motion%speed_m_s)
+        plan%speeds = case_speeds(cfg)
         alphas = list_or(cfg%sweep%alphas, cfg%surface%alpha_deg)
         eccs = list_or(cfg%sweep%eccentricities, cfg%surface%eccentricity)
         pressures = list_or(cfg%sweep%pressures, cfg%load%mean_pressure_pa)

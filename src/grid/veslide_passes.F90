@@ -14,7 +14,7 @@ module veslide_passes
     implicit none
     private
     public :: fill, scale, divide, subtract, scaled_copy, divided_copy, centre_scale, centre_divide
-    public :: clip_and_sum, row_sums, count_below, complex_scale, complex_add, complex_divide, zero_mean_mode
+    public :: row_sums, count_below, complex_scale, complex_add, complex_divide, zero_mean_mode
     public :: multiply_spectrum
 
     !> Modes of the CUDA twins that share a kernel (veslide_passes.cu)
@@ -44,9 +44,9 @@ module veslide_passes
             real(c_double), value :: c, s
             integer(c_int), value :: mode
         end subroutine copy_gpu
-        subroutine row_sums_gpu(nx, ny, a, clip, rows) bind(c, name='veslide_pass_row_sums')
+        subroutine row_sums_gpu(nx, ny, a, rows) bind(c, name='veslide_pass_row_sums')
             import :: c_int, c_ptr, c_double
-            integer(c_int), value :: nx, ny, clip
+            integer(c_int), value :: nx, ny
             type(c_ptr), value :: a
             real(c_double), intent(out) :: rows(*)
         end subroutine row_sums_gpu
@@ -169,26 +169,13 @@ contains
         call copy_cpu(dst%h, src%h, c, s, mode)
     end subroutine copy
 
-    !> a = max(a, 0), and rows(j) = the sum of row j of it
-    subroutine clip_and_sum(a, rows)
-        type(rarray_t), intent(inout) :: a
-        real(dp), intent(out) :: rows(:)
-#ifdef VESLIDE_CUDA
-        if (a%device) then
-            call row_sums_gpu(a%n1, a%n2, a%d, 1_c_int, rows); return
-        end if
-#endif
-        call clip_cpu(a%h)
-        call row_sums_cpu(a%h, rows)
-    end subroutine clip_and_sum
-
     !> rows(j) = the sum of row j of a
     subroutine row_sums(a, rows)
         type(rarray_t), intent(in) :: a
         real(dp), intent(out) :: rows(:)
 #ifdef VESLIDE_CUDA
         if (a%device) then
-            call row_sums_gpu(a%n1, a%n2, a%d, 0_c_int, rows); return
+            call row_sums_gpu(a%n1, a%n2, a%d, rows); return
         end if
 #endif
         call row_sums_cpu(a%h, rows)
@@ -315,16 +302,6 @@ contains
         end do
         !$omp end parallel do
     end subroutine copy_cpu
-
-    subroutine clip_cpu(a)
-        real(dp), intent(inout) :: a(:, :)
-        integer :: j
-        !$omp parallel do schedule(static)
-        do j = 1, size(a, 2)
-            a(:, j) = max(a(:, j), 0.0_dp)
-        end do
-        !$omp end parallel do
-    end subroutine clip_cpu
 
     subroutine row_sums_cpu(a, rows)
         real(dp), intent(in) :: a(:, :)

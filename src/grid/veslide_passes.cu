@@ -40,17 +40,9 @@ struct copy_f {
 };
 
 struct row_sum_f {
-    double *a;
-    int nx, clip;
-    VS_HD void operator()(int i, int j, double *s, double *) const {
-        long n = i + (long)nx * j;
-        double v = a[n];
-        if (clip) {
-            v = fmax(v, 0.0);
-            a[n] = v;
-        }
-        s[0] += v;
-    }
+    const double *a;
+    int nx;
+    VS_HD void operator()(int i, int j, double *s, double *) const { s[0] += a[i + (long)nx * j]; }
 };
 
 struct count_below_f {
@@ -96,8 +88,8 @@ void veslide_pass_copy(long n, double *dst, const double *src, double c, double 
     vs::for_each(copy_f{dst, src, c, s, mode}, n);
 }
 
-void veslide_pass_row_sums(int nx, int ny, double *a, int clip, double *rows) {
-    vs::reduce_rows<1, 0>(row_sum_f{a, nx, clip}, nx, ny, rows);
+void veslide_pass_row_sums(int nx, int ny, const double *a, double *rows) {
+    vs::reduce_rows<1, 0>(row_sum_f{a, nx}, nx, ny, rows);
 }
 
 void veslide_pass_count_below(int nx, int ny, const double *a, double v, double *rows) {

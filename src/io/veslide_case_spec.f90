@@ -6,7 +6,7 @@
 module veslide_case_spec
     use veslide_kinds, only: dp, radians
     use veslide_error, only: error_t, add_context
-    use veslide_config, only: config_t
+    use veslide_config, only: config_t, case_law
     use veslide_config_material, only: material_config_t
     use veslide_material, only: new_elastic, new_one_term, new_creep, new_relaxation, shift_factor, &
                                 BASE_BONDED, BASE_FRICTIONLESS
@@ -45,6 +45,7 @@ contains
         spec%speed_m_s = cfg%motion%speed_m_s
         spec%direction_deg = cfg%motion%direction_deg
         spec%mean_pressure_pa = cfg%load%mean_pressure_pa
+        spec%law = case_law(cfg)
         associate (s => cfg%solver, o => spec%solver)
             o%method = solver_method_id(s%method)
             o%device = device_choice_id(s%device)

@@ -23,9 +23,13 @@ module veslide_config
     use veslide_topography, only: topography_info_t, topography_info
     use veslide_material, only: shift_factor
     use veslide_validity, only: edge_jumps, edge_jump_limit
+    use veslide_contact_law, only: contact_law_t
+    use veslide_solver_options, only: solver_method_id
+    use veslide_solver_table, only: operator_symmetric, motion_on_grid, method_refusal
     implicit none
     private
-    public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config
+    public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config, case_law, &
+              case_speeds
 
     !> The groups of a namelist file, in the order of the README
     character(len=*), parameter :: group_names(9) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
@@ -157,9 +161,7 @@ contains
                          "ly_m*sin(direction)/wavelength_m whole numbers below nx/2, ny/2")
         end select
         if (allocated(error)) return
-        call require(error, .not. (cfg%solver%method == 'pk' .and. cfg%material%model /= 'elastic' .and. &
-                                   cfg%motion%speed_m_s > 0.0_dp), p, 'solver', 'method', "'pk'", &
-                     "'auto' or 'dr' for a viscoelastic solid in motion (the operator is not symmetric)")
+        call check_method(cfg, error); if (allocated(error)) return
         if (cfg%analysis%zeta2 == 0.0_dp) cfg%analysis%zeta2 = max(cfg%surface%k_cut, cfg%analysis%zeta1)
         call require(error, cfg%analysis%zeta1 >= 0.0_dp .and. cfg%analysis%zeta1 < cfg%analysis%zeta2 .and. &
                      cfg%analysis%zeta2 < 1.0e6_dp, p, 'analysis', 'zeta1/zeta2', &
@@ -198,6 +200,42 @@ contains
             call check_shift_range(cfg, t_c, group, var, error)
         end subroutine check_shift
     end subroutine complete_config
+
+    !> &solver method against what every case of the input asks of it (its operator, symmetric or
+    !> not at each of its speeds on its grid; its contact law): the solver table's refusal
+    !> (veslide_solver_table), in the words the solve would use. Where the device runs the method
+    !> is checked before a case is built (veslide_memory), after the command line's --device.
+    subroutine check_method(cfg, error)
+        type(config_t), intent(in) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        type(contact_law_t) :: law
+        character(len=:), allocatable :: why
+        logical :: symmetric
+        law = case_law(cfg)
+        symmetric = operator_symmetric(cfg%material%model == 'elastic', case_speeds(cfg)) .or. &
+                    .not. motion_on_grid(cfg%grid%nx, cfg%grid%ny, case_speeds(cfg), cfg%motion%direction_deg)
+        why = method_refusal(solver_method_id(cfg%solver%method), symmetric, law%kind)
+        if (len(why) > 0) call fatal_error(error, "veslide: "//cfg%path//": "//why)
+    end subroutine check_method
+
+    !> The speeds the cases of the input slide at [m/s]: &sweep's, or the one of &motion
+    pure function case_speeds(cfg) result(speeds)
+        type(config_t), intent(in) :: cfg
+        real(dp), allocatable :: speeds(:)
+        if (size(cfg%sweep%speeds) > 0) then
+            speeds = cfg%sweep%speeds
+        else
+            speeds = [cfg%motion%speed_m_s]
+        end if
+    end function case_speeds
+
+    !> The contact law the input asks for: the hard wall (the input groups of other laws set it
+    !> here; veslide_case_spec and the check of &solver method read it from here)
+    pure function case_law(cfg) result(law)
+        type(config_t), intent(in) :: cfg
+        type(contact_law_t) :: law
+        law = contact_law_t()       ! (no input group of `cfg` chooses another law yet)
+    end function case_law
 
     !> The temperature `t_c` within a shift table (measured shift factors are not extrapolated),
     !> and the shifted times there within the range the input accepts for a time (1e-300 to
