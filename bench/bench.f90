@@ -104,25 +104,9 @@ program veslide_bench
         if (size(sizes) == 0) sizes = [1024, 2048, 4096, 8192, 16384, 32768]
         call bench_gpu(sizes)
     case ('validity')
-        n = 512
-        if (command_argument_count() >= 2) then
-            call get_command_argument(2, arg); read (arg, *) n
-        end if
-        k = 7
-        if (command_argument_count() >= 3) then
-            call get_command_argument(3, arg); read (arg, *) k
-        end if
-        call bench_validity(n, k)
+        call bench_validity(int_arg(2, 512), int_arg(3, 7))
     case ('prony')
-        n = 512
-        if (command_argument_count() >= 2) then
-            call get_command_argument(2, arg); read (arg, *) n
-        end if
-        k = 5
-        if (command_argument_count() >= 3) then
-            call get_command_argument(3, arg); read (arg, *) k
-        end if
-        call bench_prony(n, k)
+        call bench_prony(int_arg(2, 512), int_arg(3, 5))
     case ('hard')
         n = 256
         if (command_argument_count() >= 2) then
@@ -165,6 +149,14 @@ program veslide_bench
 
 contains
 
+    !> Command-line argument `i` as an integer, `default` when it is not given
+    integer function int_arg(i, default) result(v)
+        integer, intent(in) :: i, default
+        character(len=64) :: text
+        v = default
+        if (command_argument_count() < i) return
+        call get_command_argument(i, text); read (text, *) v
+    end function int_arg
 
     subroutine check(error)
         type(error_t), allocatable, intent(in) :: error
