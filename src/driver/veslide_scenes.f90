@@ -113,15 +113,7 @@ contains
         cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp*ny/cfg%grid%nx
         cfg%surface%seed = seed; cfg%surface%k_cut = 16.0_dp
         cfg%load%mean_pressure_pa = loads(modulo(k, 3) + 1)
-        if (viscoelastic) then
-            cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
-            cfg%material%tau_s = 0.01_dp; cfg%motion%speed_m_s = 0.13_dp
-        else
-            cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e7_dp
-        end if
-        cfg%solver%method = method
-        cfg%solver%fft_planner = 'estimate'; cfg%output%fields = .false.
-        cfg%output%file = 'profile.h5'
+        call scene_solid(cfg, viscoelastic, 0.13_dp, method, 'profile.h5')
         write (text, '(i0, " x ", i0, ", seed ", i0, ", ", es8.1, " Pa")') cfg%grid%nx, ny, seed, &
             cfg%load%mean_pressure_pa
         name = trim(method)//' on the profile '//trim(text)
@@ -160,16 +152,7 @@ contains
         cfg%material%thickness_m = layer_q0d(iq)*cfg%grid%lx_m/two_pi
         cfg%material%base = trim(layer_bases(ibase))
         cfg%load%mean_pressure_pa = 32.0e3_dp
-        if (viscoelastic) then
-            cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
-            cfg%material%tau_s = 0.01_dp
-            cfg%motion%speed_m_s = layer_speeds(modulo(k - 1, size(layer_speeds)) + 1)
-        else
-            cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e7_dp
-        end if
-        cfg%solver%method = method
-        cfg%solver%fft_planner = 'estimate'; cfg%output%fields = .false.
-        cfg%output%file = 'layer.h5'
+        call scene_solid(cfg, viscoelastic, layer_speeds(modulo(k - 1, size(layer_speeds)) + 1), method, 'layer.h5')
         if (viscoelastic) then
             write (law, '("one-term at ", g0.2, " m/s")') cfg%motion%speed_m_s
         else
@@ -180,5 +163,23 @@ contains
         name = trim(method)//' on '//trim(text)
         call complete_config(cfg, error)
     end subroutine layer_case
+
+    !> The solid, solver and output of a profile or layer scene: the paper's one-term solid
+    !> sliding at `speed` m/s (`viscoelastic`), or an elastic solid of 10 MPa at rest
+    subroutine scene_solid(cfg, viscoelastic, speed, method, file)
+        type(config_t), intent(inout) :: cfg
+        logical, intent(in) :: viscoelastic
+        real(dp), intent(in) :: speed
+        character(len=*), intent(in) :: method, file
+        if (viscoelastic) then
+            cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+            cfg%material%tau_s = 0.01_dp; cfg%motion%speed_m_s = speed
+        else
+            cfg%material%model = 'elastic'; cfg%material%young_pa = 1.0e7_dp
+        end if
+        cfg%solver%method = method
+        cfg%solver%fft_planner = 'estimate'; cfg%output%fields = .false.
+        cfg%output%file = file
+    end subroutine scene_solid
 
 end module veslide_scenes
