@@ -184,8 +184,8 @@ contains
         !> phi(c) = sum(prox(v - c)) - N = 0 (N cells). For the hard wall phi is convex, piecewise
         !> linear and decreasing with slope -count(v > c) (the cells prox puts in contact):
         !> Newton's method from a c with phi >= 0 stays below the root and is exact once that
-        !> count stops changing (from phi < 0 its first step lands below the root). Starts at c = 0, or without contact there (count 0) at
-        !> c = max v - N, where phi >= 0.
+        !> count stops changing (from phi < 0 its first step lands below the root). Starts at
+        !> c = 0, or without contact there (count 0) at c = max v - N, where phi >= 0.
         subroutine carry_load()
             integer, parameter :: max_steps = 100
             real(dp) :: c, c_new, phi, cnt, cnt_new, vmax, cells

@@ -1,7 +1,8 @@
 !> Validity as data: the measures of a case's validity (`measure_t`: a number, its units and the
 !> threshold past which it warns) and the warnings (`warning_t`): what a run found questionable
-!> about its input or its result, kept with the result (the output file's /warnings, a study case's /cases/NNNNNN/warnings), printed on stderr
-!> by the programs (never silenced by --quiet) and re-raised by the Python package.
+!> about its input or its result, kept with the result (the output file's /warnings, a study
+!> case's /cases/NNNNNN/warnings), printed on stderr by the programs (never silenced by --quiet)
+!> and re-raised by the Python package.
 !>
 !> A warning has a stable `code` (hyphenated; scripts filter on it; docs/validity.md lists every
 !> code), the number it measured and the threshold that number crossed (both 0 when the warning
