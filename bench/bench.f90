@@ -497,8 +497,9 @@ contains
 
     !> The cost of the validity measures against the solve they follow: the paper scene at n^2
     !> solved `rounds` times from cold, each solve followed by the measures (veslide_validity's
-    !> case_validity), both timed; medians and their ratio. A study's warm-started solves are
-    !> faster (0.1-0.9 s at 512^2 on one thread against a cold 0.7 s), the measures the same.
+    !> case_validity; the heights' rms slope comes from the check before the solve), both timed;
+    !> medians and their ratio. A study's warm-started solves are faster (0.1-0.9 s at 512^2 on
+    !> one thread against a cold 0.5 s), the measures the same.
     subroutine bench_validity(n, rounds)
         integer, intent(in) :: n, rounds
         type(config_t) :: cfg

@@ -94,6 +94,7 @@ module veslide_case_data
         type(case_spec_t) :: spec
         type(grid_t) :: grid
         real(dp), allocatable :: h(:, :)          !! rigid heights [m]
+        real(dp) :: surface_rms_slope = -1.0_dp   !! of h, measured once per surface (-1: not yet)
         type(kernel_t) :: kernel
         type(contact_state_t) :: state
         real(dp) :: force_pa(2) = 0.0_dp          !! <p grad w>, solid on rigid surface [Pa]

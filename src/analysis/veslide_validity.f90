@@ -134,20 +134,23 @@ contains
 
     !> Refuse a surface no small-slope contact model can take: an rms slope above `slope_refuse`
     !> (not for the single asperities, paraboloid and cylinder, whose slopes far from the apex
-    !> never touch); the message names the input and the likely cause
-    subroutine check_surface_scale(spec, grid, fft, h, error)
+    !> never touch); the message names the input and the likely cause. `rms_slope` is the rms
+    !> slope measured, which the case keeps for its validity measures (one transform per surface)
+    subroutine check_surface_scale(spec, grid, fft, h, error, rms_slope)
         type(case_spec_t), intent(in) :: spec
         type(grid_t), intent(in) :: grid
         type(fft2d_t), intent(inout) :: fft
         real(dp), intent(in) :: h(:, :)
         type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(out), optional :: rms_slope
         real(dp) :: s
         character(len=:), allocatable :: at
+        s = surface_rms_slope(grid, fft, h)
+        if (present(rms_slope)) rms_slope = s
         select case (spec%surface%kind)
         case ('paraboloid', 'cylinder', 'flat')
             return
         end select
-        s = surface_rms_slope(grid, fft, h)
         if (.not. s > slope_refuse) return
         at = "veslide: "//spec%input_path//": &surface "
         select case (spec%surface%kind)
@@ -184,7 +187,8 @@ contains
         associate (solid => c%spec%material%solid, kind => c%spec%surface%kind)
 
             ! slopes: the small-slope half-space
-            rms_h = surface_rms_slope(c%grid, fft, c%h)
+            rms_h = c%surface_rms_slope                  ! (measured when the surface was checked)
+            if (rms_h < 0.0_dp) rms_h = surface_rms_slope(c%grid, fft, c%h)
             rms_u = surface_rms_slope(c%grid, fft, c%state%u)
             call contact_statistics(c%grid, c%spec%law, c%state%p, c%h, c%state%u, stats)
             ncontact = nint(stats(1), i8)

@@ -158,7 +158,7 @@ contains
         call use_threads(spec%threads)
         call fft%init(c%grid%nx, c%grid%ny, error, planner=spec%fft_planner, grid=c%grid)
         if (allocated(error)) return
-        call check_surface_scale(spec, c%grid, fft, c%h, error)      ! (collective)
+        call check_surface_scale(spec, c%grid, fft, c%h, error, c%surface_rms_slope)      ! (collective)
         if (allocated(error)) return
         call build_kernel(spec, c%grid, c%kernel, c%kernel_seconds, error); if (allocated(error)) return
         call solve_prepared(fft, c, error, progress=progress)

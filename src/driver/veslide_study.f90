@@ -201,7 +201,7 @@ contains
         integer, allocatable :: keep(:)
         logical, allocatable :: done(:)
         integer(i8) :: surface_seed, estimate
-        real(dp) :: surface_ecc, surface_alpha, t_start, t_case, kernels_temperature
+        real(dp) :: surface_ecc, surface_alpha, t_start, t_case, kernels_temperature, surface_slope
         logical :: have_surface
 
         nfail = 0
@@ -215,7 +215,7 @@ contains
         call case_spec_of(cfg, base, error); if (allocated(error)) return
         call size_and_check_memory(base, estimate, error, node_ranks=node_ranks, speeds=plan%speeds)
         if (allocated(error)) return
-        have_surface = .false.
+        have_surface = .false.; surface_slope = -1.0_dp
         if (base%surface%kind == 'file') then         ! read once: every case has the same heights
             call build_surface(base, h, error); if (allocated(error)) return
             have_surface = .true.
@@ -237,7 +237,7 @@ contains
         call fft%init(grid%nx, grid%ny, error, planner=base%fft_planner)
         if (allocated(error)) return
         if (have_surface) then
-            call check_surface_scale(base, grid, fft, h, error); if (allocated(error)) return
+            call check_surface_scale(base, grid, fft, h, error, surface_slope); if (allocated(error)) return
         end if
 
         t_start = wall_seconds()
@@ -264,7 +264,8 @@ contains
                 if (spec%surface%kind /= 'file' .and. .not. (have_surface .and. chain%seed == surface_seed .and. &
                     chain%eccentricity == surface_ecc .and. chain%alpha_deg == surface_alpha)) then
                     call build_surface(spec, h, error); if (allocated(error)) return
-                    call check_surface_scale(spec, grid, fft, h, error); if (allocated(error)) return
+                    call check_surface_scale(spec, grid, fft, h, error, surface_slope)
+                    if (allocated(error)) return
                     have_surface = .true.
                     surface_seed = chain%seed; surface_ecc = chain%eccentricity; surface_alpha = chain%alpha_deg
                 end if
@@ -278,7 +279,8 @@ contains
                     end if
                     if (iv > 1 .and. .not. allocated(p_prev)) call restore_warm_start(k - 1)
                     c%spec = chain_spec(base, chain, mat, plan%speeds(iv))
-                    c%h = h; c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
+                    c%h = h; c%surface_rms_slope = surface_slope
+                    c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
                     c%memory_estimate_bytes = estimate
                     t_case = wall_seconds()
                     if (iv > 1 .and. cfg%sweep%warm_start .and. allocated(p_prev)) then
