@@ -17,6 +17,7 @@ program veslide_tests
     use test_veslide_anderson, only: collect_anderson
     use test_veslide_solver_pk, only: collect_solver_pk
     use test_veslide_solver_dr, only: collect_solver_dr
+    use test_veslide_solver_gcg, only: collect_solver_gcg
     use test_veslide_solver_bccg, only: collect_solver_bccg
     use test_veslide_solver_pdr, only: collect_solver_pdr
     use test_veslide_anisotropy, only: collect_anisotropy
@@ -52,6 +53,7 @@ program veslide_tests
         new_testsuite("anderson", collect_anderson), &
         new_testsuite("solver-pk", collect_solver_pk), &
         new_testsuite("solver-dr", collect_solver_dr), &
+        new_testsuite("solver-gcg", collect_solver_gcg), &
         new_testsuite("solver-bccg", collect_solver_bccg), &
         new_testsuite("solver-pdr", collect_solver_pdr), &
         new_testsuite("solver-table", collect_solver_table), &

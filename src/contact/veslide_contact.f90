@@ -28,7 +28,7 @@ module veslide_contact
     use veslide_transform, only: transform_t
     use veslide_passes, only: multiply_spectrum
     use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
-    use veslide_contact_law, only: contact_law_t
+    use veslide_contact_law, only: contact_law_t, ADH_STRESS
     use veslide_device, only: device_check
     use veslide_clock, only: wall_seconds
     implicit none
@@ -42,7 +42,10 @@ module veslide_contact
         type(contact_law_t) :: law                 !! the contact law (default: the hard wall)
         real(dp), allocatable :: h(:, :)           !! heights as given (any mean) [m]
         real(dp) :: h_mean = 0.0_dp                !! their mean; the problem's heights are h - h_mean [m]
-        real(dp) :: p_mean_pa = 0.0_dp             !! nominal pressure [Pa]
+        real(dp) :: p_mean_pa = 0.0_dp             !! nominal pressure [Pa] (tensile below 0: adhesive laws)
+        !> the residual's unit of pressure [Pa]: p_mean for the hard wall, max(|p_mean|, sigma0)
+        !> for an adhesive law (whose load may be zero or tensile)
+        real(dp) :: p_scale_pa = 0.0_dp
         real(dp) :: height_scale_m = 0.0_dp        !! h_s of the residual [m]
     contains
         procedure :: grid => problem_grid
@@ -98,10 +101,10 @@ contains
         real(dp), intent(in) :: p_mean
         type(error_t), allocatable, intent(out) :: error
         type(contact_law_t), intent(in), optional :: law
-        call check_problem(kernel, h, p_mean, error); if (allocated(error)) return
+        if (present(law)) self%law = law
+        call check_problem(kernel, h, p_mean, self%law%adhesive(), error); if (allocated(error)) return
         self%kernel = kernel
         self%h = h
-        if (present(law)) self%law = law
         call set_mean_and_load(self, p_mean)
     end subroutine new_contact_problem
 
@@ -115,10 +118,10 @@ contains
         real(dp), intent(in) :: p_mean
         type(error_t), allocatable, intent(out) :: error
         type(contact_law_t), intent(in), optional :: law
-        call check_problem(kernel, h, p_mean, error); if (allocated(error)) return
+        if (present(law)) self%law = law
+        call check_problem(kernel, h, p_mean, self%law%adhesive(), error); if (allocated(error)) return
         call kernel%move_to(self%kernel)
         call move_alloc(h, self%h)
-        if (present(law)) self%law = law
         call set_mean_and_load(self, p_mean)
     end subroutine new_contact_problem_moving
 
@@ -132,16 +135,22 @@ contains
         call move_alloc(self%h, h)
     end subroutine problem_release
 
-    subroutine check_problem(kernel, h, p_mean, error)
+    subroutine check_problem(kernel, h, p_mean, adhesive, error)
         type(kernel_t), intent(in) :: kernel
         real(dp), intent(in) :: h(:, :)
         real(dp), intent(in) :: p_mean
+        !> the law attracts: any finite load (tensile ones too)
+        logical, intent(in) :: adhesive
         type(error_t), allocatable, intent(out) :: error
         logical :: nan
         if (any(shape(h) /= kernel%grid%local_shape())) then
             call fatal_error(error, "veslide:contact:new_contact_problem: heights and kernel grids differ"); return
         end if
-        if (.not. (p_mean > 0.0_dp)) then
+        if (adhesive) then
+            if (.not. (abs(p_mean) <= huge(1.0_dp))) then
+                call fatal_error(error, "veslide:contact:new_contact_problem: the nominal pressure must be finite"); return
+            end if
+        else if (.not. (p_mean > 0.0_dp)) then
             call fatal_error(error, "veslide:contact:new_contact_problem: the nominal pressure must be positive"); return
         end if
         nan = any(h /= h)
@@ -157,10 +166,12 @@ contains
         real(dp), intent(in) :: p_mean
         associate (grid => self%kernel%grid)
             self%p_mean_pa = p_mean
+            self%p_scale_pa = p_mean
+            if (self%law%adhesive()) self%p_scale_pa = max(abs(p_mean), self%law%param(ADH_STRESS))
             self%h_mean = field_mean(grid, self%h)
             self%height_scale_m = field_rms(grid, self%h)
         end associate
-        if (self%height_scale_m <= 0.0_dp) self%height_scale_m = p_mean*self%kernel%max_abs()
+        if (self%height_scale_m <= 0.0_dp) self%height_scale_m = self%p_scale_pa*self%kernel%max_abs()
         if (self%height_scale_m <= 0.0_dp) self%height_scale_m = 1.0_dp
     end subroutine set_mean_and_load
 
@@ -186,7 +197,7 @@ contains
             state%p(:, j) = self%p_mean_pa
         end do
         !$omp end parallel do
-        if (present(p_init)) then
+        if (present(p_init) .and. .not. self%law%adhesive()) then
             if (all(shape(p_init) == [nx, ny])) then
                 total = field_sum(self%kernel%grid, self%law%project(p_init))
                 if (total > 0.0_dp) then
@@ -200,16 +211,20 @@ contains
     !> The four measures and the residual from sums over the grid: min gap `gmin`, sum(p g) `spg`,
     !> sum(|p|) `sp`, min pressure `pmin`, sum(p) `sum_p` over `n` points (the one definition):
     !> the law's three measures and the load error
-    pure subroutine residual_measures(law, state, gmin, spg, sp, pmin, sum_p, n, p_mean, hs)
+    pure subroutine residual_measures(law, state, gmin, spg, sp, pmin, sum_p, n, p_mean, hs, p_scale)
         type(contact_law_t), intent(in) :: law
         type(contact_state_t), intent(inout) :: state
         real(dp), intent(in) :: gmin, spg, sp, pmin, sum_p, n, p_mean, hs
-        real(dp) :: m(3)
-        m = law%measures(gmin, spg, sp, pmin, hs, p_mean)
+        !> the unit of pressure (default p_mean; an adhesive law's problem%p_scale_pa)
+        real(dp), intent(in), optional :: p_scale
+        real(dp) :: m(3), ps
+        ps = p_mean
+        if (present(p_scale)) ps = p_scale
+        m = law%measures(gmin, spg, sp, pmin, hs, ps)
         state%penetration = m(1)
         state%complementarity = m(2)
         state%negative_pressure = m(3)
-        state%load_error = abs(sum_p/n - p_mean)/p_mean
+        state%load_error = abs(sum_p/n - p_mean)/ps
         state%residual = max(state%penetration, state%complementarity, state%negative_pressure, state%load_error)
     end subroutine residual_measures
 
@@ -315,6 +330,9 @@ contains
         type(contact_state_t), intent(inout) :: state
         integer(i8) :: nc(1)
         real(dp) :: rows(3, f%g%n2), t(3), ext(2), gmax
+        if (self%law%adhesive()) then
+            call adhesive_residuals(self, f, state); return
+        end if
         associate (grid => self%kernel%grid)
             call gap_and_contact_sums(self%law, f%u, f%h, self%h_mean, f%p, f%g, rows(1, :), nc(1), gmax)
             call global_count(grid, nc)
@@ -333,5 +351,36 @@ contains
                                    self%height_scale_m)
         end associate
     end subroutine problem_residuals_on
+
+    !> Residuals of a candidate of an adhesive law on the host fields `f`: p with u = K p fresh,
+    !> the solver's gap in f%g (its closed cells exactly 0) and approach in state%approach_m. The
+    !> gap g = u - h + d is formed afresh and measured with the repulsive pressure
+    !> p_rep = p + sigma(g) (the law's measures); the gap kept is the fresh one on the open cells
+    !> (at least 0) and 0 on the cells the solver closed, which stay the contact
+    subroutine adhesive_residuals(self, f, state)
+        class(contact_problem_t), intent(in) :: self
+        type(contact_fields_t), intent(inout) :: f
+        type(contact_state_t), intent(inout) :: state
+        real(dp), allocatable :: g(:, :), prep(:, :)
+        real(dp) :: rows(3, f%g%n2), t(3), ext(2)
+        integer :: j
+        g = f%u%h - (f%h%h - self%h_mean) + state%approach_m
+        prep = f%p%h + self%law%attraction(g)
+        do j = 1, size(g, 2)
+            rows(1, j) = sum(abs(prep(:, j)*g(:, j)))
+            rows(2, j) = sum(abs(prep(:, j)))
+            rows(3, j) = sum(f%p%h(:, j))
+        end do
+        ext = [minval(g), minval(prep)]
+        call ordered_sum(self%kernel%grid, rows, t)
+        call global_min(self%kernel%grid, ext)
+        call residual_measures(self%law, state, ext(1), t(1), t(2), ext(2), t(3), self%kernel%grid%cells(), &
+                               self%p_mean_pa, self%height_scale_m, self%p_scale_pa)
+        where (f%g%h <= 0.0_dp)
+            f%g%h = 0.0_dp
+        elsewhere
+            f%g%h = max(g, 0.0_dp)
+        end where
+    end subroutine adhesive_residuals
 
 end module veslide_contact

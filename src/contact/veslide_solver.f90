@@ -23,6 +23,7 @@ module veslide_solver
     use veslide_fftw, only: fft2d_t
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, &
+                                      SOLVER_GCG, &
                                       DEVICE_CPU, DEVICE_GPU
     use veslide_solver_table, only: solver_info_t, solver_info, method_takes, method_refusal, device_refusal, &
                                     memory_refusal, runs_on_device
@@ -33,6 +34,7 @@ module veslide_solver
     use veslide_solver_dr, only: douglas_rachford
     use veslide_solver_bccg, only: bccg_solve
     use veslide_solver_pdr, only: preconditioned_douglas_rachford
+    use veslide_solver_gcg, only: gap_conjugate_gradients
     use veslide_threads, only: restore_threads
     implicit none
     private
@@ -91,6 +93,12 @@ contains
                 call douglas_rachford(problem, f, o, state, gap0=g_init)
             else
                 call douglas_rachford(problem, f, o, state)
+            end if
+        case (SOLVER_GCG)
+            if (present(g_init)) then
+                call gap_conjugate_gradients(problem, f, o, state, gap0=g_init)
+            else
+                call gap_conjugate_gradients(problem, f, o, state)
             end if
         case (SOLVER_PDR)
             if (present(p_init) .and. present(g_init)) then
@@ -235,14 +243,14 @@ contains
         real(dp), intent(in) :: spread
         integer, intent(in), optional :: law
         integer :: law_, k
-        integer :: order(3)
+        integer :: order(4)
         law_ = LAW_HARD_WALL; if (present(law)) law_ = law
         if (symmetric) then
-            order = [SOLVER_BCCG, SOLVER_PDR, SOLVER_DR]
+            order = [SOLVER_BCCG, SOLVER_PDR, SOLVER_DR, SOLVER_GCG]
         else if (cells >= pdr_min_cells .and. spread <= pdr_max_spread) then
-            order = [SOLVER_PDR, SOLVER_DR, SOLVER_BCCG]
+            order = [SOLVER_PDR, SOLVER_DR, SOLVER_BCCG, SOLVER_GCG]
         else
-            order = [SOLVER_DR, SOLVER_PDR, SOLVER_BCCG]
+            order = [SOLVER_DR, SOLVER_PDR, SOLVER_BCCG, SOLVER_GCG]
         end if
         method = 0
         do k = 1, size(order)

@@ -13,13 +13,14 @@ module veslide_solver_options
     private
     public :: solver_options_t, solver_method_id, solver_method_names
     public :: solver_progress_t, solver_progress_callback, progress_ticker_t, progress_line
-    public :: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR
+    public :: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, SOLVER_GCG
     public :: DEVICE_AUTO, DEVICE_CPU, DEVICE_GPU, device_names, device_choice_id
 
-    integer, parameter :: SOLVER_AUTO = 1, SOLVER_PK = 2, SOLVER_DR = 3, SOLVER_BCCG = 4, SOLVER_PDR = 5
+    integer, parameter :: SOLVER_AUTO = 1, SOLVER_PK = 2, SOLVER_DR = 3, SOLVER_BCCG = 4, SOLVER_PDR = 5, &
+                          SOLVER_GCG = 6
     !> Names of the methods, indexed by their SOLVER_* id (the namelist's `&solver method`)
-    character(len=*), parameter :: solver_method_names(5) = [character(len=4) :: 'auto', 'pk', 'dr', 'bccg', &
-                                                             'pdr']
+    character(len=*), parameter :: solver_method_names(6) = [character(len=4) :: 'auto', 'pk', 'dr', 'bccg', &
+                                                             'pdr', 'gcg']
 
     !> Where a solve runs (the namelist's `&solver device`): 'auto' the GPU when this build has
     !> one and a GPU is visible, else the CPU; 'cpu'; 'gpu' (refused when there is none)

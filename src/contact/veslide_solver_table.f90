@@ -32,8 +32,9 @@
 module veslide_solver_table
     use veslide_kinds, only: dp, radians
     use veslide_strings, only: str
-    use veslide_contact_law, only: law_count, law_names, LAW_HARD_WALL
-    use veslide_solver_options, only: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, solver_method_names
+    use veslide_contact_law, only: law_count, law_names, LAW_HARD_WALL, LAW_EXPONENTIAL, LAW_DUGDALE
+    use veslide_solver_options, only: SOLVER_AUTO, SOLVER_PK, SOLVER_DR, SOLVER_BCCG, SOLVER_PDR, SOLVER_GCG, &
+                                      solver_method_names
     use veslide_anderson_passes, only: device_max_memory
     implicit none
     private
@@ -54,7 +55,7 @@ module veslide_solver_table
     end type solver_info_t
 
     !> The methods, in the order their alternatives are named
-    integer, parameter :: solver_methods(4) = [SOLVER_BCCG, SOLVER_PDR, SOLVER_DR, SOLVER_PK]
+    integer, parameter :: solver_methods(5) = [SOLVER_BCCG, SOLVER_PDR, SOLVER_DR, SOLVER_PK, SOLVER_GCG]
 
 contains
 
@@ -64,6 +65,7 @@ contains
         type(solver_info_t) :: row
         integer :: k
         logical, parameter :: hard_wall(law_count) = [(k == LAW_HARD_WALL, k=1, law_count)]
+        logical, parameter :: adhesive(law_count) = [(k == LAW_EXPONENTIAL .or. k == LAW_DUGDALE, k=1, law_count)]
         select case (method)
         case (SOLVER_PK)
             row = solver_info_t(method=SOLVER_PK, symmetric_only=.true., laws=hard_wall, device=.false., &
@@ -77,6 +79,10 @@ contains
         case (SOLVER_PDR)
             row = solver_info_t(method=SOLVER_PDR, laws=hard_wall, device=.true., mixes=.true., anderson_default=0, &
                                 host_bytes=41.0_dp, device_bytes=37.0_dp, mixing_bytes=16.0_dp)
+        case (SOLVER_GCG)
+            ! g, its search direction, the gradient and the transform of the direction (veslide_solver_gcg)
+            row = solver_info_t(method=SOLVER_GCG, symmetric_only=.true., laws=adhesive, device=.false., &
+                                host_bytes=32.0_dp)
         case default
             row = solver_info_t()
         end select

@@ -1,0 +1,306 @@
+!> Conjugate gradients on the gap ('gcg'), for the adhesive contact laws on a symmetric operator
+!> (an elastic solid, or a viscoelastic one at rest).
+!>
+!> With an adhesive law (veslide_contact_law) the traction is p = p_rep - sigma(g): the repulsive
+!> pressure of the hard wall (p_rep >= 0, g >= 0, p_rep g = 0) less an attraction sigma(g) that
+!> depends on the gap alone. No pressure-based method applies: p does not tell contact from
+!> attraction, and the law is not monotone (sigma falls as the gap opens). In the gap it is an
+!> energy: with A = K^-1 (the modulus multiplier, zero on the mean mode), u = g + h - d and
+!> p = p_mean + A (g + h), the total energy
+!>   Pi(g) = 1/2 <g + h, A (g + h)> + sum V(g) + p_mean sum g,     V' = sigma, V(inf) = 0,
+!> has the gradient p + sigma(g) = p_rep, so the solution is a local minimum of Pi over g >= 0
+!> (zero gradient where the gap is open, a non-negative one where it is closed): the same
+!> discrete problem Tamaas's PolonskyKeerRey solves on the gap with an adhesion functional (Rey,
+!> Anciaux, Molinari, Comput. Mech. 60 (2017) 69), and so is this method: Polonsky and Keer's
+!> constrained conjugate gradients with the gap as the primal variable.
+!>
+!> Inner solve, at a fixed mean gap d (the approach; its Lagrange multiplier is -p_mean):
+!>   r = A (g + h) + sigma(g), the gradient; the free set: open cells (g > 0), and closed cells
+!>       whose gradient less its mean over the open cells is negative (they pull away);
+!>   lambda = mean of r over the free set, r <- r - lambda (so p_mean = -lambda);
+!>   t = r + delta (|r|^2/|r_prev|^2) t on the free set (0 elsewhere), the step
+!>   tau = <r, t>/<t, A t> (A's curvature alone, as Polonsky and Keer and Rey et al.: that of V
+!>   is negative and would stall the step where the law is steepest), g <- max(g - tau t, 0)
+!>   with delta = 0 after a step that closed a cell (the conjugacy restarts), and the open
+!>   cells shifted to keep the mean gap d.
+!> Converged when max |r| over the open cells and max(-r) over the closed ones are below the
+!> tolerance (in units of the pressure scale). Two FFT pairs an iteration.
+!> Load control (the case's `&load mean_pressure_pa`, which may be tensile): the mean gap is
+!> found by the secant method on p_mean(d), decreasing in d on every branch stable under load
+!> control, each inner solve warm-started from the last; a load beyond the pull-off force has no
+!> solution (the gap opens without bound), reported as not converged.
+!> Where more than one solution exists at one load (JKR: a contact and no contact; a partial and
+!> a full one), the method returns the one its start leads to: a warm start from the last load
+!> of a sweep follows its branch; a cold start begins in contact at the highest point.
+!> Sums row by row and then over the rows in order (veslide_collective): the same path for any
+!> number of threads or processes. Host only (veslide_solver_table).
+module veslide_solver_gcg
+    use veslide_kinds, only: dp, i8
+    use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
+    use veslide_contact_law, only: ADH_STRESS, ADH_RANGE, LAW_EXPONENTIAL, LAW_DUGDALE
+    use veslide_solver_options, only: solver_options_t, progress_ticker_t
+    use veslide_collective, only: ordered_sum, global_max, global_min
+    implicit none
+    private
+    public :: gap_conjugate_gradients
+
+    !> the secant's most steps on the mean gap (load control)
+    integer, parameter :: max_outer = 60
+    !> the inner solves' tolerance while the load is off: this fraction of its error (the
+    !> secant needs p_mean(d) no closer than that; the last solve is to the tolerance)
+    real(dp), parameter :: inexact = 1.0e-2_dp
+
+contains
+
+    !> The adhesive problem on the host fields `f` (solution: p in f%p, the gap in f%g with its
+    !> closed cells exactly 0, u = K p in f%u, the approach in state%approach_m)
+    subroutine gap_conjugate_gradients(problem, f, opts, state, gap0)
+        type(contact_problem_t), intent(in) :: problem
+        type(contact_fields_t), intent(inout) :: f
+        type(solver_options_t), intent(in) :: opts
+        type(contact_state_t), intent(inout) :: state
+        !> gap of the start [m] (a warm start); default: in contact at the highest point
+        real(dp), intent(in), optional :: gap0(:, :)
+        real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), at(:, :), ainv(:, :)
+        logical, allocatable :: free(:, :)
+        real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, d_prev, p_prev, d_new, slope, lo(2), hi(2)
+        integer :: nx, ny, k, its, kind
+        logical :: ok, have_lo, have_hi, tight
+        type(progress_ticker_t) :: ticker
+
+        nx = f%p%n1; ny = f%p%n2
+        hs = problem%height_scale_m
+        ps = problem%p_scale_pa
+        cells = problem%kernel%grid%cells()
+        target = problem%p_mean_pa/ps
+        kind = problem%law%kind
+        s0 = problem%law%param(ADH_STRESS)/ps
+        rho = problem%law%param(ADH_RANGE)/hs
+        state%method = 'gcg'
+        call ticker%start(opts, 'gcg')
+        allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), free(nx, ny))
+        hn = (f%h%h - problem%h_mean)/hs
+        ! the modulus multiplier A = 1/K (zero where K is: the mean mode), in units p_s/h_s per
+        ! cell count (FFTW's unscaled pair)
+        ainv = real(f%kd%h, dp)
+        where (ainv /= 0.0_dp)
+            ainv = hs/(ps*ainv*cells)
+        end where
+        if (present(gap0)) then
+            g = max(gap0/hs, 0.0_dp)
+        else
+            d = maxval(hn); call global_max(problem%kernel%grid, d)
+            g = d - hn
+        end if
+        d = total(g)/cells
+        its = 0
+        call inner(d, p_d, ok, opts%tolerance)
+        if (.not. ok) goto 90
+        ! the secant on p_mean(d) = target, bracketed once the sign changes (Illinois' rule)
+        have_lo = .false.; have_hi = .false.
+        d_prev = d; p_prev = p_d
+        slope = 0.0_dp
+        do k = 1, max_outer
+            if (abs(p_d - target) <= opts%tolerance .and. tight) exit
+            ! brackets: lo has p above the target (a gap too small), hi below
+            if (p_d > target) then
+                lo = [d, p_d]; have_lo = .true.
+            else
+                hi = [d, p_d]; have_hi = .true.
+            end if
+            if (slope < 0.0_dp) then
+                d_new = d + (target - p_d)/slope
+            else
+                ! first step: the mean gap the difference would open over the lowest mode's
+                ! stiffness (a bound on the contact's), signed by the load
+                d_new = d + sign(max(0.05_dp, abs(p_d - target)*lowest_compliance()), p_d - target)
+            end if
+            if (have_lo .and. have_hi) then
+                if (.not. (d_new > lo(1) .and. d_new < hi(1))) d_new = lo(1) + (hi(1) - lo(1))* &
+                    (lo(2) - target)/(lo(2) - hi(2))
+            else
+                ! unbracketed: the gap at most halved or doubled a step (p_mean(d) is far from
+                ! linear where contact spreads or opens)
+                d_new = min(max(d_new, 0.5_dp*d), 2.0_dp*d + 1.0_dp)
+            end if
+            d_prev = d; p_prev = p_d
+            d = d_new
+            call inner(d, p_d, ok, max(opts%tolerance, inexact*abs(p_d - target)))
+            if (.not. ok) exit
+            if (d /= d_prev) slope = (p_d - p_prev)/(d - d_prev)
+        end do
+90      continue
+        ! the solution in SI: p = p_mean + A (g + h) (in r), the gap, u = g + h - d
+        state%converged = ok .and. tight .and. abs(p_d - target) <= opts%tolerance
+        f%p%h = ps*p_d + ps*(r - sum_mean_removed())
+        f%g%h = hs*g
+        f%u%h = hs*(g + hn - d)
+        state%approach_m = hs*d
+        state%iterations = its
+        deallocate (hn, g, t, r, at, ainv, free)
+
+    contains
+
+        !> The inner solve at mean gap `dbar`: g updated, r = A (g + h) on exit, `pm` the mean pressure
+        subroutine inner(dbar, pm, ok, itol)
+            real(dp), intent(in) :: dbar
+            !> its tolerance
+            real(dp), intent(in) :: itol
+            real(dp), intent(out) :: pm
+            logical, intent(out) :: ok
+            real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta
+            logical :: restart
+            integer :: n_inner
+            call keep_mean(dbar)
+            gsq_prev = 1.0_dp; restart = .true.
+            t = 0.0_dp
+            n_inner = 0
+            ok = .false.
+            do
+                call apply_a(g + hn, r)
+                state%operator_applications = state%operator_applications + 1
+                ! gradient and the free set: lambda from the open cells, then the closed cells
+                ! that pull away join
+                at = r + attraction(g)                          ! (at: the gradient, for now)
+                lam = masked_mean(at, g > 0.0_dp)
+                free = g > 0.0_dp .or. at - lam < 0.0_dp
+                lam = masked_mean(at, free)
+                at = at - lam
+                pm = -lam
+                ! converged: no gradient on the open cells, none pulling a closed one away
+                err = maxval(merge(abs(at), max(-at, 0.0_dp), g > 0.0_dp))
+                call global_max(problem%kernel%grid, err)
+                if (err <= itol) then
+                    ok = .true.; tight = itol <= opts%tolerance; exit
+                end if
+                if (n_inner >= opts%max_iterations) exit
+                n_inner = n_inner + 1
+                its = its + 1
+                call ticker%tick(its, err, state%operator_applications)
+                ! the search direction on the free set (0 elsewhere)
+                where (.not. free) at = 0.0_dp
+                gsq = total(at*at)
+                beta = 0.0_dp
+                if (.not. restart) beta = gsq/gsq_prev
+                where (free)
+                    t = at + beta*t
+                elsewhere
+                    t = 0.0_dp
+                end where
+                gsq_prev = gsq
+                ! the step along t with A's curvature (the mean over the free set removed: the
+                ! mean gap is held)
+                r = at                                          ! (r: the gradient, for the step)
+                call apply_a(t, at)
+                state%operator_applications = state%operator_applications + 1
+                shift = masked_mean(at, free)
+                where (free) at = at - shift
+                num = total(r*t); den = total(merge(at*t, 0.0_dp, free))
+                if (.not. (den > 0.0_dp)) then
+                    call apply_a(g + hn, r); exit
+                end if
+                tau = num/den
+                g = g - tau*t
+                restart = global_any_negative(g)
+                g = max(g, 0.0_dp)
+                call keep_mean(dbar)
+            end do
+        end subroutine inner
+
+        !> The open cells shifted so that the mean gap is `dbar` (cells a shift closes are closed
+        !> and the rest shifted again)
+        subroutine keep_mean(dbar)
+            real(dp), intent(in) :: dbar
+            real(dp) :: gap_sum, open
+            integer :: pass
+            do pass = 1, 50
+                gap_sum = total(g)
+                open = count_all(g > 0.0_dp)
+                if (open <= 0.0_dp) then
+                    g = g + (dbar - gap_sum/cells); exit
+                end if
+                if (abs(dbar*cells - gap_sum) <= 1.0e-15_dp*max(abs(dbar)*cells, 1.0_dp)) exit
+                where (g > 0.0_dp) g = g + (dbar*cells - gap_sum)/open
+                if (.not. global_any_negative(g)) exit
+                g = max(g, 0.0_dp)
+            end do
+        end subroutine keep_mean
+
+        !> sigma(g) in units of the pressure scale, g in h_s
+        pure function attraction(gn) result(s)
+            real(dp), intent(in) :: gn(:, :)
+            real(dp) :: s(size(gn, 1), size(gn, 2))
+            select case (kind)
+            case (LAW_EXPONENTIAL)
+                s = s0*exp(-gn/rho)
+            case (LAW_DUGDALE)
+                s = merge(s0, 0.0_dp, gn < rho)
+            case default
+                s = 0.0_dp
+            end select
+        end function attraction
+
+        !> out = A a (zero mean), one FFT pair
+        subroutine apply_a(a, out)
+            real(dp), intent(in) :: a(:, :)
+            real(dp), intent(out) :: out(:, :)
+            f%t%x%h = a
+            call f%t%forward()
+            f%t%k%h = f%t%k%h*ainv
+            call f%t%backward_unscaled()
+            out = f%t%x%h
+        end subroutine apply_a
+
+        !> sum over the whole grid, row by row and then over the rows in order
+        real(dp) function total(a) result(s)
+            real(dp), intent(in) :: a(:, :)
+            real(dp) :: rows(1, size(a, 2)), t1(1)
+            integer :: j
+            do j = 1, size(a, 2)
+                rows(1, j) = sum(a(:, j))
+            end do
+            call ordered_sum(problem%kernel%grid, rows, t1)
+            s = t1(1)
+        end function total
+
+        !> the number of cells where `mask` holds, over the whole grid
+        real(dp) function count_all(mask) result(n)
+            logical, intent(in) :: mask(:, :)
+            n = total(merge(1.0_dp, 0.0_dp, mask))
+        end function count_all
+
+        !> the mean of `a` over the cells of `mask` (0 when there are none)
+        real(dp) function masked_mean(a, mask) result(m)
+            real(dp), intent(in) :: a(:, :)
+            logical, intent(in) :: mask(:, :)
+            real(dp) :: n
+            n = count_all(mask)
+            m = 0.0_dp
+            if (n > 0.0_dp) m = total(merge(a, 0.0_dp, mask))/n
+        end function masked_mean
+
+        logical function global_any_negative(a) result(yes)
+            real(dp), intent(in) :: a(:, :)
+            real(dp) :: m
+            m = minval(a)
+            call global_min(problem%kernel%grid, m)
+            yes = m < 0.0_dp
+        end function global_any_negative
+
+        !> the mean of r, which is zero but for round-off (A kills the mean mode)
+        real(dp) function sum_mean_removed() result(m)
+            m = total(r)/cells
+        end function sum_mean_removed
+
+        !> The compliance of the softest mode (1/the smallest non-zero A), in h_s per p_s
+        real(dp) function lowest_compliance() result(c)
+            real(dp) :: a
+            a = minval(abs(ainv), mask=ainv /= 0.0_dp)*cells
+            call global_min(problem%kernel%grid, a)
+            c = 1.0_dp
+            if (a > 0.0_dp .and. a < huge(1.0_dp)) c = 1.0_dp/a
+        end function lowest_compliance
+
+    end subroutine gap_conjugate_gradients
+
+end module veslide_solver_gcg
