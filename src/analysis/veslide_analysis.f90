@@ -18,17 +18,19 @@ contains
     !> Fraction of cells in contact (the law's contact cells of the pressure `p`: those carrying
     !> pressure, for the hard wall); over the whole grid when `grid` is given (the process's rows
     !> of a distributed grid)
-    real(dp) function contact_area_fraction(p, grid, law) result(a)
+    real(dp) function contact_area_fraction(p, grid, law, g) result(a)
         real(dp), intent(in) :: p(:, :)
         type(grid_t), intent(in), optional :: grid
         !> the contact law (default: the hard wall)
         type(contact_law_t), intent(in), optional :: law
+        !> the gap, which an adhesive law's contact needs (veslide_contact_law)
+        real(dp), intent(in), optional :: g(:, :)
         type(contact_law_t) :: law_
         if (present(law)) law_ = law
         if (present(grid)) then
-            a = real(field_count(grid, law_%contact(p)), dp)/grid%cells()
+            a = real(field_count(grid, law_%contact(p, g)), dp)/grid%cells()
         else
-            a = real(count(law_%contact(p)), dp)/real(size(p), dp)
+            a = real(count(law_%contact(p, g)), dp)/real(size(p), dp)
         end if
     end function contact_area_fraction
 
@@ -68,7 +70,7 @@ contains
             call halo_rows(serial, p, depth, pe); call halo_rows(serial, g, depth, ge)
         end if
         allocate (ce(size(pe, 1), lbound(pe, 2):ubound(pe, 2)))
-        ce = law_%contact(pe)
+        ce = law_%contact(pe, ge)
         !$omp parallel do schedule(guided)
         do j = 1, size(p, 2)
             rows(1, j) = subcell_row(pe, ge, ce, j, depth)

@@ -12,10 +12,12 @@
 !> `field_layout`, and `case_field` for the array of each): the HDF5 writer loops over it, and
 !> the Python reader lists what the file's /fields group holds.
 module veslide_quantities
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use veslide_kinds, only: dp, pi, radians
+    use veslide_contact_law, only: ADH_ENERGY, ADH_RANGE, ADH_STRESS
     use veslide_contact, only: contact_state_t
     use veslide_case_data, only: case_t
-    use veslide_fields, only: field_rms, field_max, field_mean
+    use veslide_fields, only: field_rms, field_max, field_mean, field_count
     use veslide_collective, only: global_max
     use veslide_system, only: peak_memory_bytes
     use veslide_analysis, only: contact_area_fraction, contact_area_subcell, mean_separation
@@ -176,14 +178,44 @@ contains
         vhat = [cos(radians(direction_deg)), sin(radians(direction_deg))]
         lat = [-vhat(2), vhat(1)]
         call r%add('friction_force_pa', -dot_product(force_pa, vhat), 'Pa')
-        call r%add('friction_coefficient', -dot_product(force_pa, vhat)/p_mean, '-')
+        call r%add('friction_coefficient', ratio(-dot_product(force_pa, vhat)), '-')
         call r%add('lateral_force_pa', dot_product(force_pa, lat), 'Pa')
-        call r%add('lateral_force_ratio', dot_product(force_pa, lat)/p_mean, '-')
+        call r%add('lateral_force_ratio', ratio(dot_product(force_pa, lat)), '-')
         call r%add('force_x_pa', force_pa(1), 'Pa')
         call r%add('force_y_pa', force_pa(2), 'Pa')
-        call r%add('friction_coefficient_slope', -dot_product(slope_force_pa, vhat)/p_mean, '-')
+        call r%add('friction_coefficient_slope', ratio(-dot_product(slope_force_pa, vhat)), '-')
         call r%add('dissipated_power_w_m2', -dot_product(force_pa, velocity_m_s), 'W/m^2')
+    contains
+        !> A force over the load: NaN at a zero or tensile load (an adhesive law's), where no
+        !> coefficient of friction is defined
+        pure real(dp) function ratio(f) result(x)
+            real(dp), intent(in) :: f
+            if (p_mean > 0.0_dp) then
+                x = f/p_mean
+            else
+                x = ieee_value(1.0_dp, ieee_quiet_nan)
+            end if
+        end function ratio
     end subroutine add_force_quantities
+
+    !> An adhesive law's parameters and what it did: the mean attraction over the nominal area
+    !> (the adhesive force per area, pulling), the mean repulsive pressure (the load plus it), the
+    !> area where the law attracts out of contact (gap within its range; docs/adhesion.md)
+    subroutine add_adhesion_quantities(r, c)
+        type(results_t), intent(inout) :: r
+        type(case_t), intent(in) :: c
+        real(dp) :: attraction
+        associate (law => c%spec%law)
+            call r%add('adhesion_energy_j_m2', law%param(ADH_ENERGY), 'J/m^2')
+            call r%add('adhesion_range_m', law%param(ADH_RANGE), 'm')
+            call r%add('adhesion_stress_pa', law%param(ADH_STRESS), 'Pa')
+            attraction = field_mean(c%grid, law%attraction(c%state%g))
+            call r%add('adhesive_pressure_pa', attraction, 'Pa')
+            call r%add('repulsive_pressure_pa', c%spec%mean_pressure_pa + attraction, 'Pa')
+            call r%add('attractive_area_fraction', real(field_count(c%grid, law%attracting(c%state%g)), dp)/ &
+                       c%grid%cells(), '-')
+        end associate
+    end subroutine add_adhesion_quantities
 
     !> The solver's report: iterations, work, convergence and the four residual measures
     pure subroutine add_solver_quantities(r, state, tolerance)
@@ -209,11 +241,12 @@ contains
         integer :: j, n_warnings
         associate (solid => c%spec%material%solid)
         call r%add('contact_area_fraction', contact_area_subcell(c%state%p, c%state%g, c%grid, c%spec%law), '-')
-        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p, c%grid, c%spec%law), '-')
+        call r%add('contact_area_fraction_cells', contact_area_fraction(c%state%p, c%grid, c%spec%law, c%state%g), '-')
         call r%add('mean_separation_m', mean_separation(c%state%g, c%grid), 'm')
         call r%add('rms_height_m', field_rms(c%grid, c%h), 'm')
         call r%add('max_pressure_pa', field_max(c%grid, c%state%p), 'Pa')
         call r%add('mean_pressure_pa', c%spec%mean_pressure_pa, 'Pa')
+        if (c%spec%law%adhesive()) call add_adhesion_quantities(r, c)
         ! the rigid-body approach since first contact: g = w - h + D with mean w = 0 gives
         ! D = h_max at first touch and D = h_mean + d under load (d: the solver's mean gap)
         call r%add('approach_m', field_max(c%grid, c%h) - field_mean(c%grid, c%h) - c%state%approach_m, 'm')

@@ -190,7 +190,7 @@ contains
             rms_h = c%surface_rms_slope                  ! (measured when the surface was checked)
             if (rms_h < 0.0_dp) rms_h = surface_rms_slope(c%grid, fft, c%h)
             rms_u = surface_rms_slope(c%grid, fft, c%state%u)
-            call contact_statistics(c%grid, c%spec%law, c%state%p, c%h, c%state%u, stats)
+            call contact_statistics(c%grid, c%spec%law, c%state%p, c%state%g, c%h, c%state%u, stats)
             ncontact = nint(stats(1), i8)
             if (kind == 'paraboloid' .or. kind == 'cylinder' .or. kind == 'flat') then
                 call measure('surface_rms_slope', rms_h, '-')    ! (its slopes far from the apex never touch)
@@ -341,20 +341,22 @@ contains
     !> one, the largest slope of h over the contact cells, the largest slope of u over the cell]
     !> (central differences; periodic; collective on a distributed grid, whose neighbouring rows
     !> come from the other processes)
-    subroutine contact_statistics(grid, law, p, h, u, stats)
+    subroutine contact_statistics(grid, law, p, g, h, u, stats)
         type(grid_t), intent(in) :: grid
         type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: p(:, :), h(:, :), u(:, :)
+        !> pressure and gap (an adhesive law's contact is where the gap is closed)
+        real(dp), intent(in) :: p(:, :), g(:, :), h(:, :), u(:, :)
         real(dp), intent(out) :: stats(4)
-        real(dp), allocatable :: pe(:, :), he(:, :), ue(:, :)
+        real(dp), allocatable :: pe(:, :), ge(:, :), he(:, :), ue(:, :)
         logical, allocatable :: ce(:, :), cl(:, :)
         real(dp) :: rows(2, size(p, 2)), peak(2, size(p, 2)), t(2)
         integer :: j, nl
         nl = size(p, 2)
         if (grid%is_distributed()) then
             call halo_rows(grid, p, 1, pe); call halo_rows(grid, h, 1, he); call halo_rows(grid, u, 1, ue)
+            call halo_rows(grid, g, 1, ge)
             allocate (ce(size(pe, 1), lbound(pe, 2):ubound(pe, 2)))
-            ce = law%contact(pe)
+            ce = law%contact(pe, ge)
             !$omp parallel do schedule(static)
             do j = 1, nl
                 call row_statistics(grid, ce(:, j - 1:j + 1), he(:, j - 1:j + 1), ue(:, j - 1:j + 1), &
@@ -362,7 +364,7 @@ contains
             end do
             !$omp end parallel do
         else                    ! one process: the neighbouring rows are the periodic ones
-            cl = law%contact(p)
+            cl = law%contact(p, g)
             !$omp parallel do schedule(static)
             do j = 1, nl
                 call row_statistics(grid, cl(:, [modulo(j - 2, nl) + 1, j, modulo(j, nl) + 1]), &

@@ -195,7 +195,7 @@ contains
         call case_validity(c, fft)
         c%have_anisotropy = .false.; c%have_patches = .false.; c%have_persson = .false.
         if (c%spec%analysis%anisotropy) call anisotropy_analysis(fft, c)
-        if (c%spec%analysis%persson) then
+        if (c%spec%analysis%persson .and. .not. c%spec%law%adhesive()) then
             if (c%grid%is_distributed()) then
                 call fatal_error(error, "veslide: "//c%spec%input_path//": &analysis persson = .true. is not available on a"// &
                     " grid distributed over processes (the theory orders every mode of the spectrum by |q|):"// &
@@ -206,9 +206,9 @@ contains
         end if
         if (c%spec%analysis%patches) then
             ! the contact cells are the law's
-            call contact_patches(c%spec%law%contact(c%state%p), c%grid%lx_m, c%grid%ly_m, c%patches, c%grid)
-            c%percolates_x = percolates(.not. c%spec%law%contact(c%state%p), 1, c%grid)
-            c%percolates_y = percolates(.not. c%spec%law%contact(c%state%p), 2, c%grid)
+            call contact_patches(c%spec%law%contact(c%state%p, c%state%g), c%grid%lx_m, c%grid%ly_m, c%patches, c%grid)
+            c%percolates_x = percolates(.not. c%spec%law%contact(c%state%p, c%state%g), 1, c%grid)
+            c%percolates_y = percolates(.not. c%spec%law%contact(c%state%p, c%state%g), 2, c%grid)
             c%have_patches = .true.
         end if
     end subroutine solve_prepared

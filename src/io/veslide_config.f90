@@ -15,6 +15,7 @@ module veslide_config
     use veslide_config_surface, only: surface_config_t, read_surface_config
     use veslide_config_material, only: material_config_t, read_material_config, max_time
     use veslide_config_load, only: load_config_t, read_load_config
+    use veslide_config_adhesion, only: adhesion_config_t, read_adhesion_config
     use veslide_config_motion, only: motion_config_t, read_motion_config
     use veslide_config_solver, only: solver_config_t, read_solver_config
     use veslide_config_analysis, only: analysis_config_t, read_analysis_config
@@ -23,7 +24,7 @@ module veslide_config
     use veslide_topography, only: topography_info_t, topography_info
     use veslide_material, only: shift_factor
     use veslide_validity, only: edge_jumps, edge_jump_limit
-    use veslide_contact_law, only: contact_law_t
+    use veslide_contact_law, only: contact_law_t, new_adhesive_law, law_id
     use veslide_solver_options, only: solver_method_id
     use veslide_solver_table, only: operator_symmetric, motion_on_grid, method_refusal
     implicit none
@@ -32,8 +33,8 @@ module veslide_config
               case_speeds
 
     !> The groups of a namelist file, in the order of the README
-    character(len=*), parameter :: group_names(9) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
-                                                     'motion', 'solver', 'analysis', 'sweep', 'output']
+    character(len=*), parameter :: group_names(10) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
+                                                      'adhesion', 'motion', 'solver', 'analysis', 'sweep', 'output']
 
     type :: config_t
         character(len=:), allocatable :: path        !! namelist file
@@ -45,6 +46,7 @@ module veslide_config
         type(surface_config_t) :: surface
         type(material_config_t) :: material
         type(load_config_t) :: load
+        type(adhesion_config_t) :: adhesion
         type(motion_config_t) :: motion
         type(solver_config_t) :: solver
         type(analysis_config_t) :: analysis
@@ -94,12 +96,16 @@ contains
         call read_surface_config(cfg%surface, get_group(groups, 'surface'), path, error); if (allocated(error)) return
         call read_material_config(cfg%material, get_group(groups, 'material'), path, error)
         if (allocated(error)) return
-        call read_load_config(cfg%load, get_group(groups, 'load'), path, error); if (allocated(error)) return
+        call read_adhesion_config(cfg%adhesion, get_group(groups, 'adhesion'), path, error)
+        if (allocated(error)) return
+        call read_load_config(cfg%load, get_group(groups, 'load'), path, error, adhesive=cfg%adhesion%law /= 'none')
+        if (allocated(error)) return
         call read_motion_config(cfg%motion, get_group(groups, 'motion'), path, error); if (allocated(error)) return
         call read_solver_config(cfg%solver, get_group(groups, 'solver'), path, error); if (allocated(error)) return
         call read_analysis_config(cfg%analysis, get_group(groups, 'analysis'), path, error)
         if (allocated(error)) return
-        call read_sweep_config(cfg%sweep, get_group(groups, 'sweep'), path, error); if (allocated(error)) return
+        call read_sweep_config(cfg%sweep, get_group(groups, 'sweep'), path, error, adhesive=cfg%adhesion%law /= 'none')
+        if (allocated(error)) return
         call read_output_config(cfg%output, get_group(groups, 'output'), path, error); if (allocated(error)) return
         call complete_config(cfg, error, surface_statistics)
     end subroutine read_config
@@ -122,6 +128,7 @@ contains
                   cfg%sweep%temperatures(0))
         allocate (cfg%sweep%seeds(0))
         cfg%output%file = 'veslide.h5'
+        cfg%adhesion%law = 'none'
         allocate (cfg%warnings(0))
         allocate (character(len=32) :: cfg%surface%given(0), cfg%material%given(0))   ! (nothing read)
     end subroutine default_config
@@ -229,12 +236,14 @@ contains
         end if
     end function case_speeds
 
-    !> The contact law the input asks for: the hard wall (the input groups of other laws set it
-    !> here; veslide_case_spec and the check of &solver method read it from here)
+    !> The contact law the input asks for: the hard wall, or &adhesion's law (veslide_case_spec
+    !> and the check of &solver method read it from here)
     pure function case_law(cfg) result(law)
         type(config_t), intent(in) :: cfg
         type(contact_law_t) :: law
-        law = contact_law_t()       ! (no input group of `cfg` chooses another law yet)
+        law = contact_law_t()
+        if (cfg%adhesion%law /= 'none') law = new_adhesive_law(law_id(cfg%adhesion%law), cfg%adhesion%energy_j_m2, &
+                                                              cfg%adhesion%range_m)
     end function case_law
 
     !> The temperature `t_c` within a shift table (measured shift factors are not extrapolated),

@@ -1,4 +1,4 @@
-!> &load: the nominal pressure (load control)
+!> &load: the nominal pressure (load control; zero or tensile with an adhesive law)
 module veslide_config_load
     use veslide_kinds, only: dp
     use veslide_error, only: error_t
@@ -17,11 +17,13 @@ module veslide_config_load
 
 contains
 
-    subroutine read_load_config(self, g, path, error)
+    subroutine read_load_config(self, g, path, error, adhesive)
         type(load_config_t), intent(out) :: self
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
+        !> an adhesive law (&adhesion): the load may be zero or tensile
+        logical, intent(in), optional :: adhesive
         real(dp) :: mean_pressure_pa
         integer :: stat
         character(len=512) :: msg
@@ -34,8 +36,17 @@ contains
             call diagnose_read(stat, msg, path, 'load', g%body, names, kinds, try, error); return
         end if
         self%mean_pressure_pa = mean_pressure_pa
+        if (present(adhesive)) then
+            if (adhesive) then
+                call require(error, finite_in(mean_pressure_pa, -1.0e12_dp, 1.0e12_dp), path, 'load', &
+                             'mean_pressure_pa', str(mean_pressure_pa), ">= -1e12 and <= 1e12 [Pa] (tensile below 0:"// &
+                             " &adhesion)")
+                return
+            end if
+        end if
         call require(error, finite_in(mean_pressure_pa, 0.0_dp, 1.0e12_dp, open_low=.true.), path, 'load', &
-                     'mean_pressure_pa', str(mean_pressure_pa), "> 0 and <= 1e12 [Pa]")
+                     'mean_pressure_pa', str(mean_pressure_pa), "> 0 and <= 1e12 [Pa] (zero or tensile only"// &
+                     " with &adhesion)")
     contains
         subroutine try(lines, stat, msg)
             character(len=*), intent(in) :: lines(:)

@@ -40,11 +40,14 @@ contains
     end function sweep_is_study
 
     !> Read &sweep from its text (absent: no study) and check it
-    subroutine read_sweep_config(self, g, path, error)
+    subroutine read_sweep_config(self, g, path, error, adhesive)
         type(sweep_config_t), intent(out) :: self
         type(group_text_t), intent(in) :: g
         character(len=*), intent(in) :: path
         type(error_t), allocatable, intent(out) :: error
+        !> an adhesive law (&adhesion): loads may be zero or tensile
+        logical, intent(in), optional :: adhesive
+        logical :: tensile
         real(dp) :: speeds_m_s(max_list), alphas_deg(max_list), eccentricities(max_list), pressures_pa(max_list)
         real(dp) :: speed_min_m_s, speed_max_m_s, temperatures_c(max_list)
         integer :: n_speeds, n_seeds, stat, k, ns
@@ -116,9 +119,16 @@ contains
             call require(error, finite_in(self%eccentricities(k), 0.0_dp, 1.0_dp, open_low=.true.), path, 'sweep', &
                          'eccentricities('//str(k)//')', str(self%eccentricities(k)), "0 < eccentricity <= 1")
         end do
+        tensile = .false.; if (present(adhesive)) tensile = adhesive
         do k = 1, size(self%pressures)
-            call require(error, finite_in(self%pressures(k), 0.0_dp, 1.0e12_dp, open_low=.true.), path, 'sweep', &
-                         'pressures_pa('//str(k)//')', str(self%pressures(k)), "> 0 and <= 1e12 [Pa]")
+            if (tensile) then
+                call require(error, finite_in(self%pressures(k), -1.0e12_dp, 1.0e12_dp), path, 'sweep', &
+                             'pressures_pa('//str(k)//')', str(self%pressures(k)), ">= -1e12 and <= 1e12 [Pa]")
+            else
+                call require(error, finite_in(self%pressures(k), 0.0_dp, 1.0e12_dp, open_low=.true.), path, 'sweep', &
+                             'pressures_pa('//str(k)//')', str(self%pressures(k)), "> 0 and <= 1e12 [Pa] (zero or"// &
+                             " tensile only with &adhesion)")
+            end if
         end do
         do k = 1, size(self%temperatures)
             call require(error, finite_in(self%temperatures(k), -273.15_dp, 1.0e4_dp, open_low=.true.), path, 'sweep', &
