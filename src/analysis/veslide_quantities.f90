@@ -198,23 +198,20 @@ contains
         end function ratio
     end subroutine add_force_quantities
 
-    !> An adhesive law's parameters and what it did: the mean attraction over the nominal area
-    !> (the adhesive force per area, pulling), the mean repulsive pressure (the load plus it), the
-    !> area where the law attracts out of contact (gap within its range; docs/adhesion.md)
+    !> An adhesive law's parameters and what it did: the mean over the nominal area of the
+    !> tensile traction (the adhesive force per area, pulling) and of the compressive one (their
+    !> difference is the load), and the area under tension (docs/adhesion.md)
     subroutine add_adhesion_quantities(r, c)
         type(results_t), intent(inout) :: r
         type(case_t), intent(in) :: c
-        real(dp) :: attraction
         associate (law => c%spec%law)
             call r%add('adhesion_energy_j_m2', law%param(ADH_ENERGY), 'J/m^2')
             call r%add('adhesion_range_m', law%param(ADH_RANGE), 'm')
             call r%add('adhesion_stress_pa', law%param(ADH_STRESS), 'Pa')
-            attraction = field_mean(c%grid, law%attraction(c%state%g))
-            call r%add('adhesive_pressure_pa', attraction, 'Pa')
-            call r%add('repulsive_pressure_pa', c%spec%mean_pressure_pa + attraction, 'Pa')
-            call r%add('attractive_area_fraction', real(field_count(c%grid, law%attracting(c%state%g)), dp)/ &
-                       c%grid%cells(), '-')
         end associate
+        call r%add('adhesive_pressure_pa', field_mean(c%grid, max(-c%state%p, 0.0_dp)), 'Pa')
+        call r%add('compressive_pressure_pa', field_mean(c%grid, max(c%state%p, 0.0_dp)), 'Pa')
+        call r%add('adhesive_area_fraction', real(field_count(c%grid, c%state%p < 0.0_dp), dp)/c%grid%cells(), '-')
     end subroutine add_adhesion_quantities
 
     !> The solver's report: iterations, work, convergence and the four residual measures

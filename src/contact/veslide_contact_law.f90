@@ -72,7 +72,6 @@ module veslide_contact_law
         procedure :: attraction => law_attraction
         procedure :: energy => law_energy
         procedure :: closed => law_closed
-        procedure :: attracting => law_attracting
     end type contact_law_t
 
 contains
@@ -146,16 +145,6 @@ contains
         yes = g <= 0.0_dp
         if (.not. self%adhesive()) yes = .false.
     end function law_closed
-
-    !> The cells out of contact where an adhesive law attracts: gap within its range rho (the
-    !> Dugdale zone exactly; for the exponential law where sigma > sigma0/e)
-    pure function law_attracting(self, g) result(yes)
-        class(contact_law_t), intent(in) :: self
-        real(dp), intent(in) :: g(:, :)
-        logical :: yes(size(g, 1), size(g, 2))
-        yes = g > 0.0_dp .and. g < self%param(ADH_RANGE)
-        if (.not. self%adhesive()) yes = .false.
-    end function law_attracting
 
     !> The law's name
     pure function law_name(self) result(name)
