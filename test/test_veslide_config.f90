@@ -4,7 +4,8 @@
 module test_veslide_config
     use veslide_kinds, only: dp
     use veslide_error, only: fatal_error
-    use veslide_config, only: config_t, read_config
+    use veslide_config, only: config_t, read_config, case_law
+    use veslide_contact_law, only: contact_law_t, LAW_DUGDALE, ADH_RANGE
     use veslide_output, only: prepare_output
     use testsuite, only: error_t, unittest_t, new_unittest, check
     use test_support, only: unique_name, write_text
@@ -73,7 +74,10 @@ contains
 
     subroutine collect_config_load(tests)
         type(unittest_t), allocatable, intent(out) :: tests(:)
-        tests = [new_unittest("pressure-positive", test_load)]
+        tests = [new_unittest("pressure-positive", test_load), &
+                 new_unittest("adhesion-law-and-parameters", test_adhesion), &
+                 new_unittest("tensile-load-with-adhesion", test_adhesion_load), &
+                 new_unittest("adhesion-in-motion-refused", test_adhesion_motion)]
     end subroutine collect_config_load
 
     subroutine collect_config_motion(tests)
@@ -315,6 +319,47 @@ contains
         call expect_message('range3', "&load mean_pressure_pa = -1 /", [character(len=24) :: &
                             "&load mean_pressure_pa", "allowed", "> 0"], error)
     end subroutine test_load
+
+    !> &adhesion: a law by name, two of its three parameters (or three that agree), each in range
+    subroutine test_adhesion(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('adh1', "&adhesion law = 'glue', energy_j_m2 = 0.05, range_m = 1e-9 /", &
+                            [character(len=24) :: "&adhesion law = 'glue'", "'exponential'", "'dugdale'"], error)
+        if (allocated(error)) return
+        call expect_message('adh2', "&adhesion law = 'dugdale', energy_j_m2 = 0.05 /", &
+                            [character(len=24) :: "needs two of", "stress_pa"], error)
+        if (allocated(error)) return
+        call expect_message('adh3', "&adhesion law = 'dugdale', energy_j_m2 = 0.05, range_m = 1e-9, stress_pa = 1e6 /", &
+                            [character(len=24) :: "energy_j_m2", "differs"], error)
+        if (allocated(error)) return
+        call expect_message('adh4', "&adhesion law = 'exponential', energy_j_m2 = 0.05, range_m = -1e-9 /", &
+                            [character(len=24) :: "&adhesion range_m", "allowed", "> 0"], error)
+    end subroutine test_adhesion
+
+    !> With a law the load may be tensile (and the law is the case's, its third parameter
+    !> derived); without one a tensile load names &adhesion
+    subroutine test_adhesion_load(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(error_t), allocatable :: e
+        type(contact_law_t) :: law
+        call read_text('adh5', "&adhesion law = 'dugdale', energy_j_m2 = 0.05, stress_pa = 5e7 /"// &
+                       new_line('a')//"&load mean_pressure_pa = -100 /", cfg, e)
+        call check(error, .not. allocated(e), "a tensile load with &adhesion is read"); if (allocated(error)) return
+        law = case_law(cfg)
+        call check(error, law%kind == LAW_DUGDALE .and. abs(law%param(ADH_RANGE) - 1.0e-9_dp) <= 1.0e-24_dp, &
+                   "the case's law: Dugdale with range w/sigma0"); if (allocated(error)) return
+        call expect_message('adh6', "&load mean_pressure_pa = -100 /", [character(len=24) :: &
+                            "&load mean_pressure_pa", "&adhesion"], error)
+    end subroutine test_adhesion_load
+
+    !> An adhesive law on a viscoelastic solid in motion: refused at input, with the reason
+    subroutine test_adhesion_motion(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('adh7', "&material model = 'one_term' /"//new_line('a')//"&motion speed_m_s = 0.1 /"// &
+                            new_line('a')//"&adhesion law = 'exponential', energy_j_m2 = 0.05, range_m = 1e-9 /", &
+                            [character(len=24) :: "'auto' finds no method", "'exponential'", "non-symmetric"], error)
+    end subroutine test_adhesion_motion
 
     subroutine test_motion(error)
         type(error_t), allocatable, intent(out) :: error

@@ -145,8 +145,12 @@ contains
         message = ''
         if (method == SOLVER_AUTO) then
             ! (dr takes any operator: what no method takes is the law)
-            if (.not. method_takes(SOLVER_AUTO, symmetric, law)) message = "&solver method = 'auto' finds no"// &
-                " method that takes the contact law "//law_text(law)
+            if (method_takes(SOLVER_AUTO, symmetric, law)) return
+            message = "&solver method = 'auto' finds no method that takes the contact law "//law_text(law)
+            if (.not. symmetric .and. method_takes(SOLVER_AUTO, .true., law)) message = message// &
+                " on a non-symmetric operator (a viscoelastic solid in motion): the methods for it ("// &
+                alternatives([(method_takes(solver_methods(k), .true., law), k=1, size(solver_methods))])// &
+                ") need an elastic solid or one at rest (docs/adhesion.md)"
             return
         end if
         why = refusal_reason(method, symmetric, law)
