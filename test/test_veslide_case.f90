@@ -536,7 +536,8 @@ contains
                            " &motion "
             end if
             write (wl, '(es24.17)') l/waves; write (wd, '(es24.17)') wave_deg; write (vd, '(es24.17)') v_deg
-            tag = "wave "//str(nint(wave_deg))//" deg, v "//str(nint(v_deg))//" deg"//trim(merge(", moving", "        ", moving))
+            tag = "wave "//str(nint(wave_deg))//" deg, v "//str(nint(v_deg))//" deg"// &
+                  trim(merge(", moving", "        ", moving))
             call read_text('shearwave', "&grid nx = 32, ny = 32, lx_m = 0.01 / &surface kind = 'cosine',"// &
                            " amplitude_m = 1e-6, wavelength_m = "//trim(wl)//", direction_deg = "//trim(wd)//" /"// &
                            " &load mean_pressure_pa = 1e5 / &solver fft_planner = 'estimate', tolerance = 1e-13 /"// &
@@ -572,7 +573,8 @@ contains
             ! (the solver's residual, 1e-13 of h_rms, on the grid's shortest modes is a pressure 1/K
             ! times larger, |q_max|/|q| = 8 here: 3e-12 for the solid in motion, whose solver stops
             ! with less to spare)
-            call check(error, worst <= merge(3.0e-12_dp, 1.0e-12_dp, moving), tag//": the pressure is not the closed form")
+            call check(error, worst <= merge(3.0e-12_dp, 1.0e-12_dp, moving), &
+                       tag//": the pressure is not the closed form")
             if (allocated(error)) return
             if (moving) then
                 f = 0.5_dp*h0**2*q*aimag(1.0_dp/kq)

@@ -353,7 +353,8 @@ contains
         call new_elastic(m, 1.0e7_dp, 0.3_dp, error); if (allocated(error)) return
         call new_kernel(k1, cell_grid(16, 16), m, [0.0_dp, 0.0_dp], KERNEL_SPECTRAL, error, shear=[0.5_dp, 0.0_dp])
         if (allocated(error)) return
-        call check(error, .not. k1%symmetric, "an elastic kernel with shear is not symmetric"); if (allocated(error)) return
+        call check(error, .not. k1%symmetric, "an elastic kernel with shear is not symmetric")
+        if (allocated(error)) return
         call fft%init(16, 16, error, planner='estimate'); if (allocated(error)) return
         call random_number(p)
         f = k1%tangential_force(fft, p)

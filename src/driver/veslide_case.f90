@@ -193,7 +193,8 @@ contains
         c%solve_seconds = wall_seconds() - t0
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)
         c%interfacial_force_pa = 0.0_dp
-        if (c%spec%shear_coefficient > 0.0_dp) c%interfacial_force_pa = c%spec%shear_coefficient*field_mean(c%grid, c%state%p)
+        if (c%spec%shear_coefficient > 0.0_dp) &
+            c%interfacial_force_pa = c%spec%shear_coefficient*field_mean(c%grid, c%state%p)
         call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)
         call case_validity(c, fft)
         c%have_anisotropy = .false.; c%have_patches = .false.; c%have_persson = .false.
