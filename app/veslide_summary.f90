@@ -71,8 +71,13 @@ contains
             r%get('mean_separation_m')/max(hrms, tiny(1.0_dp)), " h_rms)"
         lines = [lines, b]
         write (b, '(a,es12.5,a)') "  max pressure          ", r%get('max_pressure_pa'), " Pa"; lines = [lines, b]
-        if (.not. c%kernel%symmetric) then
+        if (.not. c%kernel%symmetric .or. c%spec%shear_coefficient > 0.0_dp) then
             write (b, '(a,es12.5)') "  friction coefficient  ", r%get('friction_coefficient'); lines = [lines, b]
+            if (c%spec%shear_coefficient > 0.0_dp) then
+                write (b, '(a,es12.5,a,es12.5,a)') "    of which hysteresis ", r%get('friction_hysteresis'), &
+                    ", interfacial ", r%get('friction_interfacial'), " (&interface shear_coefficient)"
+                lines = [lines, b]
+            end if
             write (b, '(a,es12.5)') "  lateral force ratio   ", r%get('lateral_force_ratio'); lines = [lines, b]
         end if
         if (.not. c%spec%material%solid%is_elastic()) then

@@ -26,7 +26,7 @@ program veslide_tests
     use test_veslide_config, only: collect_config, collect_config_grid, collect_config_surface, &
                                    collect_config_material, collect_config_load, collect_config_motion, &
                                    collect_config_solver, collect_config_analysis, collect_config_sweep, &
-                                   collect_config_output
+                                   collect_config_output, collect_config_interface
     use test_veslide_topography, only: collect_topography
     use test_veslide_output, only: collect_output
     use test_veslide_case, only: collect_case
@@ -68,6 +68,7 @@ program veslide_tests
         new_testsuite("config-material", collect_config_material), &
         new_testsuite("config-load", collect_config_load), &
         new_testsuite("config-motion", collect_config_motion), &
+        new_testsuite("config-interface", collect_config_interface), &
         new_testsuite("config-solver", collect_config_solver), &
         new_testsuite("config-analysis", collect_config_analysis), &
         new_testsuite("config-sweep", collect_config_sweep), &

@@ -40,7 +40,10 @@ contains
             new_unittest("layer-thick-is-the-half-space", test_layer_thick), &
             new_unittest("specification-resolved-from-the-input", test_spec_resolved), &
             new_unittest("memory-sized-for-the-method-auto-runs", test_memory_auto_rule), &
-            new_unittest("fields-written-as-catalogued", test_field_catalogue) &
+            new_unittest("fields-written-as-catalogued", test_field_catalogue), &
+            new_unittest("shear-incompressible-adds-mu-f-only", test_shear_incompressible), &
+            new_unittest("shear-single-wave-in-full-contact", test_shear_single_wave), &
+            new_unittest("shear-persson-equals-the-solve-in-full-contact", test_shear_persson) &
             ]
     end subroutine collect_case
 
@@ -441,5 +444,201 @@ contains
         call f%close()
         open (newunit=u, file=out); close (u, status='delete')
     end subroutine test_field_catalogue
+
+    !> &interface shear_coefficient on an incompressible solid (nu = 1/2, beta = 0): the normal
+    !> problem is the one without shear (pressure, gap and area to 1e-12; the kernel is the same
+    !> bit for bit, so they are equal), and the friction coefficient is the one without shear plus
+    !> mu_f <p>/p0 = mu_f (1e-9: <p> is p0 to the load error). A rough surface in partial contact
+    !> under a one-term solid sliding at 20 degrees; the lateral force is unchanged.
+    subroutine test_shear_incompressible(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: mu_f = 0.6_dp
+        type(config_t) :: cfg
+        type(case_t) :: c0, c1
+        type(results_t) :: r0, r1
+        character(len=*), parameter :: base = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5 /"// &
+            " &solver fft_planner = 'estimate', tolerance = 1e-12 / &material model = 'one_term', poisson = 0.5 /"// &
+            " &motion speed_m_s = 0.05, direction_deg = 20 / &output fields = .false. /"
+        call read_text('shear0', base, cfg, error); if (allocated(error)) return
+        call run_case(cfg, c0, error); if (allocated(error)) return
+        call case_results(c0, r0)
+        call read_text('shear1', base//" &interface shear_coefficient = 0.6 /", cfg, error); if (allocated(error)) return
+        call run_case(cfg, c1, error); if (allocated(error)) return
+        call case_results(c1, r1)
+        call check(error, r0%get('contact_area_fraction') < 0.5_dp, "partial contact"); if (allocated(error)) return
+        call report("pressure, max difference/max", maxval(abs(c1%state%p - c0%state%p))/maxval(c0%state%p))
+        call check(error, maxval(abs(c1%state%p - c0%state%p)) <= 1.0e-12_dp*maxval(c0%state%p), "pressure")
+        if (allocated(error)) return
+        call check(error, maxval(abs(c1%state%g - c0%state%g)) <= 1.0e-12_dp*maxval(c0%state%g), "gap")
+        if (allocated(error)) return
+        call check(error, r1%get('contact_area_fraction'), r0%get('contact_area_fraction'), "area", rel=1.0e-12_dp)
+        if (allocated(error)) return
+        call check(error, r1%get('mean_separation_m'), r0%get('mean_separation_m'), "mean gap", rel=1.0e-12_dp)
+        if (allocated(error)) return
+        call report("friction - (without shear + mu_f)", r1%get('friction_coefficient') - &
+                    (r0%get('friction_coefficient') + mu_f))
+        call check(error, r1%get('friction_coefficient'), r0%get('friction_coefficient') + mu_f, &
+                   "friction = hysteresis + mu_f", abs=1.0e-9_dp)
+        if (allocated(error)) return
+        call check(error, r1%get('friction_hysteresis'), r0%get('friction_coefficient'), "the hysteresis part", &
+                   rel=1.0e-12_dp)
+        if (allocated(error)) return
+        call check(error, r1%get('friction_interfacial'), mu_f, "the interfacial part", abs=1.0e-9_dp)
+        if (allocated(error)) return
+        call check(error, r1%get('lateral_force_ratio'), r0%get('lateral_force_ratio'), "lateral force", rel=1.0e-12_dp)
+        if (allocated(error)) return
+        call check(error, r1%get('shear_coefficient') == mu_f .and. .not. r0%has('shear_coefficient') .and. &
+                   .not. r0%has('friction_hysteresis'), "the shear and the parts recorded only with shear")
+    end subroutine test_shear_incompressible
+
+    !> A single wave h0 cos(q.x) in full contact under a shear mu_f p v_hat (docs/interface.md):
+    !> the gap is 0, so w = h (less the approach) and p(q) = h(q)/K(q) with
+    !> K = 2 (1 - nu^2) C(-q.v) (1 - i a)/|q|, a = beta mu_f (q.v_hat)/|q|. For an elastic solid
+    !>   p - p0 = (E* |q| h0/2) (cos q.x - a sin q.x)/(1 + a^2),
+    !>   F = <p grad h> = q E* |q| h0^2 a/(4 (1 + a^2)),
+    !>   friction_hysteresis = -F.v_hat/p0 = -E* |q|^2 h0^2 beta mu_f s^2/(4 p0 (1 + a^2)) < 0,
+    !> s = (q.v_hat)/|q|: the pressure shifts to the trailing flank by atan(a) and pushes the wave
+    !> along v, and the friction coefficient is that plus mu_f. In general (a solid in motion)
+    !> F = (h0^2/2) q Im(1/K), the same for a = 0 (no shear). Cases: nu = 0.3, mu_f = 0.5; a wave
+    !> along x with v along x (s = 1) and at 30 degrees (s = cos 30: a lateral force), a wave at
+    !> 45 degrees with v along x, and a one-term solid (nu = 0.2, mu_f = 0.8) at 0.1 m/s at 30
+    !> degrees. Pressure within 1e-12 of the amplitude |h0/K| (3e-12 in motion), forces within
+    !> 1e-12 relative (solver tolerance 1e-13, its smallest; measured 1.5e-13 elastic, 8.7e-13 in
+    !> motion, and 2e-14 at most).
+    subroutine test_shear_single_wave(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: l = 0.01_dp, h0 = 1.0e-6_dp, p0 = 1.0e5_dp
+        call one(0.0_dp, 2.0_dp, 0.0_dp, .false., error); if (allocated(error)) return
+        call one(0.0_dp, 2.0_dp, 30.0_dp, .false., error); if (allocated(error)) return
+        call one(45.0_dp, 2.0_dp*sqrt(2.0_dp), 0.0_dp, .false., error); if (allocated(error)) return
+        call one(0.0_dp, 2.0_dp, 30.0_dp, .true., error)
+    contains
+        !> a wave at `wave_deg` of `waves` wavelengths per cell side's length, v at `v_deg`
+        subroutine one(wave_deg, waves, v_deg, moving, error)
+            real(dp), intent(in) :: wave_deg, waves, v_deg
+            logical, intent(in) :: moving
+            type(error_t), allocatable, intent(out) :: error
+            type(config_t) :: cfg
+            type(case_t) :: c
+            type(results_t) :: r
+            real(dp) :: nu, mu_f, beta, q(2), vhat(2), lat(2), s, a, estar, amp, x(2), worst, hyst, f(2)
+            complex(dp) :: kq
+            character(len=32) :: wl, wd, vd
+            character(len=:), allocatable :: material, tag
+            integer :: i, j
+            if (moving) then
+                nu = 0.2_dp; mu_f = 0.8_dp
+                material = "&material model = 'one_term', poisson = 0.2 / &interface shear_coefficient = 0.8 /"// &
+                           " &motion speed_m_s = 0.1, "
+            else
+                nu = 0.3_dp; mu_f = 0.5_dp
+                material = "&material young_pa = 1e7, poisson = 0.3 / &interface shear_coefficient = 0.5 /"// &
+                           " &motion "
+            end if
+            write (wl, '(es24.17)') l/waves; write (wd, '(es24.17)') wave_deg; write (vd, '(es24.17)') v_deg
+            tag = "wave "//str(nint(wave_deg))//" deg, v "//str(nint(v_deg))//" deg"// &
+                  trim(merge(", moving", "        ", moving))
+            call read_text('shearwave', "&grid nx = 32, ny = 32, lx_m = 0.01 / &surface kind = 'cosine',"// &
+                           " amplitude_m = 1e-6, wavelength_m = "//trim(wl)//", direction_deg = "//trim(wd)//" /"// &
+                           " &load mean_pressure_pa = 1e5 / &solver fft_planner = 'estimate', tolerance = 1e-13 /"// &
+                           " &output fields = .false. / "//material//"direction_deg = "//trim(vd)//" /", cfg, error)
+            if (allocated(error)) return
+            call run_case(cfg, c, error); if (allocated(error)) return
+            call case_results(c, r)
+            call check(error, r%get('contact_area_fraction'), 1.0_dp, tag//": full contact", abs=0.0_dp)
+            if (allocated(error)) return
+            beta = (1.0_dp - 2.0_dp*nu)/(2.0_dp*(1.0_dp - nu))
+            q = 2.0_dp*pi*waves/l*[cos(wave_deg*pi/180), sin(wave_deg*pi/180)]
+            vhat = [cos(v_deg*pi/180), sin(v_deg*pi/180)]; lat = [-vhat(2), vhat(1)]
+            s = dot_product(q, vhat)/norm2(q); a = beta*mu_f*s
+            ! the kernel of mode q, written anew: K = 2 (1 - nu^2) C(-q.v) (1 - i a)/|q|
+            kq = 2.0_dp*(1.0_dp - nu**2)*c%spec%material%solid%compliance(-dot_product(q, c%spec%velocity())) &
+                 *cmplx(1.0_dp, -a, dp)/norm2(q)
+            estar = 1.0e7_dp/(1.0_dp - nu**2)
+            amp = 0.5_dp*estar*norm2(q)*h0
+            worst = 0.0_dp
+            do j = 1, 32
+                do i = 1, 32
+                    x = [(i - 1)*l/32, (j - 1)*l/32]
+                    if (moving) then
+                        worst = max(worst, abs(c%state%p(i, j) - p0 - real(h0/kq*exp(cmplx(0.0_dp, &
+                                    dot_product(q, x), dp)), dp))/abs(h0/kq))
+                    else
+                        worst = max(worst, abs(c%state%p(i, j) - p0 - amp*(cos(dot_product(q, x)) - &
+                                    a*sin(dot_product(q, x)))/(1.0_dp + a*a))/amp)
+                    end if
+                end do
+            end do
+            call report(tag//": pressure, max error/amplitude", worst)
+            ! (the solver's residual, 1e-13 of h_rms, on the grid's shortest modes is a pressure 1/K
+            ! times larger, |q_max|/|q| = 8 here: 3e-12 for the solid in motion, whose solver stops
+            ! with less to spare)
+            call check(error, worst <= merge(3.0e-12_dp, 1.0e-12_dp, moving), &
+                       tag//": the pressure is not the closed form")
+            if (allocated(error)) return
+            if (moving) then
+                f = 0.5_dp*h0**2*q*aimag(1.0_dp/kq)
+            else
+                f = q*estar*norm2(q)*h0**2*a/(4.0_dp*(1.0_dp + a*a))
+                ! the expanded form of -F.v_hat/p0 (the sign: negative for an elastic solid)
+                hyst = -estar*dot_product(q, q)*h0**2*beta*mu_f*s*s/(4.0_dp*p0*(1.0_dp + a*a))
+                call check(error, -dot_product(f, vhat)/p0, hyst, tag//": the closed form's two writings", &
+                           rel=1.0e-14_dp)
+                if (allocated(error)) return
+            end if
+            call report(tag//": friction_hysteresis, rel. error", &
+                        abs(r%get('friction_hysteresis')/(-dot_product(f, vhat)/p0) - 1.0_dp))
+            call check(error, r%get('friction_hysteresis'), -dot_product(f, vhat)/p0, tag//": friction_hysteresis", &
+                       rel=1.0e-12_dp)
+            if (allocated(error)) return
+            call check(error, r%get('friction_coefficient'), -dot_product(f, vhat)/p0 + mu_f, &
+                       tag//": friction = hysteresis + mu_f", abs=1.0e-9_dp)
+            if (allocated(error)) return
+            call check(error, r%get('friction_interfacial'), mu_f, tag//": friction_interfacial", abs=1.0e-9_dp)
+            if (allocated(error)) return
+            call check(error, r%get('lateral_force_ratio'), dot_product(f, lat)/p0, tag//": lateral force", &
+                       rel=1.0e-12_dp, abs=1.0e-12_dp*norm2(f)/p0)
+            if (allocated(error)) return
+            call check(error, r%get('force_x_pa'), f(1) - mu_f*p0*vhat(1), tag//": force along x", &
+                       rel=1.0e-12_dp, abs=1.0e-12_dp*mu_f*p0)
+            if (allocated(error)) return
+            call check(error, .not. c%kernel%symmetric .and. c%state%method /= 'bccg', &
+                       tag//": a non-symmetric kernel and a solver for it")
+            if (allocated(error)) return
+        end subroutine one
+    end subroutine test_shear_single_wave
+
+    !> &analysis persson with shear: the theory takes the coupled kernel, and in full contact it is
+    !> exact, so its friction (with mu_f added) and lateral force equal the solve's (nu = 0.3,
+    !> anisotropic surface, oblique v); also on an elastic solid at rest, where only the shear's
+    !> direction says which way is forward
+    subroutine test_shear_persson(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(results_t) :: r
+        integer :: k
+        do k = 1, 2
+            call read_text('spersson', "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5, alpha_deg"// &
+                           " = 30 / &solver fft_planner='estimate', tolerance = 1e-12 / &load mean_pressure_pa = 3e7 /"// &
+                           " &interface shear_coefficient = 0.4 / &analysis persson = .true. / "// &
+                           trim(merge("&material model='one_term', poisson = 0.3 / &motion speed_m_s = 0.05,", &
+                                      "&material young_pa = 1e8, poisson = 0.3 / &motion                    ", k == 1))// &
+                           " direction_deg = 20 /", cfg, error)
+            if (allocated(error)) return
+            call run_case(cfg, c, error); if (allocated(error)) return
+            call case_results(c, r)
+            call check(error, r%get('contact_area_fraction'), 1.0_dp, "full contact", abs=0.0_dp)
+            if (allocated(error)) return
+            call check(error, r%get('persson_friction_coefficient'), r%get('friction_coefficient'), "friction", &
+                       rel=1.0e-9_dp)
+            if (allocated(error)) return
+            call check(error, r%get('persson_lateral_force_ratio'), r%get('lateral_force_ratio'), "lateral force", &
+                       rel=1.0e-8_dp)
+            if (allocated(error)) return
+            call check(error, abs(r%get('friction_hysteresis')) > 1.0e-6_dp, "a hysteresis part")
+            if (allocated(error)) return
+        end do
+    end subroutine test_shear_persson
 
 end module test_veslide_case

@@ -13,7 +13,7 @@ module test_veslide_config
     private
     public :: collect_config, collect_config_grid, collect_config_surface, collect_config_material, &
               collect_config_load, collect_config_motion, collect_config_solver, collect_config_analysis, &
-              collect_config_sweep, collect_config_output, read_text, expect_words
+              collect_config_sweep, collect_config_output, collect_config_interface, read_text, expect_words
 
 contains
 
@@ -84,6 +84,17 @@ contains
         type(unittest_t), allocatable, intent(out) :: tests(:)
         tests = [new_unittest("direction-in-range", test_motion)]
     end subroutine collect_config_motion
+
+    subroutine collect_config_interface(tests)
+        type(unittest_t), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest("shear-coefficient-default-and-value", test_interface_values), &
+            new_unittest("shear-coefficient-in-range", test_interface_range), &
+            new_unittest("symmetric-solvers-refused-with-shear", test_interface_solvers), &
+            new_unittest("shear-on-a-layer-refused", test_interface_layer), &
+            new_unittest("elastic-speed-warning-names-the-shear", test_interface_warning) &
+            ]
+    end subroutine collect_config_interface
 
     subroutine collect_config_solver(tests)
         type(unittest_t), allocatable, intent(out) :: tests(:)
@@ -360,6 +371,83 @@ contains
                             new_line('a')//"&adhesion law = 'exponential', energy_j_m2 = 0.05, range_m = 1e-9 /", &
                             [character(len=24) :: "'auto' finds no method", "'exponential'", "non-symmetric"], error)
     end subroutine test_adhesion_motion
+
+    !> &interface is optional (mu_f = 0, no shear) and reads its one variable
+    subroutine test_interface_values(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        call read_text('if0', "&grid nx = 32 / &surface k_cut = 8 /", cfg, error); if (allocated(error)) return
+        call check(error, cfg%interface%shear_coefficient == 0.0_dp, "the default is no shear")
+        if (allocated(error)) return
+        call read_text('if1', "&grid nx = 32 / &surface k_cut = 8 / &interface shear_coefficient = 0.35 /", cfg, error)
+        if (allocated(error)) return
+        call check(error, cfg%interface%shear_coefficient == 0.35_dp, "the value read")
+    end subroutine test_interface_values
+
+    !> Negative, not finite, above 10, or not a number: refused naming the group, variable and range
+    subroutine test_interface_range(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('if2', "&interface shear_coefficient = -0.1 /", [character(len=32) :: &
+                            "&interface shear_coefficient", "-0.1", "allowed: 0 to 10"], error)
+        if (allocated(error)) return
+        call expect_message('if3', "&interface shear_coefficient = NaN /", [character(len=32) :: &
+                            "&interface shear_coefficient", "NaN", "0 to 10"], error)
+        if (allocated(error)) return
+        call expect_message('if4', "&interface shear_coefficient = Inf /", [character(len=32) :: &
+                            "&interface shear_coefficient", "0 to 10"], error)
+        if (allocated(error)) return
+        call expect_message('if5', "&interface shear_coefficient = 12 /", [character(len=32) :: &
+                            "&interface shear_coefficient", "12", "0 to 10"], error)
+        if (allocated(error)) return
+        call expect_message('if6', "&interface shear_coefficient = 'high' /", [character(len=40) :: &
+                            "&interface shear_coefficient = 'high'", "a real number"], error)
+        if (allocated(error)) return
+        call expect_message('if7', "&interface friction = 0.3 /", [character(len=32) :: &
+                            "&interface friction", "no such variable", "shear_coefficient"], error)
+    end subroutine test_interface_range
+
+    !> With shear on a compressible solid the operator is not symmetric, elastic or not, at any
+    !> speed: pk and bccg are refused by the input, naming the shear; at nu = 1/2 (beta = 0) and
+    !> on a grid the shear's direction does not reach (2 cells along x, shear along x) they run
+    subroutine test_interface_solvers(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=*), parameter :: base = "&grid nx = 32 / &surface k_cut = 8 / &interface shear_coefficient = 0.5 /"
+        call expect_message('if8', base//" &material poisson = 0.3 / &solver method = 'pk' /", [character(len=40) :: &
+                            "&solver method = 'pk'", "not symmetric", "&interface shear_coefficient", "'pdr'"], error)
+        if (allocated(error)) return
+        call expect_message('if9', base//" &material poisson = 0.3 / &motion direction_deg = 90 /"// &
+                            " &solver method = 'bccg' /", [character(len=40) :: "&solver method = 'bccg'", &
+                            "not symmetric"], error)
+        if (allocated(error)) return
+        call read_text('if10', base//" &material poisson = 0.5 / &solver method = 'pk' /", cfg, error)
+        if (allocated(error)) return
+        call read_text('if11', "&grid nx = 2, ny = 16, lx_m = 0.01 / &surface kind = 'flat' /"// &
+                       " &interface shear_coefficient = 0.5 / &material poisson = 0.3 / &solver method = 'pk' /", &
+                       cfg, error)
+    end subroutine test_interface_solvers
+
+    !> A layer's normal-tangential coupling is not the half-space's: refused with the reason
+    subroutine test_interface_layer(error)
+        type(error_t), allocatable, intent(out) :: error
+        call expect_message('if12', "&grid nx = 32 / &surface k_cut = 8 / &interface shear_coefficient = 0.2 /"// &
+                            " &material thickness_m = 1e-3, poisson = 0.5 /", [character(len=48) :: &
+                            "&interface shear_coefficient = 0.2", "&material thickness_m", &
+                            "not available", "not zero even at poisson = 0.5"], error)
+    end subroutine test_interface_layer
+
+    !> On an elastic solid a speed changes nothing; with shear the warning does not say the
+    !> friction is zero
+    subroutine test_interface_warning(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        call read_text('if13', "&grid nx = 32 / &surface k_cut = 8 / &motion speed_m_s = 0.1 /"// &
+                       " &interface shear_coefficient = 0.2 / &material poisson = 0.3 /", cfg, error)
+        if (allocated(error)) return
+        call check(error, size(cfg%warnings) == 1, "one warning"); if (allocated(error)) return
+        call check(error, cfg%warnings(1)%code == 'elastic-speeds' .and. index(cfg%warnings(1)%text, "zero") == 0 &
+                   .and. index(cfg%warnings(1)%text, "interfacial shear") > 0, "warning text: "//cfg%warnings(1)%text)
+    end subroutine test_interface_warning
 
     subroutine test_motion(error)
         type(error_t), allocatable, intent(out) :: error

@@ -2,6 +2,7 @@
 !> topography, the seed statistics, and rank parts joined into the serial study
 module test_veslide_study
     use veslide_kinds, only: dp, i8, pi
+    use veslide_strings, only: str
     use veslide_config, only: config_t
     use veslide_hdf5, only: h5file_t
     use veslide_quantities, only: AXIAL_NONE, AXIAL_HALF_TURN, AXIAL_SYMMETRIC
@@ -36,7 +37,8 @@ contains
             new_unittest("stopped-study-resumes-to-the-same-result", test_resume), &
             new_unittest("part-file-of-another-input-refused", test_resume_other, should_fail=.true., &
                          expect="part file of another input"), &
-            new_unittest("temperature-sweep-is-a-speed-scale", test_temperature_sweep) &
+            new_unittest("temperature-sweep-is-a-speed-scale", test_temperature_sweep), &
+            new_unittest("shear-in-every-case", test_shear_sweep) &
             ]
     end subroutine collect_study
 
@@ -346,5 +348,64 @@ contains
             end do
         end do
     end function count_differences
+
+    !> &interface shear_coefficient in a study of speeds and pressures (one_term, nu = 0.4): every
+    !> row has the friction as its two parts, the interfacial one mu_f (1e-9), the shear recorded,
+    !> and the hysteresis part of a row equals its single run's (1e-8, the solver tolerance's
+    !> reach; the kernel of each speed carries the shear)
+    subroutine test_shear_sweep(error)
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), parameter :: mu_f = 0.3_dp
+        type(config_t) :: cfg, one
+        type(case_t) :: c
+        type(h5file_t) :: f
+        character(len=:), allocatable :: out
+        character(len=64), allocatable :: cols(:)
+        logical, allocatable :: ints(:)
+        integer(i8), allocatable :: rows(:, :)
+        character(len=*), parameter :: shear = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5 /"// &
+            " &solver fft_planner='estimate', tolerance = 1e-12 / &material model='one_term', poisson = 0.4 /"// &
+            " &interface shear_coefficient = 0.3 /"
+        real(dp) :: total, hyst, inter, mu
+        integer :: nfail, k
+        out = unique_name('shear.h5')
+        call read_text('shearsweep', shear//" &motion direction_deg = 60 / &sweep speeds_m_s = 0.01, 1.0,"// &
+                       " pressures_pa = 2e4, 8e4 /"// &
+                       " &output fields = .false. /", cfg, error)
+        if (allocated(error)) return
+        call run_study(cfg, out, nfail, error); if (allocated(error)) return
+        call check(error, nfail, 0, "cases not converged"); if (allocated(error)) return
+        call f%open(out, 'r', error); if (allocated(error)) return
+        call f%read_table('/summary', cols, ints, rows, error); if (allocated(error)) return
+        call f%close()
+        call remove(out)
+        call check(error, size(rows, 2) == 4 .and. any(cols == 'friction_hysteresis') .and. &
+                   any(cols == 'friction_interfacial') .and. any(cols == 'shear_coefficient'), "the summary's columns")
+        if (allocated(error)) return
+        do k = 1, 4
+            total = value('friction_coefficient'); hyst = value('friction_hysteresis')
+            inter = value('friction_interfacial'); mu = value('shear_coefficient')
+            call check(error, total, hyst + inter, "row "//str(k)//": the two parts", abs=1.0e-14_dp)
+            if (allocated(error)) return
+            call check(error, inter, mu_f, "row "//str(k)//": the interfacial part", abs=1.0e-9_dp)
+            if (allocated(error)) return
+            call check(error, mu == mu_f .and. abs(hyst) > 1.0e-5_dp, "row "//str(k)//": shear recorded, a hysteresis")
+            if (allocated(error)) return
+        end do
+        k = 4
+        call read_text('shearsweep-one', shear//" &motion speed_m_s = 1.0, direction_deg = 60 /"// &
+                       " &load mean_pressure_pa = 8e4 /", one, error)
+        if (allocated(error)) return
+        call run_case(one, c, error); if (allocated(error)) return
+        call check(error, value('speed_m_s') == 1.0_dp .and. value('pressure_pa') == 8.0e4_dp, "row 4's parameters")
+        if (allocated(error)) return
+        call check(error, value('friction_hysteresis'), -dot_product(c%force_pa, [cos(pi/3), sin(pi/3)])/8.0e4_dp, &
+                   "row 4 against its single run", rel=1.0e-8_dp)
+    contains
+        real(dp) function value(name) result(v)
+            character(len=*), intent(in) :: name
+            v = transfer(rows(findloc(cols, name, dim=1), k), 0.0_dp)
+        end function value
+    end subroutine test_shear_sweep
 
 end module test_veslide_study

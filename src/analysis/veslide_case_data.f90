@@ -5,7 +5,7 @@
 !> while it is used: SI units and radians, the solid as a `material_t` (its times already shifted
 !> to the case's temperature), the sliding velocity as speed and direction (`velocity`, the one
 !> source the kernel, Persson's theory and the output read), the load, the solver's options, the
-!> kernel variant, the analyses and whether fields are written. A study makes one specification
+!> kernel variant, the interfacial shear, the analyses and whether fields are written. A study makes one specification
 !> per case from its input (veslide_study); nothing writes the configuration after it is read.
 !>
 !> It sits in the analysis layer because the output catalogue (veslide_quantities) reads both
@@ -73,6 +73,8 @@ module veslide_case_data
         real(dp) :: speed_m_s = 0.0_dp                   !! of the rigid surface [m/s]
         real(dp) :: direction_deg = 0.0_dp               !! of the velocity from x [degree]
         real(dp) :: mean_pressure_pa = 0.0_dp            !! the nominal pressure [Pa]
+        !> mu_f of a full-slip Coulomb shear at the interface (&interface; 0: none) [-]
+        real(dp) :: shear_coefficient = 0.0_dp
         type(contact_law_t) :: law                       !! the contact law (the hard wall)
         type(solver_options_t) :: solver
         integer :: kernel_variant = KERNEL_SPECTRAL      !! KERNEL_* id
@@ -86,6 +88,7 @@ module veslide_case_data
         type(warning_t), allocatable :: warnings(:)
     contains
         procedure :: velocity => spec_velocity
+        procedure :: shear => spec_shear
         procedure :: kernel_name => spec_kernel_name
     end type case_spec_t
 
@@ -99,6 +102,8 @@ module veslide_case_data
         type(contact_state_t) :: state
         real(dp) :: force_pa(2) = 0.0_dp          !! <p grad w>, solid on rigid surface [Pa]
         real(dp) :: slope_force_pa(2) = 0.0_dp    !! <p grad h> [Pa] (check)
+        !> mu_f <p>: the interfacial shear's force on the rigid surface per nominal area, along -v_hat [Pa]
+        real(dp) :: interfacial_force_pa = 0.0_dp
         real(dp) :: kernel_seconds = 0.0_dp, solve_seconds = 0.0_dp, surface_seconds = 0.0_dp
         integer(i8) :: memory_estimate_bytes = 0    !! estimated peak of the run, before allocating [bytes]
         integer(i8) :: device_estimate_bytes = 0    !! estimated peak on the device (0: solved on the CPU) [bytes]
@@ -129,6 +134,16 @@ contains
         th = radians(self%direction_deg)
         v = self%speed_m_s*[cos(th), sin(th)]
     end function spec_velocity
+
+    !> The interfacial shear traction on the solid per unit contact pressure, mu_f v_hat [-]: along
+    !> the direction of the velocity, whatever the speed (v = 0 is the limit of slow sliding, where
+    !> a Coulomb friction keeps its value)
+    pure function spec_shear(self) result(s)
+        class(case_spec_t), intent(in) :: self
+        real(dp) :: s(2), th
+        th = radians(self%direction_deg)
+        s = self%shear_coefficient*[cos(th), sin(th)]
+    end function spec_shear
 
     !> The kernel variant's name (&solver kernel)
     pure function spec_kernel_name(self) result(name)

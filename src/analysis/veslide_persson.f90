@@ -51,7 +51,11 @@
 !> ## Discrete details
 !> K is the case's kernel itself (`kernel_t`, the spectral variant for the continuum theory), and
 !> the grid's rules apply (Hermitian weights; Nyquist lines carry no derivative), exactly as in the
-!> kernel's `tangential_force`; the full-contact identity then holds for any spectrum.
+!> kernel's `tangential_force`; the full-contact identity then holds for any spectrum. A layer's
+!> factor and an interfacial shear's coupling (docs/interface.md) come with the kernel: the theory
+!> takes them through z = 1/K, an extension of Persson's, whose published form has neither
+!> (the full-contact identity still holds term by term). The direction of sliding is v's, or
+!> at v = 0 the shear's; the shear's own part mu_f is added by the output (veslide_quantities).
 !> Modes with a_q = 0 contribute nothing and are skipped; `q_per_m` lists only shells with power.
 !> Cost: one pass over the half-spectrum and a bucket sort of |q|^2 (one bucket per mode; |q|^2 is close to uniformly
 !> distributed on a lattice, so a bucket holds about one shell and is sorted exactly in place):
@@ -85,7 +89,7 @@ module veslide_persson
         real(dp) :: contact_area_fraction = 0.0_dp   !! P(q_max)
         !> tangential force of the solid on the rigid surface per nominal area [Pa], (x, y)
         real(dp) :: force_pa(2) = 0.0_dp
-        real(dp) :: friction_coefficient = 0.0_dp    !! -F.v_hat/p0 (0 when v = 0)
+        real(dp) :: friction_coefficient = 0.0_dp    !! -F.v_hat/p0 (0 when v = 0 without shear)
         real(dp) :: lateral_force_ratio = 0.0_dp     !! F.(z_hat x v_hat)/p0
         real(dp), allocatable :: q_per_m(:)          !! distinct |q| shells present in the spectrum, ascending [1/m]
         real(dp), allocatable :: area_fraction(:)    !! P(q) at those shells
@@ -226,9 +230,13 @@ contains
         end do
         res%contact_area_fraction = p
         res%force_pa = f
-        vn = norm2(kernel%velocity_m_s)
+        ! the direction of sliding: the velocity's, or at v = 0 an interfacial shear's (it is
+        ! along v_hat, and the coupling it brings is a force at any speed)
+        vhat = kernel%velocity_m_s
+        if (.not. norm2(vhat) > 0.0_dp) vhat = kernel%shear
+        vn = norm2(vhat)
         if (vn > 0.0_dp) then
-            vhat = kernel%velocity_m_s/vn
+            vhat = vhat/vn
             res%friction_coefficient = -dot_product(f, vhat)/p_mean_pa
             res%lateral_force_ratio = (-f(1)*vhat(2) + f(2)*vhat(1))/p_mean_pa
         end if

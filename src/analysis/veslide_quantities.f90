@@ -170,30 +170,52 @@ contains
     !>   lateral_force_pa = F.(z_hat x v_hat), lateral_force_ratio = F.(z_hat x v_hat)/p_mean,
     !>   force_x_pa, force_y_pa, friction_coefficient_slope = -<p grad h>.v_hat/p_mean (the check
     !>   estimator) and dissipated_power_w_m2 = -F.v.
-    !> v_hat is the direction `direction_deg` of v (also at v = 0, where all vanish).
-    pure subroutine add_force_quantities(r, force_pa, slope_force_pa, velocity_m_s, direction_deg, p_mean)
+    !> v_hat is the direction `direction_deg` of v (also at v = 0, where all vanish without shear).
+    !> F = `force_pa` (<p grad w>, the normal traction on the tilted surface: the hysteresis part)
+    !> minus `interfacial_pa` v_hat (mu_f <p>, a full-slip Coulomb shear's); with that part (> 0)
+    !> the friction, the forces, the slope estimator and the power are the totals, and
+    !> friction_hysteresis and friction_interfacial are the two parts of the friction coefficient.
+    !> The lateral force is the hysteresis part's alone: the shear is along v_hat.
+    pure subroutine add_force_quantities(r, force_pa, slope_force_pa, velocity_m_s, direction_deg, p_mean, &
+                                         interfacial_pa)
         type(results_t), intent(inout) :: r
         real(dp), intent(in) :: force_pa(2), slope_force_pa(2), velocity_m_s(2), direction_deg, p_mean
-        real(dp) :: vhat(2), lat(2)
+        !> mu_f <p> [Pa] (absent or 0: no interfacial shear, and every value as without it)
+        real(dp), intent(in), optional :: interfacial_pa
+        real(dp) :: vhat(2), lat(2), fi, f(2)
+        fi = 0.0_dp; if (present(interfacial_pa)) fi = interfacial_pa
         vhat = [cos(radians(direction_deg)), sin(radians(direction_deg))]
         lat = [-vhat(2), vhat(1)]
-        call r%add('friction_force_pa', -dot_product(force_pa, vhat), 'Pa')
-        call r%add('friction_coefficient', ratio(-dot_product(force_pa, vhat)), '-')
+        if (fi > 0.0_dp) then
+            f = force_pa - fi*vhat
+            call r%add('friction_force_pa', -dot_product(force_pa, vhat) + fi, 'Pa')
+            call r%add('friction_coefficient', ratio(-dot_product(force_pa, vhat) + fi), '-')
+            call r%add('friction_hysteresis', ratio(-dot_product(force_pa, vhat)), '-')
+            call r%add('friction_interfacial', ratio(fi), '-')
+        else
+            f = force_pa
+            call r%add('friction_force_pa', -dot_product(force_pa, vhat), 'Pa')
+            call r%add('friction_coefficient', ratio(-dot_product(force_pa, vhat)), '-')
+        end if
         call r%add('lateral_force_pa', dot_product(force_pa, lat), 'Pa')
         call r%add('lateral_force_ratio', ratio(dot_product(force_pa, lat)), '-')
-        call r%add('force_x_pa', force_pa(1), 'Pa')
-        call r%add('force_y_pa', force_pa(2), 'Pa')
-        call r%add('friction_coefficient_slope', ratio(-dot_product(slope_force_pa, vhat)), '-')
-        call r%add('dissipated_power_w_m2', -dot_product(force_pa, velocity_m_s), 'W/m^2')
+        call r%add('force_x_pa', f(1), 'Pa')
+        call r%add('force_y_pa', f(2), 'Pa')
+        if (fi > 0.0_dp) then
+            call r%add('friction_coefficient_slope', ratio(-dot_product(slope_force_pa, vhat) + fi), '-')
+        else
+            call r%add('friction_coefficient_slope', ratio(-dot_product(slope_force_pa, vhat)), '-')
+        end if
+        call r%add('dissipated_power_w_m2', -dot_product(f, velocity_m_s), 'W/m^2')
     contains
         !> A force over the load: NaN at a zero or tensile load (an adhesive law's), where no
         !> coefficient of friction is defined
-        pure real(dp) function ratio(f) result(x)
-            real(dp), intent(in) :: f
+        pure real(dp) function ratio(x) result(y)
+            real(dp), intent(in) :: x
             if (p_mean > 0.0_dp) then
-                x = f/p_mean
+                y = x/p_mean
             else
-                x = ieee_value(1.0_dp, ieee_quiet_nan)
+                y = ieee_value(1.0_dp, ieee_quiet_nan)
             end if
         end function ratio
     end subroutine add_force_quantities
@@ -254,6 +276,7 @@ contains
         call r%add('ny', real(c%grid%ny, dp), '-', is_integer=.true.)
         call r%add('contact_modulus_pa', solid%e0_pa/(1.0_dp - solid%poisson**2), 'Pa')
         if (solid%thickness_m > 0.0_dp) call r%add('layer_thickness_m', solid%thickness_m, 'm')
+        if (c%spec%shear_coefficient > 0.0_dp) call r%add('shear_coefficient', c%spec%shear_coefficient, '-')
         if (c%spec%material%shifted) then
             call r%add('temperature_c', c%spec%material%temperature_c, 'degC')
             call r%add('shift_factor', c%spec%material%shift_factor, '-')
@@ -261,7 +284,7 @@ contains
         call r%add('speed_m_s', norm2(c%spec%velocity()), 'm/s')
         call r%add('velocity_direction_deg', c%spec%direction_deg, 'degree')
         call add_force_quantities(r, c%force_pa, c%slope_force_pa, c%spec%velocity(), c%spec%direction_deg, &
-                                  c%spec%mean_pressure_pa)
+                                  c%spec%mean_pressure_pa, c%interfacial_force_pa)
         call r%add('kernel_alias_error', c%kernel%alias_error, '-')
         call r%add('kernel_alias_zones', real(c%kernel%alias_zones, dp), '-', is_integer=.true.)
         call r%add('kernel_min_re_m_pa', c%kernel%min_re, 'm/Pa')
@@ -314,7 +337,12 @@ contains
         end if
         if (c%have_persson) then
             call r%add('persson_contact_area_fraction', c%persson%contact_area_fraction, '-')
-            call r%add('persson_friction_coefficient', c%persson%friction_coefficient, '-')
+            if (c%spec%shear_coefficient > 0.0_dp) then     ! its part mu_f p0/p0 added, as to friction_coefficient
+                call r%add('persson_friction_coefficient', c%persson%friction_coefficient + c%spec%shear_coefficient, &
+                           '-')
+            else
+                call r%add('persson_friction_coefficient', c%persson%friction_coefficient, '-')
+            end if
             call r%add('persson_lateral_force_ratio', c%persson%lateral_force_ratio, '-')
             call r%add_array('/persson/q_per_m', c%persson%q_per_m, '1/m')
             call r%add_array('/persson/area_fraction', c%persson%area_fraction, '-')

@@ -16,8 +16,10 @@
 !> gradients) cannot take, on every grid with a mode the motion reaches (`motion_on_grid`): on a
 !> grid of at most 2 cells along x, and along y too unless the motion is exactly along x, every
 !> mode is the mean or a Nyquist line along the motion, which the kernel keeps real, and its
-!> operator is symmetric after all. The input refuses by these two; the solve reads the kernel's
-!> own symmetry (`kernel_t%symmetric`), the same verdict. Bytes per cell are a solver's own arrays
+!> operator is symmetric after all. An interfacial shear on a compressible solid (&interface
+!> shear_coefficient > 0, poisson < 1/2) makes it non-symmetric too, elastic or not, at any speed,
+!> on every grid its direction reaches (`shear_symmetric`). The input refuses by these; the solve
+!> reads the kernel's own symmetry (`kernel_t%symmetric`), the same verdict. Bytes per cell are a solver's own arrays
 !> beyond the solve's (heights, kernel, FFT buffers, p, u, g: veslide_memory), measured peaks in
 !> docs/solver-scaling.md:
 !> pk 16 (the direction t and one influence column); bccg 36 (direction, operator, the transforms
@@ -38,7 +40,8 @@ module veslide_solver_table
     use veslide_anderson_passes, only: device_max_memory
     implicit none
     private
-    public :: solver_info_t, solver_info, solver_methods, operator_symmetric, motion_on_grid, method_takes, &
+    public :: solver_info_t, solver_info, solver_methods, operator_symmetric, motion_on_grid, shear_symmetric, &
+              method_takes, &
               method_refusal, device_refusal, memory_refusal, solver_bytes_per_cell, runs_on_device
 
     !> What one method can take, and what it costs
@@ -109,6 +112,17 @@ contains
         th = radians(direction_deg)
         yes = (nx >= 3 .and. any(speeds*cos(th) /= 0.0_dp)) .or. (ny >= 3 .and. any(speeds*sin(th) /= 0.0_dp))
     end function motion_on_grid
+
+    !> Is the part of the operator an interfacial shear brings symmetric: its coupling `coupling`
+    !> (beta mu_f, veslide_material's `coupling_beta` times &interface shear_coefficient) is 0, or
+    !> its direction `direction_deg` [degree] (the velocity's, at any speed) reaches no mode of an
+    !> nx x ny grid off the mean and the Nyquist lines (`motion_on_grid` of a unit speed), where
+    !> the factor 1 - i beta mu_f (q.v_hat)/|q| is averaged to 1
+    pure logical function shear_symmetric(coupling, nx, ny, direction_deg) result(yes)
+        real(dp), intent(in) :: coupling, direction_deg
+        integer, intent(in) :: nx, ny
+        yes = coupling == 0.0_dp .or. .not. motion_on_grid(nx, ny, [1.0_dp], direction_deg)
+    end function shear_symmetric
 
     !> Does `method` take a case whose operator is `symmetric` or not, with the contact law `law`
     !> (LAW_* id)? 'auto' takes what any method takes
@@ -217,8 +231,9 @@ contains
         else if (.not. row%laws(law)) then
             why = "does not take the contact law "//law_text(law)
         else if (row%symmetric_only .and. .not. symmetric) then
-            why = "needs a symmetric operator (an elastic solid, or one at rest): the operator of a viscoelastic"// &
-                  " solid in motion (&motion speed_m_s or &sweep speeds above 0) is not symmetric"
+            why = "needs a symmetric operator (an elastic solid, or one at rest, without interfacial shear): the"// &
+                  " operator of a viscoelastic solid in motion (&motion speed_m_s or &sweep speeds above 0), or of"// &
+                  " any solid of poisson below 0.5 with &interface shear_coefficient above 0, is not symmetric"
         end if
     end function refusal_reason
 

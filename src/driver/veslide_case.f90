@@ -19,6 +19,7 @@ module veslide_case
     use veslide_solver_options, only: solver_options_t, solver_progress_callback
     use veslide_solver, only: solve_contact
     use veslide_analysis, only: slope_force
+    use veslide_fields, only: field_mean
     use veslide_anisotropy, only: tensor_axes, decompose
     use veslide_patches, only: contact_patches, percolates
     use veslide_topography, only: read_topography
@@ -98,7 +99,7 @@ contains
         end associate
     end subroutine build_surface
 
-    !> The kernel of a specification on `grid` (its solid, velocity and variant)
+    !> The kernel of a specification on `grid` (its solid, velocity, variant and interfacial shear)
     subroutine build_kernel(spec, grid, kernel, seconds, error)
         type(case_spec_t), intent(in) :: spec
         type(grid_t), intent(in) :: grid
@@ -108,7 +109,7 @@ contains
         real(dp) :: t0
         t0 = wall_seconds()
         call new_kernel(kernel, grid, spec%material%solid, spec%velocity(), spec%kernel_variant, error, &
-                        alias_tol=spec%alias_tol, alias_max=spec%alias_max)
+                        alias_tol=spec%alias_tol, alias_max=spec%alias_max, shear=spec%shear())
         call add_context(error, "veslide: "//spec%input_path//": &solver kernel = '"//spec%kernel_name()//"': ")
         seconds = wall_seconds() - t0
     end subroutine build_kernel
@@ -191,6 +192,9 @@ contains
         if (allocated(error)) return
         c%solve_seconds = wall_seconds() - t0
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)
+        c%interfacial_force_pa = 0.0_dp
+        if (c%spec%shear_coefficient > 0.0_dp) &
+            c%interfacial_force_pa = c%spec%shear_coefficient*field_mean(c%grid, c%state%p)
         call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)
         call case_validity(c, fft)
         c%have_anisotropy = .false.; c%have_patches = .false.; c%have_persson = .false.
@@ -226,7 +230,8 @@ contains
             call persson_estimate(c%kernel, fft%k/c%grid%cells(), c%spec%mean_pressure_pa, c%persson, error, &
                                   s_correction=c%spec%analysis%persson_correction)
         else
-            call new_kernel(spectral, c%grid, c%spec%material%solid, c%spec%velocity(), KERNEL_SPECTRAL, error)
+            call new_kernel(spectral, c%grid, c%spec%material%solid, c%spec%velocity(), KERNEL_SPECTRAL, error, &
+                            shear=c%spec%shear())
             if (allocated(error)) return
             call persson_estimate(spectral, fft%k/c%grid%cells(), c%spec%mean_pressure_pa, c%persson, error, &
                                   s_correction=c%spec%analysis%persson_correction)

@@ -32,7 +32,8 @@ module veslide_memory
     use veslide_solver, only: planned_methods, auto_takes_device, check_device_choice
     use veslide_solver_options, only: DEVICE_GPU, DEVICE_AUTO
     use veslide_solver_table, only: solver_bytes_per_cell, operator_symmetric, motion_on_grid, runs_on_device, &
-                                    device_refusal, memory_refusal
+                                    device_refusal, memory_refusal, shear_symmetric
+    use veslide_material, only: coupling_beta
     use veslide_device, only: device_info_t, device_info, device_memory
     use veslide_system, only: available_memory_bytes
     implicit none
@@ -106,11 +107,17 @@ contains
         real(dp) :: bound
         integer :: k
         symmetric = case_symmetric(spec, speeds)
-        ! the operator's spread is at most Einf/E0 for the spectral kernel of a half-space; unknown
-        ! for the other variants and for a layer (whose factor varies across a shell of |q|)
+        ! the operator's spread is at most Einf/E0 for the spectral kernel of a half-space, times
+        ! sqrt(1 + (beta mu_f)^2) with an interfacial shear (|1 - i beta mu_f (q.v_hat)/|q|| within a
+        ! shell); unknown for the other variants and for a layer (whose factor varies across a
+        ! shell of |q|)
         bound = huge(1.0_dp)
         if (spec%kernel_variant == KERNEL_SPECTRAL .and. spec%material%solid%thickness_m == 0.0_dp .and. &
-            spec%material%solid%e0_pa > 0.0_dp) bound = spec%material%solid%einf_pa/spec%material%solid%e0_pa
+            spec%material%solid%e0_pa > 0.0_dp) then
+            bound = spec%material%solid%einf_pa/spec%material%solid%e0_pa
+            if (spec%shear_coefficient > 0.0_dp) bound = bound* &
+                sqrt(1.0_dp + (coupling_beta(spec%material%solid%poisson)*spec%shear_coefficient)**2)
+        end if
         methods = planned_methods(spec%solver%method, symmetric, real(spec%nx, dp)*real(spec%ny, dp), bound, &
                                   spec%law%kind)
         b = 0
@@ -120,24 +127,33 @@ contains
     end function solver_bytes
 
     !> Is the operator of the case `spec` (a study of its `speeds`) symmetric: an elastic solid, or
-    !> one at rest at every speed (veslide_solver_table). With `on_grid`, also on a grid no mode of
-    !> which the motion reaches (`motion_on_grid`: the refusals' rule, the input's and the
-    !> solve's); without, the solid's alone: the estimate sizes those few grids (at most 2 cells
-    !> along the motion) for the methods of a non-symmetric operator, more than 'auto' takes there
+    !> one at rest at every speed, without an interfacial shear on a compressible solid
+    !> (veslide_solver_table). With `on_grid`, also on a grid no mode of which the motion (the
+    !> shear's direction) reaches (`motion_on_grid`, `shear_symmetric`: the refusals' rule, the
+    !> input's and the solve's); without, the solid's alone: the estimate sizes those few grids
+    !> (at most 2 cells along the motion) for the methods of a non-symmetric operator, more than
+    !> 'auto' takes there
     pure logical function case_symmetric(spec, speeds, on_grid) result(yes)
         type(case_spec_t), intent(in) :: spec
         real(dp), intent(in), optional :: speeds(:)
         logical, intent(in), optional :: on_grid
         real(dp), allocatable :: v(:)
+        real(dp) :: coupling
         if (present(speeds)) then
             v = speeds
         else
             v = [spec%speed_m_s]
         end if
         yes = operator_symmetric(spec%material%model == 'elastic', v)
+        coupling = coupling_beta(spec%material%solid%poisson)*spec%shear_coefficient
         if (present(on_grid)) then
-            if (on_grid) yes = yes .or. .not. motion_on_grid(spec%nx, spec%ny, v, spec%direction_deg)
+            if (on_grid) then
+                yes = (yes .or. .not. motion_on_grid(spec%nx, spec%ny, v, spec%direction_deg)) .and. &
+                      shear_symmetric(coupling, spec%nx, spec%ny, spec%direction_deg)
+                return
+            end if
         end if
+        yes = yes .and. coupling == 0.0_dp
     end function case_symmetric
 
     !> Will the case `spec` be solved on the device (on `ranks` processes: never shared)?

@@ -1,5 +1,5 @@
-!> The namelist input: one file, groups &grid, &surface, &material, &load, &motion, &solver,
-!> &analysis, &sweep, &output, each read and checked by its own module (veslide_config_<group>),
+!> The namelist input: one file, groups &grid, &surface, &material, &load, &motion, &interface,
+!> &solver, &analysis, &sweep, &output, each read and checked by its own module (veslide_config_<group>),
 !> composed here into `config_t`, with the checks that involve several groups.
 !>
 !> Every group is optional (defaults apply); every value is range-checked, and a failure is an
@@ -17,24 +17,26 @@ module veslide_config
     use veslide_config_load, only: load_config_t, read_load_config
     use veslide_config_adhesion, only: adhesion_config_t, read_adhesion_config
     use veslide_config_motion, only: motion_config_t, read_motion_config
+    use veslide_config_interface, only: interface_config_t, read_interface_config
     use veslide_config_solver, only: solver_config_t, read_solver_config
     use veslide_config_analysis, only: analysis_config_t, read_analysis_config
     use veslide_config_sweep, only: sweep_config_t, read_sweep_config
     use veslide_config_output, only: output_config_t, read_output_config
     use veslide_topography, only: topography_info_t, topography_info
-    use veslide_material, only: shift_factor
+    use veslide_material, only: shift_factor, coupling_beta
     use veslide_validity, only: edge_jumps, edge_jump_limit
     use veslide_contact_law, only: contact_law_t, new_adhesive_law, law_id
     use veslide_solver_options, only: solver_method_id
-    use veslide_solver_table, only: operator_symmetric, motion_on_grid, method_refusal
+    use veslide_solver_table, only: operator_symmetric, motion_on_grid, shear_symmetric, method_refusal
     implicit none
     private
     public :: config_t, warning_t, read_config, read_text_file, default_config, complete_config, case_law, &
-              case_speeds
+              case_speeds, case_symmetric
 
     !> The groups of a namelist file, in the order of the README
-    character(len=*), parameter :: group_names(10) = [character(len=8) :: 'grid', 'surface', 'material', 'load', &
-                                                      'adhesion', 'motion', 'solver', 'analysis', 'sweep', 'output']
+    character(len=*), parameter :: group_names(11) = [character(len=9) :: 'grid', 'surface', 'material', 'load', &
+                                                      'adhesion', 'motion', 'interface', 'solver', 'analysis', &
+                                                      'sweep', 'output']
 
     type :: config_t
         character(len=:), allocatable :: path        !! namelist file
@@ -48,6 +50,7 @@ module veslide_config
         type(load_config_t) :: load
         type(adhesion_config_t) :: adhesion
         type(motion_config_t) :: motion
+        type(interface_config_t) :: interface
         type(solver_config_t) :: solver
         type(analysis_config_t) :: analysis
         type(sweep_config_t) :: sweep
@@ -101,6 +104,8 @@ contains
         call read_load_config(cfg%load, get_group(groups, 'load'), path, error, adhesive=cfg%adhesion%law /= 'none')
         if (allocated(error)) return
         call read_motion_config(cfg%motion, get_group(groups, 'motion'), path, error); if (allocated(error)) return
+        call read_interface_config(cfg%interface, get_group(groups, 'interface'), path, error)
+        if (allocated(error)) return
         call read_solver_config(cfg%solver, get_group(groups, 'solver'), path, error); if (allocated(error)) return
         call read_analysis_config(cfg%analysis, get_group(groups, 'analysis'), path, error)
         if (allocated(error)) return
@@ -168,6 +173,7 @@ contains
                          "ly_m*sin(direction)/wavelength_m whole numbers below nx/2, ny/2")
         end select
         if (allocated(error)) return
+        call check_interface(cfg, error); if (allocated(error)) return
         call check_method(cfg, error); if (allocated(error)) return
         if (cfg%analysis%zeta2 == 0.0_dp) cfg%analysis%zeta2 = max(cfg%surface%k_cut, cfg%analysis%zeta1)
         call require(error, cfg%analysis%zeta1 >= 0.0_dp .and. cfg%analysis%zeta1 < cfg%analysis%zeta2 .and. &
@@ -217,13 +223,35 @@ contains
         type(error_t), allocatable, intent(out) :: error
         type(contact_law_t) :: law
         character(len=:), allocatable :: why
-        logical :: symmetric
         law = case_law(cfg)
-        symmetric = operator_symmetric(cfg%material%model == 'elastic', case_speeds(cfg)) .or. &
-                    .not. motion_on_grid(cfg%grid%nx, cfg%grid%ny, case_speeds(cfg), cfg%motion%direction_deg)
-        why = method_refusal(solver_method_id(cfg%solver%method), symmetric, law%kind)
+        why = method_refusal(solver_method_id(cfg%solver%method), case_symmetric(cfg), law%kind)
         if (len(why) > 0) call fatal_error(error, "veslide: "//cfg%path//": "//why)
     end subroutine check_method
+
+    !> Is the operator of every case of the input symmetric (veslide_solver_table): its solid's
+    !> (elastic, or at rest at every speed) on a grid the motion reaches, and its interfacial
+    !> shear's (none, an incompressible solid, or a grid the shear's direction does not reach)
+    pure logical function case_symmetric(cfg) result(yes)
+        type(config_t), intent(in) :: cfg
+        yes = (operator_symmetric(cfg%material%model == 'elastic', case_speeds(cfg)) .or. &
+               .not. motion_on_grid(cfg%grid%nx, cfg%grid%ny, case_speeds(cfg), cfg%motion%direction_deg)) .and. &
+              shear_symmetric(coupling_beta(cfg%material%poisson)*cfg%interface%shear_coefficient, cfg%grid%nx, &
+                              cfg%grid%ny, cfg%motion%direction_deg)
+    end function case_symmetric
+
+    !> &interface against the solid: an interfacial shear on a layer is refused (the coupling
+    !> derived for it, beta, is the half-space's; a layer on a rigid base couples the normal and
+    !> tangential displacements by another function of q d, not zero even at poisson = 0.5)
+    subroutine check_interface(cfg, error)
+        type(config_t), intent(in) :: cfg
+        type(error_t), allocatable, intent(out) :: error
+        if (cfg%interface%shear_coefficient > 0.0_dp .and. cfg%material%thickness_m > 0.0_dp) &
+            call fatal_error(error, "veslide: "//cfg%path//": &interface shear_coefficient = "// &
+                sig(cfg%interface%shear_coefficient)//" with &material thickness_m = "//sig(cfg%material%thickness_m)// &
+                ": an interfacial shear on a layer is not available (the coupling of its normal and tangential"// &
+                " displacements is another function of q d and the base, not zero even at poisson = 0.5, and is"// &
+                " not derived here; docs/interface.md): remove one of the two")
+    end subroutine check_interface
 
     !> The speeds the cases of the input slide at [m/s]: &sweep's, or the one of &motion
     pure function case_speeds(cfg) result(speeds)
@@ -342,12 +370,26 @@ contains
         type(config_t), intent(inout) :: cfg
         if (allocated(cfg%warnings)) deallocate (cfg%warnings)
         allocate (cfg%warnings(0))
-        if (size(cfg%sweep%speeds) > 1 .and. cfg%material%model == 'elastic') &
-            call warn('elastic-speeds', "&sweep speeds on an elastic &material: the solution and the zero friction"// &
-                      " are the same at every speed")
-        if (size(cfg%sweep%speeds) == 0 .and. cfg%motion%speed_m_s > 0.0_dp .and. cfg%material%model == 'elastic') &
-            call warn('elastic-speeds', "&motion speed_m_s on an elastic &material: the solution does not depend"// &
-                      " on the speed and the friction is zero (a viscoelastic &material model slides with friction)")
+        if (size(cfg%sweep%speeds) > 1 .and. cfg%material%model == 'elastic') then
+            if (cfg%interface%shear_coefficient > 0.0_dp) then
+                call warn('elastic-speeds', "&sweep speeds on an elastic &material: the solution and the friction"// &
+                          " (the interfacial shear's, which does not depend on the speed) are the same at every speed")
+            else
+                call warn('elastic-speeds', "&sweep speeds on an elastic &material: the solution and the zero"// &
+                          " friction are the same at every speed")
+            end if
+        end if
+        if (size(cfg%sweep%speeds) == 0 .and. cfg%motion%speed_m_s > 0.0_dp .and. cfg%material%model == 'elastic') then
+            if (cfg%interface%shear_coefficient > 0.0_dp) then
+                call warn('elastic-speeds', "&motion speed_m_s on an elastic &material: the solution and the"// &
+                          " friction (the interfacial shear's) do not depend on the speed; its direction alone"// &
+                          " sets the shear's")
+            else
+                call warn('elastic-speeds', "&motion speed_m_s on an elastic &material: the solution does not"// &
+                          " depend on the speed and the friction is zero (a viscoelastic &material model slides"// &
+                          " with friction)")
+            end if
+        end if
         if (size(cfg%sweep%alphas) > 1 .and. size(cfg%sweep%eccentricities) == 0 .and. &
             cfg%surface%eccentricity == 1.0_dp) &
             call warn('isotropic-angles', "&sweep alphas_deg with &surface eccentricity = 1: the spectrum is"// &

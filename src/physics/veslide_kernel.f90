@@ -2,7 +2,11 @@
 !> half-spectrum: the kernel as an operator.
 !>
 !> Displacement from pressure in the sliding frame: w(q) = K(q) p(q), K(q) = 2(1-nu^2) C(-q.v)/|q|,
-!> C the complex compliance of the material (elastic: C = 1/E). On the grid the multiplier is
+!> C the complex compliance of the material (elastic: C = 1/E). With an interfacial shear
+!> traction mu_f p v_hat on the solid (full-slip Coulomb friction, `shear` = mu_f v_hat) the
+!> half-space's normal displacement gains the Cerruti part, and K(q) is multiplied by
+!> 1 - i beta mu_f (q.v_hat)/|q|, beta = (1 - 2 nu)/(2 (1 - nu)) (docs/interface.md; a layer
+!> with shear is refused: its coupling is another function of q d). On the grid the multiplier is
 !>   K_d(q_k) = sum_m K(q_k + Q m) S(q_k + Q m),   Q = (2 pi/a, 2 pi/b)
 !> with, per variant,
 !>   spectral:    m = 0 only, S = 1 (what most FFT contact codes do);
@@ -34,7 +38,7 @@ module veslide_kernel
     use veslide_grid, only: grid_t
     use veslide_fftw, only: fft2d_t
     use veslide_collective, only: ordered_sum, global_min, global_max, global_any
-    use veslide_material, only: material_t
+    use veslide_material, only: material_t, coupling_beta
     use veslide_arrays, only: carray_t
     use veslide_transform, only: transform_t
     use veslide_kernel_passes, only: resolvent_multiplier, resolvent_apply
@@ -54,6 +58,8 @@ module veslide_kernel
         type(grid_t) :: grid                         !! the grid it acts on
         integer :: variant = KERNEL_SPECTRAL         !! KERNEL_* id
         real(dp) :: velocity_m_s(2) = 0.0_dp         !! sliding velocity of the rigid surface [m/s]
+        !> interfacial shear traction on the solid per unit contact pressure, mu_f v_hat [-] (0: none)
+        real(dp) :: shear(2) = 0.0_dp
         logical :: symmetric = .true.                !! all Im K_d == 0 (elastic or v = 0): a symmetric operator
         integer :: alias_zones = 0                   !! M of the last shell summed (0: none)
         real(dp) :: alias_error = 0.0_dp             !! estimated relative error of the alias sum
@@ -101,11 +107,13 @@ contains
         end if
     end function sinc
 
-    !> Continuous kernel 2(1-nu^2) C(-q.v) S(|q| d)/|q| (S: a layer's factor, 1 for a half-space)
-    !> times the cell factor of the variant; `comp`: C(-q.v) when the caller has it
-    pure complex(dp) function term(mat, q, v, a, b, variant, comp) result(t)
+    !> Continuous kernel 2(1-nu^2) C(-q.v) S(|q| d)/|q| (S: a layer's factor, 1 for a half-space),
+    !> times 1 - i (q.cpl)/|q| with an interfacial shear (cpl = beta mu_f v_hat; skipped when 0,
+    !> so the kernel without shear is the same bit for bit), times the cell factor of the
+    !> variant; `comp`: C(-q.v) when the caller has it
+    pure complex(dp) function term(mat, q, v, cpl, a, b, variant, comp) result(t)
         type(material_t), intent(in) :: mat
-        real(dp), intent(in) :: q(2), v(2), a, b
+        real(dp), intent(in) :: q(2), v(2), cpl(2), a, b
         integer, intent(in) :: variant
         complex(dp), intent(in), optional :: comp
         real(dp) :: s, qn
@@ -117,6 +125,7 @@ contains
             c = mat%compliance(-dot_product(q, v))
         end if
         t = 2.0_dp*(1.0_dp - mat%poisson**2)*c*mat%layer(qn)/qn
+        if (cpl(1) /= 0.0_dp .or. cpl(2) /= 0.0_dp) t = t*cmplx(1.0_dp, -dot_product(q, cpl)/qn, dp)
         select case (variant)
         case (KERNEL_COLLOCATION, KERNEL_COLLOCATION_ALIAS)
             s = sinc(0.5_dp*q(1)*a)*sinc(0.5_dp*q(2)*b)
@@ -128,9 +137,9 @@ contains
     end function term
 
     !> Sum of term() over the shell |m|_inf == m (m = 0: the single term m = 0)
-    pure complex(dp) function shell_sum(mat, q, v, a, b, variant, m, use_x, use_y) result(s)
+    pure complex(dp) function shell_sum(mat, q, v, cpl, a, b, variant, m, use_x, use_y) result(s)
         type(material_t), intent(in) :: mat
-        real(dp), intent(in) :: q(2), v(2), a, b
+        real(dp), intent(in) :: q(2), v(2), cpl(2), a, b
         integer, intent(in) :: variant, m
         logical, intent(in) :: use_x, use_y   ! a direction with one cell has no aliases
         real(dp) :: bq(2)
@@ -138,28 +147,28 @@ contains
         bq = [two_pi/a, two_pi/b]
         s = (0.0_dp, 0.0_dp)
         if (m == 0) then
-            s = term(mat, q, v, a, b, variant); return
+            s = term(mat, q, v, cpl, a, b, variant); return
         end if
         if (use_x .and. use_y) then
             do my = -m, m
                 if (abs(my) == m) then
                     do mx = -m, m
-                        s = s + term(mat, q + bq*[mx, my], v, a, b, variant)
+                        s = s + term(mat, q + bq*[mx, my], v, cpl, a, b, variant)
                     end do
                 else
-                    s = s + term(mat, q + bq*[-m, my], v, a, b, variant)
-                    s = s + term(mat, q + bq*[m, my], v, a, b, variant)
+                    s = s + term(mat, q + bq*[-m, my], v, cpl, a, b, variant)
+                    s = s + term(mat, q + bq*[m, my], v, cpl, a, b, variant)
                 end if
             end do
         else if (use_x) then
-            s = term(mat, q + bq*[-m, 0], v, a, b, variant) + term(mat, q + bq*[m, 0], v, a, b, variant)
+            s = term(mat, q + bq*[-m, 0], v, cpl, a, b, variant) + term(mat, q + bq*[m, 0], v, cpl, a, b, variant)
         else if (use_y) then
-            s = term(mat, q + bq*[0, -m], v, a, b, variant) + term(mat, q + bq*[0, m], v, a, b, variant)
+            s = term(mat, q + bq*[0, -m], v, cpl, a, b, variant) + term(mat, q + bq*[0, m], v, cpl, a, b, variant)
         end if
     end function shell_sum
 
-    !> Build the operator for a grid, material, velocity and variant
-    subroutine new_kernel(self, grid, mat, velocity_m_s, variant, error, alias_tol, alias_max)
+    !> Build the operator for a grid, material, velocity and variant (and an interfacial shear)
+    subroutine new_kernel(self, grid, mat, velocity_m_s, variant, error, alias_tol, alias_max, shear)
         type(kernel_t), intent(out) :: self
         type(grid_t), intent(in) :: grid
         type(material_t), intent(in) :: mat
@@ -172,7 +181,10 @@ contains
         real(dp), intent(in), optional :: alias_tol
         !> largest shell index M (default 64)
         integer, intent(in), optional :: alias_max
-        real(dp) :: tol_, a, b, kmax, worst, d(2)
+        !> interfacial shear traction on the solid per unit contact pressure, mu_f v_hat [-], v_hat
+        !> the direction of the rigid surface's velocity (full-slip Coulomb friction; default none)
+        real(dp), intent(in), optional :: shear(2)
+        real(dp) :: tol_, a, b, kmax, worst, d(2), cpl(2)
         integer :: max_, i, j, m, nrep_x, nrep_y, rx, ry, nx, ny, na, nb, ia, ib, ij(2), sh(2)
         real(dp) :: q(2), qr(2)
         complex(dp), allocatable :: s_prev(:, :), r_prev(:, :), s_cur(:, :), r_cur(:, :)
@@ -192,6 +204,13 @@ contains
         if (variant < 1 .or. variant > size(kernel_names)) then
             call fatal_error(error, "veslide:kernel:new_kernel: unknown kernel variant"); return
         end if
+        if (present(shear)) self%shear = shear
+        if (any(self%shear /= 0.0_dp) .and. mat%thickness_m > 0.0_dp) then
+            call fatal_error(error, "veslide:kernel:new_kernel: an interfacial shear on a layer is not"// &
+                             " available (the layer's normal-tangential coupling is not beta; docs/interface.md)")
+            return
+        end if
+        cpl = coupling_beta(mat%poisson)*self%shear
         self%grid = grid
         self%variant = variant; self%velocity_m_s = velocity_m_s
         d = grid%spacing(); a = d(1); b = d(2)
@@ -271,11 +290,11 @@ contains
                             if (ry == 2) qr(2) = -qr(2)
                             do mm = m1, m2
                                 if (mm == 0 .and. along_x) then
-                                    s = s + term(mat, qr, velocity_m_s, a, b, variant, c_line(i, rx))
+                                    s = s + term(mat, qr, velocity_m_s, cpl, a, b, variant, c_line(i, rx))
                                 else if (mm == 0 .and. along_y) then
-                                    s = s + term(mat, qr, velocity_m_s, a, b, variant, c_line(j, ry))
+                                    s = s + term(mat, qr, velocity_m_s, cpl, a, b, variant, c_line(j, ry))
                                 else
-                                    s = s + shell_sum(mat, qr, velocity_m_s, a, b, variant, mm, use_x, use_y)
+                                    s = s + shell_sum(mat, qr, velocity_m_s, cpl, a, b, variant, mm, use_x, use_y)
                                 end if
                             end do
                         end do

@@ -12,6 +12,7 @@ module veslide_material
     public :: material_t, new_elastic, new_one_term, new_creep, new_relaxation
     public :: MATERIAL_ELASTIC, MATERIAL_CREEP, MATERIAL_RELAXATION, material_model_names
     public :: shift_factor, shift_names, pchip_value, layer_factor, base_names, BASE_BONDED, BASE_FRICTIONLESS
+    public :: coupling_beta
 
     !> Which series the terms of a material_t are
     integer, parameter :: MATERIAL_ELASTIC = 0, MATERIAL_CREEP = 1, MATERIAL_RELAXATION = 2
@@ -188,6 +189,15 @@ contains
             s = (kappa*th - x*sech)/(kappa + (2.0_dp*t*t + 0.5_dp*(1.0_dp + kappa*kappa))*sech)
         end if
     end function layer_factor
+
+    !> The normal-tangential coupling of a half-space's surface, beta = (1 - 2 nu)/(2 (1 - nu))
+    !> (Dundurs' beta of a rigid body against this solid): a shear traction t(q) on the surface
+    !> moves it normally by -i beta (q.t)/|q| times the compliance of a pressure of mode q
+    !> (docs/interface.md). 0 for an incompressible solid (nu = 1/2, exactly), 1/2 at nu = 0.
+    elemental real(dp) function coupling_beta(poisson) result(beta)
+        real(dp), intent(in) :: poisson
+        beta = (1.0_dp - 2.0_dp*poisson)/(2.0_dp*(1.0_dp - poisson))
+    end function coupling_beta
 
     !> The layer factor of this solid at |q| = `qn` [1/m] (1 for a half-space)
     elemental real(dp) function material_layer(self, qn) result(s)
