@@ -1,0 +1,58 @@
+"""&adhesion: an adhesive contact law beside the hard wall, solved by 'gcg' (docs/adhesion.md).
+
+What is checked, through the Python API on the namelist a user writes:
+- Johnson's (1995) JKR wave (alpha = 0.2, exponential law of range h/64, 4096 cells) from a cold
+  start at zero and at a tensile load: the contact half-width a (closed cells) obeys
+  p/p* = sin^2(pi a) - alpha sqrt(tan(pi a)) within 5e-3 (p* = pi E* h/lambda);
+- the adhesion scalars: the mean compressive less the mean tensile traction is the load, the
+  law's parameters as given (the third from w = sigma0 rho), the force ratios NaN at a load <= 0;
+- an adhesive law on a viscoelastic solid in motion is refused in one line with the reason.
+"""
+import numpy as np
+import pytest
+
+import veslide
+from conftest import params
+
+LAMBDA, AMP, E = 1.0e-4, 1.0e-6, 1.0e7
+N, ALPHA = 4096, 0.2
+PSTAR = np.pi*E*AMP/LAMBDA
+W = ALPHA**2*np.pi**2*E*AMP**2/(2.0*LAMBDA)
+RHO = AMP/64.0
+
+
+def jkr_wave(exe, path, load):
+    p = params(grid={"nx": N, "ny": 1, "lx_m": LAMBDA, "ly_m": LAMBDA/N},
+               surface={"kind": "cosine", "amplitude_m": AMP, "wavelength_m": LAMBDA},
+               material={"young_pa": E, "poisson": 0.0}, load={"mean_pressure_pa": load*PSTAR},
+               adhesion={"law": "exponential", "energy_j_m2": W, "range_m": RHO},
+               solver={"tolerance": 1e-10})
+    return veslide.run(p, output=path, exe=exe, progress=None)
+
+
+@pytest.mark.parametrize("load", [0.0, -0.03])
+def test_jkr_wave(exe, tmp_path, load):
+    r = jkr_wave(exe, tmp_path/"jkr.h5", load)
+    s = r.scalars
+    assert s["converged"] == 1 and s["iterations"] > 0
+    a = s["contact_area_fraction_cells"]/2.0
+    assert abs(load - (np.sin(np.pi*a)**2 - ALPHA*np.sqrt(np.tan(np.pi*a)))) <= 5e-3
+    # the closed cells are the contact; the tractions' parts make the load
+    g = r.fields.gap_m.values
+    assert np.count_nonzero(g <= 0.0)/N == s["contact_area_fraction_cells"]
+    assert s["compressive_pressure_pa"] - s["adhesive_pressure_pa"] == pytest.approx(load*PSTAR, abs=1e-9*PSTAR)
+    p = r.fields.pressure_pa.values
+    assert s["adhesive_area_fraction"] == np.count_nonzero(p < 0.0)/N
+    assert s["adhesion_energy_j_m2"] == W and s["adhesion_range_m"] == RHO
+    assert s["adhesion_stress_pa"] == pytest.approx(W/RHO, rel=1e-15)
+    assert np.isnan(s["friction_coefficient"])
+
+
+def test_adhesion_in_motion_refused(exe, tmp_path):
+    g = params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8}, material={"model": "one_term"},
+               motion={"speed_m_s": 0.1},
+               adhesion={"law": "exponential", "energy_j_m2": 0.05, "range_m": 1e-9})
+    with pytest.raises(veslide.InputError) as info:
+        veslide.run(g, output=tmp_path/"refused.h5", exe=exe, progress=None)
+    message = str(info.value)
+    assert "\n" not in message.strip() and "non-symmetric" in message and "'exponential'" in message, message
