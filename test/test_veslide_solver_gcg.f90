@@ -10,6 +10,7 @@ module test_veslide_solver_gcg
     use veslide_contact_law, only: contact_law_t, new_adhesive_law, LAW_EXPONENTIAL, LAW_DUGDALE, ADH_STRESS
     use veslide_solver_options, only: solver_options_t, solver_method_id
     use veslide_solver, only: solve_contact
+    use veslide_strings, only: str
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     implicit none
     private
@@ -96,7 +97,7 @@ contains
                 call solve_contact(problem, fft, opts, state, error)
             end if
             if (allocated(error)) return
-            call check(error, state%converged, "converged at p/p* = "//trim(num(loads(m))))
+            call check(error, state%converged, "converged at p/p* = "//str(loads(m)))
             if (allocated(error)) return
             a = count(state%g <= 0.0_dp)/real(n, dp)/2
             jkr = sin(pi*a)**2 - alpha*sqrt(tan(pi*a))
@@ -108,13 +109,5 @@ contains
         end do
         call check(error, worst <= 5.0e-3_dp, "JKR wave within 5e-3 p*")
     end subroutine test_jkr_wave
-
-    function num(x) result(s)
-        real(dp), intent(in) :: x
-        character(len=:), allocatable :: s
-        character(len=32) :: b
-        write (b, '(g0.4)') x
-        s = trim(b)
-    end function num
 
 end module test_veslide_solver_gcg
