@@ -302,9 +302,10 @@ contains
     !> x^2 stays finite for times up to the input's 1e200 s. A longer one sums term by term only
     !> the terms of its window, 0.3 <= |x| < 3.3 (a little wider, to its bucket of |w|), and the
     !> terms below and above it through the moments of their series (window_sums), within 2e-17
-    !> of each sum: a frequency costs about twice what a 20-term series did term by term whatever
-    !> the number of terms (200: 38 ns, where term by term took 1.2 ns a term; the kernel
-    !> evaluates this once per mode when sliding obliquely; docs/benchmarks.md)
+    !> of each sum: a frequency costs about what 30 terms do one by one, more only as the terms
+    !> are denser in its window (the benchmark's spectrum over 12 decades: 20 terms 19 ns, 200
+    !> 38 ns, 256 46 ns; one by one 28, 253 and 323 ns). The kernel evaluates this once per mode
+    !> when sliding obliquely (docs/benchmarks.md)
     elemental complex(dp) function material_compliance(self, w) result(c)
         class(material_t), intent(in) :: self
         real(dp), intent(in) :: w
@@ -360,8 +361,7 @@ contains
     !> falling by x^2 < 0.09 (or z^2), so cut after win_order = 16 terms it leaves out less than
     !> x^32 of the term's sum, x^32 (1 + x^2) <= 0.3^32 1.09 = 2.0e-17 of its part of re or im;
     !> and all the parts of re have one sign, as have those of im (that of w), so re and im are
-    !> each within 2e-17 of themselves (and C, which is 1/E for the relaxation form, within
-    !> 4e-17 of |C|), well below their rounding
+    !> each within 2e-17 of themselves, and C within about as much of |C|: below their rounding
     pure subroutine window_sums(self, w, re, im)
         class(material_t), intent(in) :: self
         real(dp), intent(in) :: w
