@@ -217,7 +217,7 @@ contains
         use_x = nx > 1; use_y = ny > 1
         aliased = variant == KERNEL_COLLOCATION_ALIAS .or. variant == KERNEL_GALERKIN
         sh = grid%spectral_shape(); na = sh(1); nb = sh(2)
-        allocate (self%kd(na, nb), s_cur(na, nb), r_cur(na, nb))
+        allocate (self%kd(na, nb))
         along_x = velocity_m_s(2) == 0.0_dp; along_y = velocity_m_s(1) == 0.0_dp .and. .not. along_x
         if (along_x) then
             allocate (c_line(nx/2 + 1, 2))
@@ -238,12 +238,14 @@ contains
         ! Shell 0, then shells 1..M in doubling stages. On a Nyquist line the two signed
         ! representatives of the mode are averaged (this keeps the operator real, and makes
         ! truncated alias sums symmetric).
+        ! (Without aliases shell 0 is the multiplier, summed in place: the stages' arrays, each
+        ! as large, are neither allocated nor touched, nor copied.)
         m = 0
-        call add_shells(0, 0, s_cur)
         if (.not. aliased) then
-            self%kd = s_cur
+            call add_shells(0, 0, self%kd)
         else
-            allocate (s_prev(na, nb), r_prev(na, nb))
+            allocate (s_cur(na, nb), r_cur(na, nb), s_prev(na, nb), r_prev(na, nb))
+            call add_shells(0, 0, s_cur)
             r_prev = s_cur
             m = 1
             call add_shells(1, 1, s_cur)
