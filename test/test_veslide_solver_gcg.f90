@@ -25,7 +25,8 @@ contains
         type(unittest_t), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest("law-maps", test_law_maps), &
-            new_unittest("jkr-wave-johnson-1995", test_jkr_wave) &
+            new_unittest("jkr-wave-johnson-1995", test_jkr_wave), &
+            new_unittest("maugis-dugdale-cylinder-pull-off", test_md_cylinder) &
             ]
     end subroutine collect_solver_gcg
 
@@ -109,5 +110,163 @@ contains
         end do
         call check(error, worst <= 5.0e-3_dp, "JKR wave within 5e-3 p*")
     end subroutine test_jkr_wave
+
+    !> Maugis-Dugdale: a rigid cylinder (radius R) on an elastic half-space with Dugdale's law,
+    !> unloaded under approach control (warm-started along the way) to the least load, which is
+    !> the pull-off force under load control; against Baney and Hui, J. Adhes. Sci. Technol. 11
+    !> (1997) 393 (their eq. 23: the cohesive zone m = c/a of a contact of half-width a, the load
+    !> P = a^2 - lambda a sqrt(m^2 - 1), in units of 2 (w R^2/(pi E*))^(1/3) and
+    !> (pi E* w^2 R)^(1/3), lambda = 4 sigma0/(pi^2 E*^2 w/R)^(1/3)), its minimum over a found
+    !> here, within 1 % at lambda = 0.5, 1, 2. The periodic cell is 40 length units wide (its
+    !> images move the force by about (a/L)^2 ~ 1e-3).
+    subroutine test_md_cylinder(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 8192
+        real(dp), parameter :: e = 1.0e7_dp, r = 1.0e-3_dp, w = 0.01_dp, lambdas(3) = [0.5_dp, 1.0_dp, 2.0_dp]
+        real(dp) :: h(n, 1), lx, x, s0, dc, lunit, funit, oracle, pull, d, pmin, dmin, step, pk, dk(3), pk3(3)
+        real(dp), allocatable :: gap(:, :), gbest(:, :)
+        type(grid_t) :: grid
+        type(material_t) :: mat
+        type(kernel_t) :: k
+        type(fft2d_t) :: fft
+        type(contact_problem_t) :: problem
+        type(contact_state_t) :: state
+        type(solver_options_t) :: opts
+        integer :: i, il, j, rising
+        lunit = 2.0_dp*(w*r**2/(pi*e))**(1.0_dp/3)
+        funit = (pi*e*w**2*r)**(1.0_dp/3)
+        lx = 40.0_dp*lunit
+        do i = 1, n
+            x = (i - 1)*lx/n - lx/2
+            h(i, 1) = -x**2/(2*r)
+        end do
+        call new_elastic(mat, e, 0.0_dp, error); if (allocated(error)) return
+        call new_grid(grid, n, 1, lx, lx/n, error); if (allocated(error)) return
+        call new_kernel(k, grid, mat, [0.0_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
+        call fft%init(n, 1, error, planner='estimate'); if (allocated(error)) return
+        opts%method = solver_method_id('gcg')
+        opts%tolerance = 1.0e-8_dp
+        do il = 1, size(lambdas)
+            s0 = lambdas(il)*(pi**2*e**2*w/r)**(1.0_dp/3)/4
+            dc = w/s0
+            oracle = baney_hui_pull_off(lambdas(il))*funit
+            ! from 4 cohesive openings deep, unloading by a quarter of one until the load rises
+            d = sum(maxval(h) - h)/n - 4*dc
+            step = 0.25_dp*dc
+            if (allocated(gap)) deallocate (gap)
+            pmin = huge(1.0_dp); rising = 0
+            do j = 1, 400
+                call solve_at(d, pk); if (allocated(error)) return
+                if (pk < pmin) then
+                    pmin = pk; dmin = d; gbest = state%g; rising = 0
+                else
+                    rising = rising + 1
+                end if
+                if (rising >= 2) exit
+                d = d + step
+            end do
+            ! the least load between the neighbours of the least sample (golden sections)
+            dk = [dmin - step, dmin, dmin + step]
+            do j = 1, 16
+                x = merge(dk(2) + 0.381966_dp*(dk(3) - dk(2)), dk(2) - 0.381966_dp*(dk(2) - dk(1)), &
+                          dk(3) - dk(2) > dk(2) - dk(1))
+                gap = gbest
+                call solve_at(x, pk); if (allocated(error)) return
+                if (pk < pmin) then
+                    if (x > dk(2)) then
+                        dk = [dk(2), x, dk(3)]
+                    else
+                        dk = [dk(1), x, dk(2)]
+                    end if
+                    pmin = pk; gbest = state%g
+                else
+                    if (x > dk(2)) then
+                        dk(3) = x
+                    else
+                        dk(1) = x
+                    end if
+                end if
+            end do
+            pull = pmin
+            call report("lambda "//str(lambdas(il))//": pull-off/Baney-Hui - 1", pull/oracle - 1.0_dp)
+            call check(error, abs(pull/oracle - 1.0_dp) <= 0.01_dp, "Maugis-Dugdale pull-off at lambda = "// &
+                       str(lambdas(il)))
+            if (allocated(error)) return
+        end do
+        pk3 = 0.0_dp
+    contains
+        !> The solution at mean gap `dg` warm-started from `gap` (when there is one); `force` the
+        !> load per unit length [N/m]
+        subroutine solve_at(dg, force)
+            real(dp), intent(in) :: dg
+            real(dp), intent(out) :: force
+            call new_contact_problem(problem, k, h, 0.0_dp, error, law=new_adhesive_law(LAW_DUGDALE, w, dc))
+            if (allocated(error)) return
+            problem%approach_control = .true.
+            problem%mean_gap_m = dg
+            if (allocated(gap)) then
+                call solve_contact(problem, fft, opts, state, error, g_init=gap)
+            else
+                call solve_contact(problem, fft, opts, state, error)
+            end if
+            if (allocated(error)) return
+            call check(error, state%converged, "converged at mean gap "//str(dg)//" (residual "// &
+                       str(state%residual)//": penetration "//str(state%penetration)//", complementarity "// &
+                       str(state%complementarity)//", negative pressure "//str(state%negative_pressure)//"; "// &
+                       str(state%iterations)//" iterations)"); if (allocated(error)) return
+            force = sum(state%p)/n*lx
+            gap = state%g
+        end subroutine solve_at
+    end subroutine test_md_cylinder
+
+    !> Baney and Hui's least load of the Dugdale cylinder [units (pi E* w^2 R)^(1/3)] at Maugis
+    !> parameter `lam`: P(a) = a^2 - lam a sqrt(m^2 - 1), m(a) the root in (1, inf) of their
+    !> eq. 23, minimised over a by golden sections (P is unimodal on the unloading branch)
+    real(dp) function baney_hui_pull_off(lam) result(pmin)
+        real(dp), intent(in) :: lam
+        real(dp) :: lo, hi, x1, x2, f1, f2
+        integer :: it
+        lo = 1.0e-3_dp; hi = 3.0_dp
+        x1 = hi - 0.618033988749895_dp*(hi - lo); x2 = lo + 0.618033988749895_dp*(hi - lo)
+        f1 = load(x1); f2 = load(x2)
+        do it = 1, 200
+            if (f1 < f2) then
+                hi = x2; x2 = x1; f2 = f1
+                x1 = hi - 0.618033988749895_dp*(hi - lo); f1 = load(x1)
+            else
+                lo = x1; x1 = x2; f1 = f2
+                x2 = lo + 0.618033988749895_dp*(hi - lo); f2 = load(x2)
+            end if
+        end do
+        pmin = min(f1, f2)
+    contains
+        real(dp) function load(a) result(p)
+            real(dp), intent(in) :: a
+            real(dp) :: m
+            m = zone(a)
+            p = a*a - lam*a*sqrt(m*m - 1)
+        end function load
+        !> m in (1, 1e12) with eq. 23 = 0 (increasing in m), by bisection on log m
+        real(dp) function zone(a) result(m)
+            real(dp), intent(in) :: a
+            real(dp) :: l1, l2
+            integer :: i
+            l1 = 0.0_dp; l2 = log(1.0e12_dp)
+            do i = 1, 200
+                m = exp(0.5_dp*(l1 + l2))
+                if (eq23(m, a) > 0.0_dp) then
+                    l2 = log(m)
+                else
+                    l1 = log(m)
+                end if
+            end do
+        end function zone
+        real(dp) function eq23(m, a) result(f)
+            real(dp), intent(in) :: m, a
+            real(dp) :: mu
+            mu = sqrt(m*m - 1)
+            f = lam*a*a/2*(m*mu - log(m + mu)) + lam*lam*a/2*(mu*log(m + mu) - m*log(m)) - 1
+        end function eq23
+    end function baney_hui_pull_off
 
 end module test_veslide_solver_gcg

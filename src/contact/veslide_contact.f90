@@ -47,6 +47,10 @@ module veslide_contact
         !> for an adhesive law (whose load may be zero or tensile)
         real(dp) :: p_scale_pa = 0.0_dp
         real(dp) :: height_scale_m = 0.0_dp        !! h_s of the residual [m]
+        !> approach control: the mean gap d is given (`mean_gap_m`) and the load follows (the
+        !> adhesive laws' solver only, veslide_solver_gcg; p_mean_pa is then its first guess)
+        logical :: approach_control = .false.
+        real(dp) :: mean_gap_m = 0.0_dp            !! the given mean gap d [m] (approach control)
     contains
         procedure :: grid => problem_grid
         procedure :: residuals => problem_residuals
@@ -353,10 +357,13 @@ contains
     end subroutine problem_residuals_on
 
     !> Residuals of a candidate of an adhesive law on the host fields `f`: p with u = K p fresh,
-    !> the solver's gap in f%g (its closed cells exactly 0) and approach in state%approach_m. The
-    !> gap g = u - h + d is formed afresh and measured with the repulsive pressure
-    !> p_rep = p + sigma(g) (the law's measures); the gap kept is the fresh one on the open cells
-    !> (at least 0) and 0 on the cells the solver closed, which stay the contact
+    !> the solver's gap g_s in f%g (its closed cells exactly 0) and approach in state%approach_m.
+    !> The gap g = u - h + d is formed afresh; the law's measures take the repulsive pressure
+    !> p_rep = p + sigma(g_s) (at the solver's gap: a law with a jump, Dugdale's, would flip at
+    !> round-off on the fresh one) with the fresh gap, whose distance from the solver's counts as
+    !> penetration (max(-g, |g - g_s|)/h_s); the complementarity cell by cell,
+    !> max min(|p_rep|/p_s, g/h_s). The gap kept is the fresh one on the open cells (at
+    !> least 0) and 0 on the cells the solver closed, which stay the contact
     subroutine adhesive_residuals(self, f, state)
         class(contact_problem_t), intent(in) :: self
         type(contact_fields_t), intent(inout) :: f
@@ -365,17 +372,22 @@ contains
         real(dp) :: rows(3, f%g%n2), t(3), ext(2)
         integer :: j
         g = f%u%h - (f%h%h - self%h_mean) + state%approach_m
-        prep = f%p%h + self%law%attraction(g)
+        prep = self%law%repulsive(f%p%h, f%g%h)
         do j = 1, size(g, 2)
-            rows(1, j) = sum(abs(prep(:, j)*g(:, j)))
+            rows(1, j) = 0.0_dp
             rows(2, j) = sum(abs(prep(:, j)))
             rows(3, j) = sum(f%p%h(:, j))
         end do
-        ext = [minval(g), minval(prep)]
+        ext = [min(minval(g), -maxval(abs(g - f%g%h))), minval(prep)]
         call ordered_sum(self%kernel%grid, rows, t)
         call global_min(self%kernel%grid, ext)
+        ! the complementarity cell by cell (contact_law_t%measures)
+        t(1) = maxval(min(abs(prep)/self%p_scale_pa, max(g, 0.0_dp)/self%height_scale_m))
+        call global_max(self%kernel%grid, t(1))
+        ! (under approach control the load is the result: no load error)
         call residual_measures(self%law, state, ext(1), t(1), t(2), ext(2), t(3), self%kernel%grid%cells(), &
-                               self%p_mean_pa, self%height_scale_m, self%p_scale_pa)
+                               merge(t(3)/self%kernel%grid%cells(), self%p_mean_pa, self%approach_control), &
+                               self%height_scale_m, self%p_scale_pa)
         where (f%g%h <= 0.0_dp)
             f%g%h = 0.0_dp
         elsewhere

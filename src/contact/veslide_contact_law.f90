@@ -70,6 +70,7 @@ module veslide_contact_law
         procedure :: measures => law_measures
         procedure :: adhesive => law_adhesive
         procedure :: attraction => law_attraction
+        procedure :: repulsive => law_repulsive
         procedure :: energy => law_energy
         procedure :: closed => law_closed
     end type contact_law_t
@@ -116,6 +117,20 @@ contains
             end select
         end associate
     end function law_attraction
+
+    !> The repulsive pressure p_rep = p + sigma(g) [Pa] of tractions `p` at gaps `g` [m], with the
+    !> attraction in the law's graph nearest to balancing p where the graph allows a choice: at
+    !> the Dugdale zone's edge g = rho any attraction in [0, sigma0] (the jump's vertical segment,
+    !> where the solver holds a cell the zone's edge stops)
+    pure function law_repulsive(self, p, g) result(prep)
+        class(contact_law_t), intent(in) :: self
+        real(dp), intent(in) :: p(:, :), g(:, :)
+        real(dp) :: prep(size(g, 1), size(g, 2))
+        prep = p + self%attraction(g)
+        if (self%kind == LAW_DUGDALE) then
+            where (g == self%param(ADH_RANGE)) prep = p + min(max(-p, 0.0_dp), self%param(ADH_STRESS))
+        end if
+    end function law_repulsive
 
     !> The interaction energy V(g) [J/m^2] at gaps `g` [m] (V(infinity) = 0, V(0) = -w; zero for
     !> the hard wall)
@@ -191,16 +206,22 @@ contains
     !> sum(p g) `spg`, sum(|p|) `sp`, the smallest pressure `pmin`; the height scale `hs` and the
     !> pressure scale `p_mean`. Returns [penetration, complementarity, negative pressure]; for the
     !> hard wall max(-g)/h_s, |sum p g|/(sum p * h_s) and max(-p)/p_mean (veslide_contact); an
-    !> adhesive law takes the same of its repulsive pressure p_rep = p + sigma(g) (the sums its
-    !> caller took of p_rep)
+    !> adhesive law the same of its repulsive pressure p_rep = p + sigma(g) but for the
+    !> complementarity, which its caller passes as `spg` already measured cell by cell:
+    !> max min(|p_rep|/p_s, g/h_s) (a sum would weigh the open cells' |p_rep| <= tolerance by
+    !> their gaps, large far from contact)
     pure function law_measures(self, gmin, spg, sp, pmin, hs, p_mean) result(m)
         class(contact_law_t), intent(in) :: self
         real(dp), intent(in) :: gmin, spg, sp, pmin, hs, p_mean
         real(dp) :: m(3)
         select case (self%kind)
-        case (LAW_HARD_WALL, LAW_EXPONENTIAL, LAW_DUGDALE)
+        case (LAW_HARD_WALL)
             m(1) = max(0.0_dp, -gmin)/hs
             m(2) = abs(spg)/(sp*hs)
+            m(3) = max(0.0_dp, -pmin)/p_mean
+        case (LAW_EXPONENTIAL, LAW_DUGDALE)
+            m(1) = max(0.0_dp, -gmin)/hs
+            m(2) = spg
             m(3) = max(0.0_dp, -pmin)/p_mean
         case default
             m = huge(1.0_dp)

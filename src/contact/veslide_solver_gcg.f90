@@ -25,7 +25,8 @@
 !>   cells shifted to keep the mean gap d.
 !> Converged when max |r| over the open cells and max(-r) over the closed ones are below the
 !> tolerance (in units of the pressure scale). Two FFT pairs an iteration.
-!> Load control (the case's `&load mean_pressure_pa`, which may be tensile): the mean gap is
+!> Approach control (problem%approach_control): one inner solve at the given mean gap, the load
+!> its result. Load control (the case's `&load mean_pressure_pa`, which may be tensile): the mean gap is
 !> found by the secant method on p_mean(d), decreasing in d on every branch stable under load
 !> control, each inner solve warm-started from the last; a load beyond the pull-off force has no
 !> solution (the gap opens without bound), reported as not converged.
@@ -49,6 +50,8 @@ module veslide_solver_gcg
     !> the inner solves' tolerance while the load is off: this fraction of its error (the
     !> secant needs p_mean(d) no closer than that; the last solve is to the tolerance)
     real(dp), parameter :: inexact = 1.0e-2_dp
+    !> the most solves a tenth tighter when the problem's residual is above the tolerance
+    integer, parameter :: max_tighten = 4
 
 contains
 
@@ -62,10 +65,10 @@ contains
         !> gap of the start [m] (a warm start); default: in contact at the highest point
         real(dp), intent(in), optional :: gap0(:, :)
         real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), at(:, :), ainv(:, :)
-        logical, allocatable :: free(:, :)
-        real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, d_prev, p_prev, d_new, slope, lo(2), hi(2)
-        integer :: nx, ny, k, its, kind
-        logical :: ok, have_lo, have_hi, tight
+        logical, allocatable :: free(:, :), edge(:, :)
+        real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol
+        integer :: nx, ny, its, kind, attempt
+        logical :: ok, tight
         type(progress_ticker_t) :: ticker
 
         nx = f%p%n1; ny = f%p%n2
@@ -78,7 +81,7 @@ contains
         rho = problem%law%param(ADH_RANGE)/hs
         state%method = 'gcg'
         call ticker%start(opts, 'gcg')
-        allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), free(nx, ny))
+        allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), free(nx, ny), edge(nx, ny))
         hn = (f%h%h - problem%h_mean)/hs
         ! the modulus multiplier A = 1/K (zero where K is: the mean mode), in units p_s/h_s per
         ! cell count (FFTW's unscaled pair)
@@ -94,52 +97,77 @@ contains
         end if
         d = total(g)/cells
         its = 0
-        call inner(d, p_d, ok, opts%tolerance)
-        if (.not. ok) goto 90
-        ! the secant on p_mean(d) = target, bracketed once the sign changes (Illinois' rule)
-        have_lo = .false.; have_hi = .false.
-        d_prev = d; p_prev = p_d
         slope = 0.0_dp
-        do k = 1, max_outer
-            if (abs(p_d - target) <= opts%tolerance .and. tight) exit
-            ! brackets: lo has p above the target (a gap too small), hi below
-            if (p_d > target) then
-                lo = [d, p_d]; have_lo = .true.
+        ! to the tolerance on the law's gradient; then confirmed on the problem's residual (a
+        ! fresh K p), and solved again a tenth tighter while that is above the tolerance
+        tol = opts%tolerance
+        do attempt = 1, max_tighten
+            if (problem%approach_control) then
+                ! the mean gap given, the load its result
+                d = problem%mean_gap_m/hs
+                call inner(d, p_d, ok, tol)
+                target = p_d
             else
-                hi = [d, p_d]; have_hi = .true.
+                call carry_load()
             end if
-            if (slope < 0.0_dp) then
-                d_new = d + (target - p_d)/slope
-            else
-                ! first step: the mean gap the difference would open over the lowest mode's
-                ! stiffness (a bound on the contact's), signed by the load
-                d_new = d + sign(max(0.05_dp, abs(p_d - target)*lowest_compliance()), p_d - target)
+            ! the solution in SI: p = p_mean + A (g + h) (in r), the gap, u = g + h - d
+            f%p%h = ps*p_d + ps*(r - sum_mean_removed())
+            f%g%h = hs*g
+            f%u%h = hs*(g + hn - d)
+            state%approach_m = hs*d
+            state%iterations = its
+            if (.not. (ok .and. tight .and. abs(p_d - target) <= tol)) then
+                state%converged = .false.; exit
             end if
-            if (have_lo .and. have_hi) then
-                if (.not. (d_new > lo(1) .and. d_new < hi(1))) d_new = lo(1) + (hi(1) - lo(1))* &
-                    (lo(2) - target)/(lo(2) - hi(2))
-            else
-                ! unbracketed: the gap at most halved or doubled a step (p_mean(d) is far from
-                ! linear where contact spreads or opens)
-                d_new = min(max(d_new, 0.5_dp*d), 2.0_dp*d + 1.0_dp)
-            end if
-            d_prev = d; p_prev = p_d
-            d = d_new
-            call inner(d, p_d, ok, max(opts%tolerance, inexact*abs(p_d - target)))
-            if (.not. ok) exit
-            if (d /= d_prev) slope = (p_d - p_prev)/(d - d_prev)
+            call problem%confirm(f, state, opts%tolerance)
+            if (state%converged) exit
+            f%g%h = hs*g
+            tol = tol/10
         end do
-90      continue
-        ! the solution in SI: p = p_mean + A (g + h) (in r), the gap, u = g + h - d
-        state%converged = ok .and. tight .and. abs(p_d - target) <= opts%tolerance
-        f%p%h = ps*p_d + ps*(r - sum_mean_removed())
-        f%g%h = hs*g
-        f%u%h = hs*(g + hn - d)
-        state%approach_m = hs*d
-        state%iterations = its
-        deallocate (hn, g, t, r, at, ainv, free)
+        deallocate (hn, g, t, r, at, ainv, free, edge)
 
     contains
+
+        !> The secant on p_mean(d) = target from the current g, bracketed once the sign changes
+        !> (Illinois' rule); the inner solves to a fraction of the load's error, the last to `tol`
+        subroutine carry_load()
+            real(dp) :: d_prev, p_prev, d_new, lo(2), hi(2)
+            logical :: have_lo, have_hi
+            integer :: k
+            d = total(g)/cells
+            call inner(d, p_d, ok, tol)
+            if (.not. ok) return
+            have_lo = .false.; have_hi = .false.
+            do k = 1, max_outer
+                if (abs(p_d - target) <= tol .and. tight) exit
+                ! brackets: lo has p above the target (a gap too small), hi below
+                if (p_d > target) then
+                    lo = [d, p_d]; have_lo = .true.
+                else
+                    hi = [d, p_d]; have_hi = .true.
+                end if
+                if (slope < 0.0_dp) then
+                    d_new = d + (target - p_d)/slope
+                else
+                    ! first step: the mean gap the difference would open over the lowest mode's
+                    ! stiffness (a bound on the contact's), signed by the load
+                    d_new = d + sign(max(0.05_dp, abs(p_d - target)*lowest_compliance()), p_d - target)
+                end if
+                if (have_lo .and. have_hi) then
+                    if (.not. (d_new > lo(1) .and. d_new < hi(1))) d_new = lo(1) + (hi(1) - lo(1))* &
+                        (lo(2) - target)/(lo(2) - hi(2))
+                else
+                    ! unbracketed: the gap at most halved or doubled a step (p_mean(d) is far from
+                    ! linear where contact spreads or opens)
+                    d_new = min(max(d_new, 0.5_dp*d), 2.0_dp*d + 1.0_dp)
+                end if
+                d_prev = d; p_prev = p_d
+                d = d_new
+                call inner(d, p_d, ok, max(tol, inexact*abs(p_d - target)))
+                if (.not. ok) return
+                if (d /= d_prev) slope = (p_d - p_prev)/(d - d_prev)
+            end do
+        end subroutine carry_load
 
         !> The inner solve at mean gap `dbar`: g updated, r = A (g + h) on exit, `pm` the mean pressure
         subroutine inner(dbar, pm, ok, itol)
@@ -151,6 +179,7 @@ contains
             real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta
             logical :: restart
             integer :: n_inner
+            tight = .false.
             call keep_mean(dbar)
             gsq_prev = 1.0_dp; restart = .true.
             t = 0.0_dp
@@ -162,16 +191,29 @@ contains
                 ! gradient and the free set: lambda from the open cells, then the closed cells
                 ! that pull away join
                 at = r + attraction(g)                          ! (at: the gradient, for now)
-                lam = masked_mean(at, g > 0.0_dp)
-                free = g > 0.0_dp .or. at - lam < 0.0_dp
+                edge = kind == LAW_DUGDALE .and. g == rho
+                lam = masked_mean(at, g > 0.0_dp .and. .not. edge)
+                free = (g > 0.0_dp .and. .not. edge) .or. (g <= 0.0_dp .and. at - lam < 0.0_dp)
+                if (any_cell(edge)) then
+                    ! a cell held at the Dugdale zone's edge (g = rho, attraction anywhere in
+                    ! [0, sigma0]: the law's graph there) stays while some attraction balances
+                    ! it, else leaves inward (sigma0) or outward (0)
+                    where (edge)
+                        free = r - lam > 0.0_dp .or. r - lam < -s0
+                        at = r + merge(s0, merge(0.0_dp, lam - r, r - lam < -s0), r - lam > 0.0_dp)
+                    end where
+                end if
                 lam = masked_mean(at, free)
                 at = at - lam
+                if (any_cell(edge)) then
+                    where (edge .and. .not. free) at = 0.0_dp
+                end if
                 pm = -lam
                 ! converged: no gradient on the open cells, none pulling a closed one away
                 err = maxval(merge(abs(at), max(-at, 0.0_dp), g > 0.0_dp))
                 call global_max(problem%kernel%grid, err)
                 if (err <= itol) then
-                    ok = .true.; tight = itol <= opts%tolerance; exit
+                    ok = .true.; tight = itol <= tol; exit
                 end if
                 if (n_inner >= opts%max_iterations) exit
                 n_inner = n_inner + 1
@@ -200,9 +242,19 @@ contains
                     call apply_a(g + hn, r); exit
                 end if
                 tau = num/den
+                if (kind == LAW_DUGDALE) edge = g < rho          ! (edge: below the zone's edge, before)
                 g = g - tau*t
                 restart = global_any_negative(g)
                 g = max(g, 0.0_dp)
+                if (kind == LAW_DUGDALE) then
+                    ! a step across the zone's edge stops there (the attraction's jump: a bound
+                    ! like the contact's, and the conjugacy restarts)
+                    edge = (edge .and. g > rho) .or. (.not. edge .and. g < rho .and. g - (-tau*t) > rho)
+                    if (any_cell(edge)) then
+                        where (edge) g = rho
+                        restart = .true.
+                    end if
+                end if
                 call keep_mean(dbar)
             end do
         end subroutine inner
@@ -278,6 +330,12 @@ contains
             m = 0.0_dp
             if (n > 0.0_dp) m = total(merge(a, 0.0_dp, mask))/n
         end function masked_mean
+
+        !> Does `mask` hold on some cell of the whole grid?
+        logical function any_cell(mask) result(yes)
+            logical, intent(in) :: mask(:, :)
+            yes = count_all(mask) > 0.0_dp
+        end function any_cell
 
         logical function global_any_negative(a) result(yes)
             real(dp), intent(in) :: a(:, :)
