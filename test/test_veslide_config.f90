@@ -362,6 +362,22 @@ contains
                    "the case's law: Dugdale with range w/sigma0"); if (allocated(error)) return
         call expect_message('adh6', "&load mean_pressure_pa = -100 /", [character(len=24) :: &
                             "&load mean_pressure_pa", "&adhesion"], error)
+        if (allocated(error)) return
+        ! approach control: an adhesive law's, instead of the load, not beside a load sweep
+        call read_text('adh8', "&adhesion law = 'dugdale', energy_j_m2 = 0.05, stress_pa = 5e7 /"// &
+                       new_line('a')//"&load approach_m = 2e-7 /", cfg, e)
+        call check(error, .not. allocated(e), "approach control with &adhesion is read"); if (allocated(error)) return
+        call check(error, cfg%load%approach_m == 2.0e-7_dp, "the approach read"); if (allocated(error)) return
+        call expect_message('adh9', "&load approach_m = 2e-7 /", [character(len=24) :: "&load approach_m", &
+                            "adhesive law"], error)
+        if (allocated(error)) return
+        call expect_message('adh10', "&adhesion law = 'dugdale', energy_j_m2 = 0.05, stress_pa = 5e7 /"// &
+                            new_line('a')//"&load approach_m = 2e-7, mean_pressure_pa = 10 /", &
+                            [character(len=24) :: "both mean_pressure_pa", "approach_m"], error)
+        if (allocated(error)) return
+        call expect_message('adh11', "&adhesion law = 'dugdale', energy_j_m2 = 0.05, stress_pa = 5e7 /"// &
+                            new_line('a')//"&load approach_m = 2e-7 /"//new_line('a')//"&sweep pressures_pa = 1, 2 /", &
+                            [character(len=24) :: "&load approach_m", "&sweep pressures_pa"], error)
     end subroutine test_adhesion_load
 
     !> An adhesive law on a viscoelastic solid in motion: refused at input, with the reason

@@ -48,6 +48,25 @@ def test_jkr_wave(exe, tmp_path, load):
     assert np.isnan(s["friction_coefficient"])
 
 
+def test_approach_control_is_the_load_controlled_solution(exe, tmp_path):
+    """&load approach_m: the approach is kept as given, the load is the result, and solving at
+    that load under load control gives the same contact and pressure (the same branch here)."""
+    p = params(grid={"nx": N, "ny": 1, "lx_m": LAMBDA, "ly_m": LAMBDA/N},
+               surface={"kind": "cosine", "amplitude_m": AMP, "wavelength_m": LAMBDA},
+               material={"young_pa": E, "poisson": 0.0}, load={"approach_m": 0.5*AMP},
+               adhesion={"law": "exponential", "energy_j_m2": W, "range_m": 4*LAMBDA/N},
+               solver={"tolerance": 1e-10})
+    a = veslide.run(p, output=tmp_path/"approach.h5", exe=exe, progress=None)
+    assert a.scalars["converged"] == 1 and a.scalars["approach_m"] == pytest.approx(0.5*AMP, rel=1e-12)
+    assert a.scalars["mean_separation_m"] == pytest.approx(AMP - 0.5*AMP, rel=1e-12)
+    p["load"] = {"mean_pressure_pa": float(a.scalars["mean_pressure_pa"])}
+    b = veslide.run(p, output=tmp_path/"load.h5", exe=exe, progress=None)
+    assert b.scalars["converged"] == 1
+    assert np.array_equal(a.fields.gap_m.values <= 0.0, b.fields.gap_m.values <= 0.0)
+    assert np.max(np.abs(a.fields.pressure_pa.values - b.fields.pressure_pa.values)) <= 1e-8*PSTAR
+    assert b.scalars["approach_m"] == pytest.approx(0.5*AMP, rel=1e-7)
+
+
 def test_adhesion_in_motion_refused(exe, tmp_path):
     g = params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8}, material={"model": "one_term"},
                motion={"speed_m_s": 0.1},

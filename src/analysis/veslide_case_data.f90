@@ -73,6 +73,9 @@ module veslide_case_data
         real(dp) :: speed_m_s = 0.0_dp                   !! of the rigid surface [m/s]
         real(dp) :: direction_deg = 0.0_dp               !! of the velocity from x [degree]
         real(dp) :: mean_pressure_pa = 0.0_dp            !! the nominal pressure [Pa]
+        !> approach control (an adhesive law's): the rigid-body approach since first contact [m];
+        !> huge() under load control. After the solve mean_pressure_pa is the load it found.
+        real(dp) :: approach_m = huge(1.0_dp)
         !> mu_f of a full-slip Coulomb shear at the interface (&interface; 0: none) [-]
         real(dp) :: shear_coefficient = 0.0_dp
         type(contact_law_t) :: law                       !! the contact law (the hard wall)

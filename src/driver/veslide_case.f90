@@ -19,7 +19,7 @@ module veslide_case
     use veslide_solver_options, only: solver_options_t, solver_progress_callback
     use veslide_solver, only: solve_contact
     use veslide_analysis, only: slope_force
-    use veslide_fields, only: field_mean
+    use veslide_fields, only: field_mean, field_max
     use veslide_anisotropy, only: tensor_axes, decompose
     use veslide_patches, only: contact_patches, percolates
     use veslide_topography, only: read_topography
@@ -178,12 +178,20 @@ contains
         procedure(solver_progress_callback), optional :: progress
         type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
-        real(dp) :: t0
+        real(dp) :: t0, d_given
         c%grid = c%kernel%grid
+        ! approach control: the mean gap of the approach since first contact (D = h_max - approach,
+        ! d = D - h_mean; quantities' approach_m)
+        if (c%spec%approach_m /= huge(1.0_dp)) d_given = field_max(c%grid, c%h) - field_mean(c%grid, c%h) - &
+                                                          c%spec%approach_m
         ! the problem holds the case's kernel and heights while it lives (no copies)
         call new_contact_problem_moving(problem, c%kernel, c%h, c%spec%mean_pressure_pa, error, law=c%spec%law)
         call add_context(error, "veslide: "//c%spec%input_path//": ")
         if (allocated(error)) return
+        if (c%spec%approach_m /= huge(1.0_dp)) then
+            problem%approach_control = .true.
+            problem%mean_gap_m = d_given
+        end if
         t0 = wall_seconds()
         opts = c%spec%solver
         if (present(progress)) opts%progress => progress
@@ -191,6 +199,8 @@ contains
         call problem%release(c%kernel, c%h)
         if (allocated(error)) return
         c%solve_seconds = wall_seconds() - t0
+        ! under approach control the load is the solve's
+        if (c%spec%approach_m /= huge(1.0_dp)) c%spec%mean_pressure_pa = field_mean(c%grid, c%state%p)
         c%force_pa = c%kernel%tangential_force(fft, c%state%p)
         c%interfacial_force_pa = 0.0_dp
         if (c%spec%shear_coefficient > 0.0_dp) &

@@ -45,6 +45,7 @@ contains
         spec%speed_m_s = cfg%motion%speed_m_s
         spec%direction_deg = cfg%motion%direction_deg
         spec%mean_pressure_pa = cfg%load%mean_pressure_pa
+        spec%approach_m = cfg%load%approach_m
         spec%shear_coefficient = cfg%interface%shear_coefficient
         spec%law = case_law(cfg)
         associate (s => cfg%solver, o => spec%solver)

@@ -175,6 +175,10 @@ contains
         if (allocated(error)) return
         call check_interface(cfg, error); if (allocated(error)) return
         call check_method(cfg, error); if (allocated(error)) return
+        if (cfg%load%approach_m /= huge(1.0_dp) .and. size(cfg%sweep%pressures) > 0) then
+            call fatal_error(error, "veslide: "//p//": &load approach_m (approach control) with &sweep pressures_pa:"// &
+                             " give the loads or the approach, not both"); return
+        end if
         if (cfg%analysis%zeta2 == 0.0_dp) cfg%analysis%zeta2 = max(cfg%surface%k_cut, cfg%analysis%zeta1)
         call require(error, cfg%analysis%zeta1 >= 0.0_dp .and. cfg%analysis%zeta1 < cfg%analysis%zeta2 .and. &
                      cfg%analysis%zeta2 < 1.0e6_dp, p, 'analysis', 'zeta1/zeta2', &
