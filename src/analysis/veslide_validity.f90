@@ -266,6 +266,20 @@ contains
                     sig(qlo*solid%thickness_m)//" at the surface's longest wave; below the solver's tolerance "// &
                     sig(c%spec%solver%tolerance, 2)//"): a half-space (thickness_m = 0) gives the same result")
             end if
+
+            ! an adhesive law under load control: a load the branch followed cannot carry although
+            ! the law is met (to a tenth of the load's error, as the secant's inner solves are) at
+            ! every mean gap tried (the load jumps where a contact snaps in or out; docs/adhesion.md)
+            if (c%spec%law%adhesive() .and. .not. c%state%converged .and. c%spec%approach_m == huge(1.0_dp)) then
+                if (max(c%state%penetration, c%state%complementarity, c%state%negative_pressure) <= &
+                    max(c%spec%solver%tolerance, 0.1_dp*c%state%load_error) .and. &
+                    c%state%load_error > c%spec%solver%tolerance) &
+                    call add_warning(c%warnings, 'adhesive-load-jump', "the law is met but the load is off by "// &
+                        sig(c%state%load_error, 2)//" of the pressure scale: the load lies where the load jumps"// &
+                        " with the approach (a contact snapping in or out), so the branch followed has no solution"// &
+                        " at it; give the approach instead (&load approach_m) or another load", 'validity', &
+                        c%state%load_error, c%spec%solver%tolerance)
+            end if
         end associate
 
     contains

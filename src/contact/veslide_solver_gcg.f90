@@ -131,7 +131,7 @@ contains
         !> The secant on p_mean(d) = target from the current g, bracketed once the sign changes
         !> (Illinois' rule); the inner solves to a fraction of the load's error, the last to `tol`
         subroutine carry_load()
-            real(dp) :: d_prev, p_prev, d_new, lo(2), hi(2)
+            real(dp) :: d_prev, p_prev, d_new, lo(2), hi(2), itol
             logical :: have_lo, have_hi
             integer :: k
             d = total(g)/cells
@@ -157,17 +157,43 @@ contains
                     if (.not. (d_new > lo(1) .and. d_new < hi(1))) d_new = lo(1) + (hi(1) - lo(1))* &
                         (lo(2) - target)/(lo(2) - hi(2))
                 else
+                    ! a load the open contact cannot carry: full contact (g = 0, p = p_mean + A h)
+                    ! where that is the law's (p_rep >= 0 everywhere), the jump into it
+                    if (d_new <= 0.0_dp) then
+                        if (full_contact()) return
+                    end if
                     ! unbracketed: the gap at most halved or doubled a step (p_mean(d) is far from
                     ! linear where contact spreads or opens)
                     d_new = min(max(d_new, 0.5_dp*d), 2.0_dp*d + 1.0_dp)
                 end if
                 d_prev = d; p_prev = p_d
                 d = d_new
-                call inner(d, p_d, ok, max(tol, inexact*abs(p_d - target)))
+                ! (a tenth of the tolerance near the load: the mean pressure is as accurate as
+                ! the gradient, and a secant through points closer than that sees only noise)
+                itol = max(0.1_dp*tol, inexact*abs(p_d - target))
+                call inner(d, p_d, ok, itol)
                 if (.not. ok) return
-                if (d /= d_prev) slope = (p_d - p_prev)/(d - d_prev)
+                if (d /= d_prev .and. abs(p_d - p_prev) > 100*itol) slope = (p_d - p_prev)/(d - d_prev)
             end do
         end subroutine carry_load
+
+        !> The solution in full contact at the target load, when the law admits it (the repulsive
+        !> pressure p_mean + A h + sigma(0) nowhere negative): then g = 0, d = 0 and r = A h
+        logical function full_contact() result(yes)
+            real(dp) :: least
+            t = g                                    ! (t: free between inner solves)
+            g = 0.0_dp
+            call apply_a(hn, r)
+            state%operator_applications = state%operator_applications + 1
+            least = minval(r - sum_mean_removed()) + target + s0
+            call global_min(problem%kernel%grid, least)
+            yes = least >= 0.0_dp
+            if (yes) then
+                d = 0.0_dp; p_d = target; ok = .true.; tight = .true.
+            else
+                g = t
+            end if
+        end function full_contact
 
         !> The inner solve at mean gap `dbar`: g updated, r = A (g + h) on exit, `pm` the mean pressure
         subroutine inner(dbar, pm, ok, itol)
