@@ -65,8 +65,6 @@ contains
         real(dp), parameter :: alpha = 0.2_dp, loads(5) = [0.4_dp, 0.25_dp, 0.1_dp, 0.0_dp, -0.03_dp]
         real(dp) :: h(n, 1), x, w, rho, pstar, a, jkr, worst
         real(dp), allocatable :: gap(:, :)
-        type(grid_t) :: grid
-        type(material_t) :: mat
         type(kernel_t) :: k
         type(fft2d_t) :: fft
         type(contact_problem_t) :: problem
@@ -83,10 +81,7 @@ contains
         w = alpha**2*pi**2*estar*amp**2/(2*lambda)
         rho = amp/64
         law = new_adhesive_law(LAW_EXPONENTIAL, w, rho)
-        call new_elastic(mat, estar, 0.0_dp, error); if (allocated(error)) return
-        call new_grid(grid, n, 1, lambda, lambda/n, error); if (allocated(error)) return
-        call new_kernel(k, grid, mat, [0.0_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
-        call fft%init(n, 1, error, planner='estimate'); if (allocated(error)) return
+        call elastic_row(n, lambda, estar, k, fft, error); if (allocated(error)) return
         opts%method = solver_method_id('gcg')
         opts%tolerance = 1.0e-10_dp
         worst = 0.0_dp
@@ -111,6 +106,22 @@ contains
         call check(error, worst <= 5.0e-3_dp, "JKR wave within 5e-3 p*")
     end subroutine test_jkr_wave
 
+    !> The kernel and transforms of a one-row grid of n cells over lx [m] on an elastic solid of
+    !> modulus e (nu = 0: E* = e) at rest
+    subroutine elastic_row(n, lx, e, k, fft, error)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: lx, e
+        type(kernel_t), intent(out) :: k
+        type(fft2d_t), intent(out) :: fft
+        type(error_t), allocatable, intent(out) :: error
+        type(grid_t) :: grid
+        type(material_t) :: mat
+        call new_elastic(mat, e, 0.0_dp, error); if (allocated(error)) return
+        call new_grid(grid, n, 1, lx, lx/n, error); if (allocated(error)) return
+        call new_kernel(k, grid, mat, [0.0_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
+        call fft%init(n, 1, error, planner='estimate')
+    end subroutine elastic_row
+
     !> Maugis-Dugdale: a rigid cylinder (radius R) on an elastic half-space with Dugdale's law,
     !> unloaded under approach control (warm-started along the way) to the least load, which is
     !> the pull-off force under load control; against Baney and Hui, J. Adhes. Sci. Technol. 11
@@ -123,10 +134,8 @@ contains
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 8192
         real(dp), parameter :: e = 1.0e7_dp, r = 1.0e-3_dp, w = 0.01_dp, lambdas(3) = [0.5_dp, 1.0_dp, 2.0_dp]
-        real(dp) :: h(n, 1), lx, x, s0, dc, lunit, funit, oracle, pull, d, pmin, dmin, step, pk, dk(3), pk3(3)
+        real(dp) :: h(n, 1), lx, x, s0, dc, lunit, funit, oracle, pull, d, pmin, dmin, step, pk, dk(3)
         real(dp), allocatable :: gap(:, :), gbest(:, :)
-        type(grid_t) :: grid
-        type(material_t) :: mat
         type(kernel_t) :: k
         type(fft2d_t) :: fft
         type(contact_problem_t) :: problem
@@ -140,10 +149,7 @@ contains
             x = (i - 1)*lx/n - lx/2
             h(i, 1) = -x**2/(2*r)
         end do
-        call new_elastic(mat, e, 0.0_dp, error); if (allocated(error)) return
-        call new_grid(grid, n, 1, lx, lx/n, error); if (allocated(error)) return
-        call new_kernel(k, grid, mat, [0.0_dp, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
-        call fft%init(n, 1, error, planner='estimate'); if (allocated(error)) return
+        call elastic_row(n, lx, e, k, fft, error); if (allocated(error)) return
         opts%method = solver_method_id('gcg')
         opts%tolerance = 1.0e-8_dp
         do il = 1, size(lambdas)
@@ -193,7 +199,6 @@ contains
                        str(lambdas(il)))
             if (allocated(error)) return
         end do
-        pk3 = 0.0_dp
     contains
         !> The solution at mean gap `dg` warm-started from `gap` (when there is one); `force` the
         !> load per unit length [N/m]
