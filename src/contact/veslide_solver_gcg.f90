@@ -82,6 +82,7 @@ contains
         state%method = 'gcg'
         call ticker%start(opts, 'gcg')
         allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), free(nx, ny), edge(nx, ny))
+        edge = .false.                       ! (Dugdale's zone edge: kept only for that law)
         hn = (f%h%h - problem%h_mean)/hs
         ! the modulus multiplier A = 1/K (zero where K is: the mean mode), in units p_s/h_s per
         ! cell count (FFTW's unscaled pair)
@@ -95,7 +96,6 @@ contains
             d = maxval(hn); call global_max(problem%kernel%grid, d)
             g = d - hn
         end if
-        d = total(g)/cells
         its = 0
         slope = 0.0_dp
         ! to the tolerance on the law's gradient; then confirmed on the problem's residual (a
@@ -129,7 +129,7 @@ contains
     contains
 
         !> The secant on p_mean(d) = target from the current g, bracketed once the sign changes
-        !> (Illinois' rule); the inner solves to a fraction of the load's error, the last to `tol`
+        !> (regula falsi); the inner solves to a fraction of the load's error, the last to `tol`
         subroutine carry_load()
             real(dp) :: d_prev, p_prev, d_new, lo(2), hi(2), itol
             logical :: have_lo, have_hi
@@ -203,7 +203,7 @@ contains
             real(dp), intent(out) :: pm
             logical, intent(out) :: ok
             real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta
-            logical :: restart
+            logical :: restart, held
             integer :: n_inner
             tight = .false.
             call keep_mean(dbar)
@@ -217,10 +217,14 @@ contains
                 ! gradient and the free set: lambda from the open cells, then the closed cells
                 ! that pull away join
                 at = r + attraction(g)                          ! (at: the gradient, for now)
-                edge = kind == LAW_DUGDALE .and. g == rho
+                held = .false.
+                if (kind == LAW_DUGDALE) then
+                    edge = g == rho
+                    held = any_cell(edge)
+                end if
                 lam = masked_mean(at, g > 0.0_dp .and. .not. edge)
                 free = (g > 0.0_dp .and. .not. edge) .or. (g <= 0.0_dp .and. at - lam < 0.0_dp)
-                if (any_cell(edge)) then
+                if (held) then
                     ! a cell held at the Dugdale zone's edge (g = rho, attraction anywhere in
                     ! [0, sigma0]: the law's graph there) stays while some attraction balances
                     ! it, else leaves inward (sigma0) or outward (0)
@@ -231,7 +235,7 @@ contains
                 end if
                 lam = masked_mean(at, free)
                 at = at - lam
-                if (any_cell(edge)) then
+                if (held) then
                     where (edge .and. .not. free) at = 0.0_dp
                 end if
                 pm = -lam
