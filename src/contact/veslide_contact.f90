@@ -369,24 +369,22 @@ contains
         type(contact_fields_t), intent(inout) :: f
         type(contact_state_t), intent(inout) :: state
         real(dp), allocatable :: g(:, :), prep(:, :)
-        real(dp) :: rows(3, f%g%n2), t(3), ext(2)
+        real(dp) :: rows(1, f%g%n2), sum_p(1), ext(2), c
         integer :: j
         g = f%u%h - (f%h%h - self%h_mean) + state%approach_m
         prep = self%law%repulsive(f%p%h, f%g%h)
         do j = 1, size(g, 2)
-            rows(1, j) = 0.0_dp
-            rows(2, j) = sum(abs(prep(:, j)))
-            rows(3, j) = sum(f%p%h(:, j))
+            rows(1, j) = sum(f%p%h(:, j))
         end do
         ext = [min(minval(g), -maxval(abs(g - f%g%h))), minval(prep)]
-        call ordered_sum(self%kernel%grid, rows, t)
+        call ordered_sum(self%kernel%grid, rows, sum_p)
         call global_min(self%kernel%grid, ext)
-        ! the complementarity cell by cell (contact_law_t%measures)
-        t(1) = maxval(min(abs(prep)/self%p_scale_pa, max(g, 0.0_dp)/self%height_scale_m))
-        call global_max(self%kernel%grid, t(1))
+        ! the complementarity cell by cell (contact_law_t%measures; no sum of |p_rep| is needed)
+        c = maxval(min(abs(prep)/self%p_scale_pa, max(g, 0.0_dp)/self%height_scale_m))
+        call global_max(self%kernel%grid, c)
         ! (under approach control the load is the result: no load error)
-        call residual_measures(self%law, state, ext(1), t(1), t(2), ext(2), t(3), self%kernel%grid%cells(), &
-                               merge(t(3)/self%kernel%grid%cells(), self%p_mean_pa, self%approach_control), &
+        call residual_measures(self%law, state, ext(1), c, 0.0_dp, ext(2), sum_p(1), self%kernel%grid%cells(), &
+                               merge(sum_p(1)/self%kernel%grid%cells(), self%p_mean_pa, self%approach_control), &
                                self%height_scale_m, self%p_scale_pa)
         where (f%g%h <= 0.0_dp)
             f%g%h = 0.0_dp
