@@ -1,10 +1,11 @@
 !> The adhesive contact laws and their solver ('gcg', conjugate gradients on the gap): Johnson's
-!> JKR wave, the hard-wall limit, the laws' maps
+!> JKR wave, the hard-wall limit, the laws' maps; in sliding (the splitting on a viscoelastic
+!> solid in motion) the slow and fast limits and the energy identity
 module test_veslide_solver_gcg
     use veslide_kinds, only: dp, pi, two_pi
     use veslide_fftw, only: fft2d_t
     use veslide_grid, only: grid_t, new_grid
-    use veslide_material, only: material_t, new_elastic
+    use veslide_material, only: material_t, new_elastic, new_one_term
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
     use veslide_contact_law, only: contact_law_t, new_adhesive_law, LAW_EXPONENTIAL, LAW_DUGDALE, ADH_STRESS
@@ -18,6 +19,8 @@ module test_veslide_solver_gcg
 
     !> Johnson's wave: wavelength, amplitude [m], contact modulus [Pa] (nu = 0: E* = E)
     real(dp), parameter :: lambda = 1.0e-4_dp, amp = 1.0e-6_dp, estar = 1.0e7_dp
+    !> the sliding wave's solid: one term, E0 = estar, Einf/E0 = 10, creep time tau [s]
+    real(dp), parameter :: ratio = 10.0_dp, tau = 1.0e-2_dp
 
 contains
 
@@ -26,7 +29,9 @@ contains
         tests = [ &
             new_unittest("law-maps", test_law_maps), &
             new_unittest("jkr-wave-johnson-1995", test_jkr_wave), &
-            new_unittest("maugis-dugdale-cylinder-pull-off", test_md_cylinder) &
+            new_unittest("maugis-dugdale-cylinder-pull-off", test_md_cylinder), &
+            new_unittest("sliding-limits-are-the-elastic-solids", test_sliding_limits), &
+            new_unittest("sliding-force-is-the-dissipation", test_sliding_energy) &
             ]
     end subroutine collect_solver_gcg
 
@@ -105,6 +110,132 @@ contains
         end do
         call check(error, worst <= 5.0e-3_dp, "JKR wave within 5e-3 p*")
     end subroutine test_jkr_wave
+
+    !> The wave of test_jkr_wave (1024 cells, the law's range 4 cells: a range below a cell has
+    !> many discrete solutions at one load, its edge trapped between cells, docs/adhesion.md) on
+    !> a one-term viscoelastic solid (E0 = E*, Einf = 10 E0) sliding at v tau/lambda = 1e-6 and
+    !> 1e6 under p = 0.1 p* (alpha 0.2 and p* of E0, then of Einf): the splitting (the operator
+    !> is not symmetric) gives the elastic solution of E0 and of Einf (conjugate gradients on the
+    !> symmetric operator): the same closed cells, pressures within 1e-4 p*
+    subroutine test_sliding_limits(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 1024
+        real(dp), parameter :: speeds(2) = [1.0e-6_dp, 1.0e6_dp]
+        real(dp) :: pstar, dp_max, e
+        real(dp), allocatable :: p_slide(:, :), g_slide(:, :)
+        type(contact_state_t) :: state
+        integer :: m, its
+        character(len=120) :: line
+        do m = 1, size(speeds)
+            ! the limit's modulus: E0, then Einf (the wave's alpha and load are set with it)
+            e = merge(estar, ratio*estar, m == 1)
+            pstar = pi*e*amp/lambda
+            call solve_wave(n, 0.1_dp*pstar, speeds(m)*lambda/tau, state, error, range=4*lambda/n, e_wave=e)
+            if (allocated(error)) return
+            call check(error, state%converged, "sliding wave converged at v tau/lambda = "//str(speeds(m)))
+            if (allocated(error)) return
+            p_slide = state%p; g_slide = state%g; its = state%operator_applications
+            call solve_wave(n, 0.1_dp*pstar, 0.0_dp, state, error, modulus=e, range=4*lambda/n, e_wave=e)
+            if (allocated(error)) return
+            call check(error, state%converged, "elastic wave converged (residual "//str(state%residual)//", "// &
+                       str(state%iterations)//" iterations)"); if (allocated(error)) return
+            dp_max = maxval(abs(p_slide - state%p))/pstar
+            write (line, '(a,es8.1,a,i0,a,i0,a)') "v tau/lambda = ", speeds(m), ": ", its, &
+                " FFT pairs (elastic: ", state%operator_applications, "); max |dp|/p*"
+            call report(trim(line), dp_max)
+            call check(error, all((g_slide <= 0.0_dp) .eqv. (state%g <= 0.0_dp)), "the same closed cells")
+            if (allocated(error)) return
+            call check(error, dp_max <= 1.0e-4_dp, "sliding limit within 1e-4 p* of the elastic solid")
+            if (allocated(error)) return
+        end do
+    end subroutine test_sliding_limits
+
+    !> The wave sliding at v tau/lambda = 0.05 (near the loss peak of its harmonics; the hard case
+    !> of docs/adhesion.md), 1024 cells: converged; the friction force (the kernel's exact
+    !> <p grad u>, adhesive tractions included) times the speed is the power the traction puts
+    !> into the solid, <p du/dt> = -v <p du/dx> from the solver's displacement (a spectral
+    !> derivative here), to 1e-9 of it; and the motion makes the contact asymmetric (friction > 0)
+    subroutine test_sliding_energy(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 1024
+        real(dp) :: pstar, v, f(2), power
+        type(contact_state_t) :: state
+        type(kernel_t) :: k
+        type(fft2d_t) :: fft
+        complex(dp), allocatable :: uk(:, :)
+        integer :: i
+        pstar = pi*estar*amp/lambda
+        v = 0.05_dp*lambda/tau
+        call solve_wave(n, 0.1_dp*pstar, v, state, error, kernel=k, fft=fft); if (allocated(error)) return
+        call check(error, state%converged, "sliding wave converged"); if (allocated(error)) return
+        f = k%tangential_force(fft, state%p)
+        ! -v <p du/dx> with du/dx the spectral derivative of the solver's u
+        fft%x = state%u
+        call fft%forward()
+        uk = fft%k
+        do i = 1, size(uk, 1)
+            uk(i, :) = uk(i, :)*cmplx(0.0_dp, two_pi*(i - 1)/lambda, dp)
+        end do
+        uk(size(uk, 1), :) = 0.0_dp                        ! (the Nyquist mode carries no derivative)
+        fft%k = uk
+        call fft%backward()
+        power = -v*sum(state%p*fft%x)/n
+        call report("friction force [Pa]", -f(1))
+        call report("power [W/m^2]", power)
+        call report("force x speed against the power, relative", abs(-f(1)*v - power)/abs(power))
+        call check(error, -f(1) > 0.0_dp, "friction against the motion")
+        if (allocated(error)) return
+        call check(error, abs(-f(1)*v - power) <= 1.0e-9_dp*abs(power), "force x speed = dissipated power")
+    end subroutine test_sliding_energy
+
+    !> The JKR wave (alpha 0.2 with E* = estar or `e_wave` [Pa], exponential law of range h/64
+    !> or `range` [m]) on n cells under the load p_mean [Pa], solved by 'gcg' from a cold start:
+    !> on the one-term solid sliding at `speed` [m/s] along x, or on an elastic solid of
+    !> `modulus` [Pa]
+    subroutine solve_wave(n, p_mean, speed, state, error, modulus, kernel, fft, range, e_wave)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: p_mean, speed
+        type(contact_state_t), intent(out) :: state
+        type(error_t), allocatable, intent(out) :: error
+        real(dp), intent(in), optional :: modulus
+        type(kernel_t), intent(out), optional :: kernel
+        type(fft2d_t), intent(out), optional :: fft
+        real(dp), intent(in), optional :: range, e_wave
+        real(dp), parameter :: alpha = 0.2_dp
+        real(dp) :: h(n, 1), w, rho
+        type(kernel_t) :: k
+        type(fft2d_t) :: t
+        type(grid_t) :: grid
+        type(material_t) :: mat
+        type(contact_problem_t) :: problem
+        type(solver_options_t) :: opts
+        integer :: i
+        do i = 1, n
+            h(i, 1) = amp*cos(two_pi*(i - 1)/n)
+        end do
+        w = alpha**2*pi**2*estar*amp**2/(2*lambda)
+        if (present(e_wave)) w = alpha**2*pi**2*e_wave*amp**2/(2*lambda)
+        rho = amp/64
+        if (present(range)) rho = range
+        if (present(modulus)) then
+            call elastic_row(n, lambda, modulus, k, t, error); if (allocated(error)) return
+        else
+            call new_one_term(mat, ratio*estar, ratio, tau, 0.0_dp, error); if (allocated(error)) return
+            call new_grid(grid, n, 1, lambda, lambda/n, error); if (allocated(error)) return
+            call new_kernel(k, grid, mat, [speed, 0.0_dp], KERNEL_SPECTRAL, error); if (allocated(error)) return
+            call t%init(n, 1, error, planner='estimate'); if (allocated(error)) return
+        end if
+        opts%method = solver_method_id('gcg')
+        opts%tolerance = 1.0e-10_dp
+        opts%max_iterations = 100000
+        call new_contact_problem(problem, k, h, p_mean, error, law=new_adhesive_law(LAW_EXPONENTIAL, w, rho))
+        if (allocated(error)) return
+        call solve_contact(problem, t, opts, state, error); if (allocated(error)) return
+        if (present(kernel)) kernel = k
+        if (present(fft)) then
+            call fft%init(n, 1, error, planner='estimate'); if (allocated(error)) return
+        end if
+    end subroutine solve_wave
 
     !> The kernel and transforms of a one-row grid of n cells over lx [m] on an elastic solid of
     !> modulus e (nu = 0: E* = e) at rest

@@ -80,8 +80,7 @@ contains
         method = opts%method
         if (method == SOLVER_AUTO) method = auto_method(problem)
         if (problem%approach_control .and. method /= SOLVER_GCG) then
-            call fatal_error(error, "veslide:solver: approach control is taken by 'gcg' alone (an adhesive law on a"// &
-                             " symmetric operator)"); return
+            call fatal_error(error, "veslide:solver: approach control is taken by 'gcg' alone (an adhesive law)"); return
         end if
         o = opts
         o%anderson_memory = default_anderson_memory(method, opts%anderson_memory)

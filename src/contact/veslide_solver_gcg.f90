@@ -1,5 +1,6 @@
-!> Conjugate gradients on the gap ('gcg'), for the adhesive contact laws on a symmetric operator
-!> (an elastic solid, or a viscoelastic one at rest).
+!> Conjugate gradients on the gap ('gcg'), for the adhesive contact laws: on a symmetric operator
+!> (an elastic solid, or a viscoelastic one at rest) directly, on a non-symmetric one (a
+!> viscoelastic solid in motion, an interfacial shear) inside a Douglas-Rachford splitting.
 !>
 !> With an adhesive law (veslide_contact_law) the traction is p = p_rep - sigma(g): the repulsive
 !> pressure of the hard wall (p_rep >= 0, g >= 0, p_rep g = 0) less an attraction sigma(g) that
@@ -33,6 +34,26 @@
 !> Where more than one solution exists at one load (JKR: a contact and no contact; a partial and
 !> a full one), the method returns the one its start leads to: a warm start from the last load
 !> of a sweep follows its branch; a cold start begins in contact at the highest point.
+!>
+!> A non-symmetric operator (A = 1/K complex, Re A > 0 for a passive solid) has no energy: the
+!> problem is the inclusion 0 in T(g) + dPsi(g) with T(g) = A (g + h) monotone and Psi the law's
+!> energy sum V(g) with g >= 0 and the mean gap held (weakly convex, not convex). Douglas-Rachford
+!> in the metric M = |A| (as `pdr` does in the pressure for the hard wall), with step gamma:
+!>   x = (I + gamma M^-1 T)^-1 z:  x^ + h^ = (z^ + h^)/(1 + gamma A/|A|)   (one FFT pair; at
+!>       gamma = 1 the denominator's modulus is 2 cos(delta/2) >= sqrt 2, delta the loss angle)
+!>   y = argmin over g >= 0 at the mean gap of 1/2 <y - v, (M/gamma) (y - v)> + sum V(y),
+!>       v = 2x - z: the symmetric adhesive problem above with the multiplier M/gamma and the
+!>       heights -v, solved by the conjugate gradients warm-started from the last y
+!>   z <- z + (y - x)
+!> At a fixed point x = y solves the problem. Each outer iteration measures the residual of y on
+!> the operator itself (one FFT pair) and asks the inner solve for 0.3 of it, never below a
+!> hundredth of the outer tolerance. gamma = 1 (the options' step when set), as measured on the
+!> sliding JKR wave (docs/adhesion.md): 0.6 is slower and 1.5 or 3 diverge (a splitting of a
+!> non-convex problem converges for steps small against the law's curvature).
+!> Under load control the metric takes the mean mode too (at the softest mode's stiffness) and
+!> the load is T's constant part (T(g) = A (g + h) + p_mean): one loop, no secant, the inner
+!> solves free of the mean gap; under approach control they hold it. The start
+!> z = y + gamma M^-1 A (y + h) is the fixed point's z where y is the solution (a warm start).
 !> Sums row by row and then over the rows in order (veslide_collective): the same path for any
 !> number of threads or processes. Host only (veslide_solver_table).
 module veslide_solver_gcg
@@ -65,10 +86,15 @@ contains
         !> gap of the start [m] (a warm start); default: in contact at the highest point
         real(dp), intent(in), optional :: gap0(:, :)
         real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), at(:, :), ainv(:, :)
+        ! the splitting's (a non-symmetric operator): its z and x, the heights, A = 1/K
+        real(dp), allocatable :: z(:, :), x(:, :), h0(:, :)
+        complex(dp), allocatable :: kinv(:, :)
         logical, allocatable :: free(:, :), edge(:, :)
-        real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol
+        real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol, gamma, softest, mean_metric
         integer :: nx, ny, its, kind, attempt
-        logical :: ok, tight
+        !> the splitting (a non-symmetric operator); the inner solves hold the mean gap (all but
+        !> the splitting's under load control, whose metric holds the mean instead)
+        logical :: ok, tight, split, hold_mean
         type(progress_ticker_t) :: ticker
 
         nx = f%p%n1; ny = f%p%n2
@@ -79,17 +105,42 @@ contains
         kind = problem%law%kind
         s0 = problem%law%param(ADH_STRESS)/ps
         rho = problem%law%param(ADH_RANGE)/hs
+        split = .not. problem%kernel%symmetric
         state%method = 'gcg'
         call ticker%start(opts, 'gcg')
         allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), free(nx, ny), edge(nx, ny))
         edge = .false.                       ! (Dugdale's zone edge: kept only for that law)
         hn = (f%h%h - problem%h_mean)/hs
         ! the modulus multiplier A = 1/K (zero where K is: the mean mode), in units p_s/h_s per
-        ! cell count (FFTW's unscaled pair)
-        ainv = real(f%kd%h, dp)
-        where (ainv /= 0.0_dp)
-            ainv = hs/(ps*ainv*cells)
-        end where
+        ! cell count (FFTW's unscaled pair); with the splitting the inner solves' M/gamma
+        if (split) then
+            kinv = f%kd%h
+            where (kinv /= (0.0_dp, 0.0_dp))
+                kinv = hs/(ps*kinv*cells)
+            end where
+            ainv = abs(kinv)
+            gamma = opts%step
+            if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp
+            allocate (z(nx, ny), x(nx, ny))
+            h0 = hn
+        else
+            ainv = real(f%kd%h, dp)
+            where (ainv /= 0.0_dp)
+                ainv = hs/(ps*ainv*cells)
+            end where
+        end if
+        softest = lowest_compliance()
+        hold_mean = .true.
+        if (split) then
+            ! under load control the metric takes the mean mode too, at the softest mode's
+            ! stiffness (docs/adhesion.md): the load enters the splitting's operator
+            hold_mean = problem%approach_control
+            mean_metric = 1.0_dp/softest
+            if (.not. hold_mean) then
+                where (kinv == (0.0_dp, 0.0_dp)) ainv = mean_metric/cells
+            end if
+            ainv = ainv/gamma
+        end if
         if (present(gap0)) then
             g = max(gap0/hs, 0.0_dp)
         else
@@ -102,15 +153,19 @@ contains
         ! fresh K p), and solved again a tenth tighter while that is above the tolerance
         tol = opts%tolerance
         do attempt = 1, max_tighten
+            if (split) call start_splitting()
             if (problem%approach_control) then
                 ! the mean gap given, the load its result
                 d = problem%mean_gap_m/hs
-                call inner(d, p_d, ok, tol)
+                call solve_at(d, p_d, ok, tol)
                 target = p_d
+            else if (split) then
+                call splitting(d, p_d, ok, tol)
             else
                 call carry_load()
             end if
             ! the solution in SI: p = p_mean + A (g + h) (in r), the gap, u = g + h - d
+            if (split) hn = h0
             f%p%h = ps*p_d + ps*(r - sum_mean_removed())
             f%g%h = hs*g
             f%u%h = hs*(g + hn - d)
@@ -135,7 +190,7 @@ contains
             logical :: have_lo, have_hi
             integer :: k
             d = total(g)/cells
-            call inner(d, p_d, ok, tol)
+            call solve_at(d, p_d, ok, tol)
             if (.not. ok) return
             have_lo = .false.; have_hi = .false.
             do k = 1, max_outer
@@ -151,7 +206,7 @@ contains
                 else
                     ! first step: the mean gap the difference would open over the lowest mode's
                     ! stiffness (a bound on the contact's), signed by the load
-                    d_new = d + sign(max(0.05_dp, abs(p_d - target)*lowest_compliance()), p_d - target)
+                    d_new = d + sign(max(0.05_dp, abs(p_d - target)*softest), p_d - target)
                 end if
                 if (have_lo .and. have_hi) then
                     if (.not. (d_new > lo(1) .and. d_new < hi(1))) d_new = lo(1) + (hi(1) - lo(1))* &
@@ -171,7 +226,7 @@ contains
                 ! (a tenth of the tolerance near the load: the mean pressure is as accurate as
                 ! the gradient, and a secant through points closer than that sees only noise)
                 itol = max(0.1_dp*tol, inexact*abs(p_d - target))
-                call inner(d, p_d, ok, itol)
+                call solve_at(d, p_d, ok, itol)
                 if (.not. ok) return
                 if (d /= d_prev .and. abs(p_d - p_prev) > 100*itol) slope = (p_d - p_prev)/(d - d_prev)
             end do
@@ -183,7 +238,7 @@ contains
             real(dp) :: least
             t = g                                    ! (t: free between inner solves)
             g = 0.0_dp
-            call apply_a(hn, r)
+            call apply_operator(g, r)
             state%operator_applications = state%operator_applications + 1
             least = minval(r - sum_mean_removed()) + target + s0
             call global_min(problem%kernel%grid, least)
@@ -195,6 +250,149 @@ contains
             end if
         end function full_contact
 
+        !> The problem at mean gap `dbar` to the tolerance `itol` (g updated, r = A (g + h) on
+        !> exit, `pm` the mean pressure): the conjugate gradients on a symmetric operator, the
+        !> splitting around them on another
+        subroutine solve_at(dbar, pm, ok, itol)
+            real(dp), intent(in) :: dbar, itol
+            real(dp), intent(out) :: pm
+            logical, intent(out) :: ok
+            real(dp) :: d_held
+            if (split) then
+                d_held = dbar
+                call splitting(d_held, pm, ok, itol)
+            else
+                call inner(dbar, pm, ok, itol)
+            end if
+        end subroutine solve_at
+
+        !> z = y + gamma M^-1 A (y + h), the splitting's fixed point were y (= g) the solution
+        !> (one FFT pair)
+        subroutine start_splitting()
+            f%t%x%h = g + h0
+            call f%t%forward()
+            where (kinv /= (0.0_dp, 0.0_dp))
+                f%t%k%h = f%t%k%h*(gamma*kinv/abs(kinv))/cells
+            elsewhere
+                f%t%k%h = (0.0_dp, 0.0_dp)
+            end where
+            call f%t%backward_unscaled()
+            z = g + f%t%x%h
+            state%operator_applications = state%operator_applications + 1
+        end subroutine start_splitting
+
+        !> Douglas-Rachford in the metric |A| (see the module's header), y is g: at mean gap `dbar`
+        !> when the mean gap is held, else at the target load (`dbar` then the mean gap found)
+        subroutine splitting(dbar, pm, ok, itol)
+            real(dp), intent(inout) :: dbar
+            real(dp), intent(in) :: itol
+            real(dp), intent(out) :: pm
+            logical, intent(out) :: ok
+            real(dp), parameter :: inner_fraction = 0.3_dp
+            real(dp) :: err, lam, ptmp
+            logical :: iok
+            ok = .false.; tight = .false.
+            if (hold_mean) then
+                ! the mean gap moves with z's
+                z = z + (dbar - total(z)/cells)
+                call keep_mean(dbar)
+            end if
+            do
+                ! the residual of y on the operator itself (under load control the gradient
+                ! holds the load: lambda = -target)
+                call apply_operator(g, r)
+                state%operator_applications = state%operator_applications + 1
+                if (hold_mean) then
+                    call gradient(lam, err)
+                else
+                    call gradient(lam, err, -target)
+                    dbar = total(g)/cells
+                end if
+                pm = -lam
+                if (err <= itol) then
+                    ok = .true.; tight = itol <= tol; exit
+                end if
+                if (its >= opts%max_iterations) exit
+                call ticker%tick(its, err, state%operator_applications)
+                ! x = the resolvent of z (in x), v = 2x - z as the inner heights' negative
+                f%t%x%h = z + h0
+                call f%t%forward()
+                where (kinv /= (0.0_dp, 0.0_dp))
+                    f%t%k%h = f%t%k%h/((1.0_dp + gamma*kinv/abs(kinv))*cells)
+                elsewhere
+                    f%t%k%h = f%t%k%h/cells
+                end where
+                call f%t%backward_unscaled()
+                state%operator_applications = state%operator_applications + 1
+                x = f%t%x%h - h0
+                ! (the load's constant part of the operator, on the mean mode of the metric)
+                if (.not. hold_mean) x = x - gamma*target/mean_metric
+                hn = z - 2.0_dp*x
+                ! y: the symmetric problem with M/gamma, warm-started from the last y
+                call inner(dbar, ptmp, iok, max(0.01_dp*itol, inner_fraction*err))
+                hn = h0
+                z = z + (g - x)
+            end do
+        end subroutine splitting
+
+        !> out = A a (zero mean) with A the operator itself (with the splitting, not the inner
+        !> solves' M/gamma), one FFT pair
+        subroutine apply_operator(a, out)
+            real(dp), intent(in) :: a(:, :)
+            real(dp), intent(out) :: out(:, :)
+            if (.not. split) then
+                call apply_a(a + hn, out); return
+            end if
+            f%t%x%h = a + h0
+            call f%t%forward()
+            f%t%k%h = f%t%k%h*kinv
+            call f%t%backward_unscaled()
+            out = f%t%x%h
+        end subroutine apply_operator
+
+        !> From r = A (g + h): the gradient in `at` (less its mean over the free set, `lam`), the
+        !> free set, and `err` (max |gradient| over the open cells, max(-gradient) over the closed)
+        subroutine gradient(lam, err, fixed)
+            real(dp), intent(out) :: lam, err
+            !> lambda given (the load), not the mean over the free set; 0 for an inner solve
+            !> that does not hold the mean gap
+            real(dp), intent(in), optional :: fixed
+            logical :: held
+            ! gradient and the free set: lambda from the open cells, then the closed cells
+            ! that pull away join
+            at = r + attraction(g)                          ! (at: the gradient, for now)
+            held = .false.
+            if (kind == LAW_DUGDALE) then
+                edge = g == rho
+                held = any_cell(edge)
+            end if
+            if (present(fixed)) then
+                lam = fixed
+            else if (.not. hold_mean) then
+                lam = 0.0_dp
+            else
+                lam = masked_mean(at, g > 0.0_dp .and. .not. edge)
+            end if
+            free = (g > 0.0_dp .and. .not. edge) .or. (g <= 0.0_dp .and. at - lam < 0.0_dp)
+            if (held) then
+                ! a cell held at the Dugdale zone's edge (g = rho, attraction anywhere in
+                ! [0, sigma0]: the law's graph there) stays while some attraction balances
+                ! it, else leaves inward (sigma0) or outward (0)
+                where (edge)
+                    free = r - lam > 0.0_dp .or. r - lam < -s0
+                    at = r + merge(s0, merge(0.0_dp, lam - r, r - lam < -s0), r - lam > 0.0_dp)
+                end where
+            end if
+            if (hold_mean .and. .not. present(fixed)) lam = masked_mean(at, free)
+            at = at - lam
+            if (held) then
+                where (edge .and. .not. free) at = 0.0_dp
+            end if
+            ! converged: no gradient on the open cells, none pulling a closed one away
+            err = maxval(merge(abs(at), max(-at, 0.0_dp), g > 0.0_dp))
+            call global_max(problem%kernel%grid, err)
+        end subroutine gradient
+
         !> The inner solve at mean gap `dbar`: g updated, r = A (g + h) on exit, `pm` the mean pressure
         subroutine inner(dbar, pm, ok, itol)
             real(dp), intent(in) :: dbar
@@ -203,10 +401,10 @@ contains
             real(dp), intent(out) :: pm
             logical, intent(out) :: ok
             real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta
-            logical :: restart, held
+            logical :: restart
             integer :: n_inner
             tight = .false.
-            call keep_mean(dbar)
+            if (hold_mean) call keep_mean(dbar)
             gsq_prev = 1.0_dp; restart = .true.
             t = 0.0_dp
             n_inner = 0
@@ -214,41 +412,15 @@ contains
             do
                 call apply_a(g + hn, r)
                 state%operator_applications = state%operator_applications + 1
-                ! gradient and the free set: lambda from the open cells, then the closed cells
-                ! that pull away join
-                at = r + attraction(g)                          ! (at: the gradient, for now)
-                held = .false.
-                if (kind == LAW_DUGDALE) then
-                    edge = g == rho
-                    held = any_cell(edge)
-                end if
-                lam = masked_mean(at, g > 0.0_dp .and. .not. edge)
-                free = (g > 0.0_dp .and. .not. edge) .or. (g <= 0.0_dp .and. at - lam < 0.0_dp)
-                if (held) then
-                    ! a cell held at the Dugdale zone's edge (g = rho, attraction anywhere in
-                    ! [0, sigma0]: the law's graph there) stays while some attraction balances
-                    ! it, else leaves inward (sigma0) or outward (0)
-                    where (edge)
-                        free = r - lam > 0.0_dp .or. r - lam < -s0
-                        at = r + merge(s0, merge(0.0_dp, lam - r, r - lam < -s0), r - lam > 0.0_dp)
-                    end where
-                end if
-                lam = masked_mean(at, free)
-                at = at - lam
-                if (held) then
-                    where (edge .and. .not. free) at = 0.0_dp
-                end if
+                call gradient(lam, err)
                 pm = -lam
-                ! converged: no gradient on the open cells, none pulling a closed one away
-                err = maxval(merge(abs(at), max(-at, 0.0_dp), g > 0.0_dp))
-                call global_max(problem%kernel%grid, err)
                 if (err <= itol) then
                     ok = .true.; tight = itol <= tol; exit
                 end if
                 if (n_inner >= opts%max_iterations) exit
                 n_inner = n_inner + 1
                 its = its + 1
-                call ticker%tick(its, err, state%operator_applications)
+                if (.not. split) call ticker%tick(its, err, state%operator_applications)
                 ! the search direction on the free set (0 elsewhere)
                 where (.not. free) at = 0.0_dp
                 gsq = total(at*at)
@@ -265,8 +437,10 @@ contains
                 r = at                                          ! (r: the gradient, for the step)
                 call apply_a(t, at)
                 state%operator_applications = state%operator_applications + 1
-                shift = masked_mean(at, free)
-                where (free) at = at - shift
+                if (hold_mean) then
+                    shift = masked_mean(at, free)
+                    where (free) at = at - shift
+                end if
                 num = total(r*t); den = total(merge(at*t, 0.0_dp, free))
                 if (.not. (den > 0.0_dp)) then
                     call apply_a(g + hn, r); exit
@@ -285,7 +459,7 @@ contains
                         restart = .true.
                     end if
                 end if
-                call keep_mean(dbar)
+                if (hold_mean) call keep_mean(dbar)
             end do
         end subroutine inner
 

@@ -83,9 +83,9 @@ contains
             row = solver_info_t(method=SOLVER_PDR, laws=hard_wall, device=.true., mixes=.true., anderson_default=0, &
                                 host_bytes=41.0_dp, device_bytes=37.0_dp, mixing_bytes=16.0_dp)
         case (SOLVER_GCG)
-            ! g, its search direction, the gradient and the transform of the direction (veslide_solver_gcg)
-            row = solver_info_t(method=SOLVER_GCG, symmetric_only=.true., laws=adhesive, device=.false., &
-                                host_bytes=32.0_dp)
+            ! g, its search direction, the gradient and the transform of the direction; on a
+            ! non-symmetric operator the splitting's z, x, heights and A = 1/K, 32 more (veslide_solver_gcg)
+            row = solver_info_t(method=SOLVER_GCG, laws=adhesive, device=.false., host_bytes=64.0_dp)
         case default
             row = solver_info_t()
         end select
