@@ -395,12 +395,12 @@ contains
         call remove(out)
     end subroutine test_path_single
 
-    !> Johnson's wave loaded along 0.3, 0.1, -0.03, 0.1, 0.3, 0.6, 0.7, 0.6, 0.3 p*. Both stable
+    !> Johnson's wave loaded along 0.3, 0.1, -0.03, 0.1, 0.3, 0.6, 0.7, 0.6, 0.3, -0.05 p*. Both stable
     !> branches exist for -0.056 < p/p* < 0.554 (the closed form's extremes): the partial contact
     !> and (the law's strength 4 p* holding the trough) full contact. Warm-started both ways the
     !> path stays on the partial branch while it exists (0.1 and 0.3 the same unloading and
-    !> reloading), jumps into full contact past 0.554 and stays there unloading to 0.3: another
-    !> branch at the same load. Cold-started (0.3, 0.6, 0.7, 0.6, 0.3 p*), every case starts from
+    !> reloading), jumps into full contact past 0.554 and stays there unloading to 0.3 and into
+    !> tension (-0.05): another branch at the same load. Cold-started (0.3, 0.6, 0.7, 0.6, 0.3 p*), every case starts from
     !> the adhesionless side: the same full contact above the band, the partial contact inside it.
     !> (A cold start at 0.1 p* stops at the iteration cap, 2e-3 short: the warm path converges.)
     subroutine test_path_hysteresis(error)
@@ -409,7 +409,8 @@ contains
         character(len=:), allocatable :: warm, cold
         real(dp), allocatable :: a(:), ac(:), q(:), qc(:), jump(:), ops(:), opsc(:), x(:)
         integer :: nfail
-        real(dp), parameter :: path(9) = [0.3_dp, 0.1_dp, -0.03_dp, 0.1_dp, 0.3_dp, 0.6_dp, 0.7_dp, 0.6_dp, 0.3_dp]
+        real(dp), parameter :: path(10) = [0.3_dp, 0.1_dp, -0.03_dp, 0.1_dp, 0.3_dp, 0.6_dp, 0.7_dp, 0.6_dp, 0.3_dp, &
+                                           -0.05_dp]
         warm = unique_name('path-warm.h5'); cold = unique_name('path-cold.h5')
         call read_text('path-warm', jkr_wave//loads_of(path)//" /", cfg, error); if (allocated(error)) return
         call run_study(cfg, warm, nfail, error); if (allocated(error)) return
@@ -433,9 +434,9 @@ contains
                    abs(q(2) - q(4)) <= 1.0e-6_dp*pstar .and. abs(q(1) - q(5)) <= 1.0e-6_dp*pstar, &
                    "the partial branch unloaded and reloaded"); if (allocated(error)) return
         ! past the band's top: full contact, kept unloading to 0.3 (hysteresis)
-        call check(error, all(a(6:9) == 1.0_dp), "full contact from 0.6 p* on, unloading to 0.3 p*")
+        call check(error, all(a(6:10) == 1.0_dp), "full contact from 0.6 p* on, unloading to 0.3 and -0.05 p*")
         if (allocated(error)) return
-        call check(error, all(nint(jump) == [0, 0, 0, 0, 0, JUMP_IN, 0, 0, 0]), "the one jump-in, at 0.6 p*")
+        call check(error, all(nint(jump) == [0, 0, 0, 0, 0, JUMP_IN, 0, 0, 0, 0]), "the one jump-in, at 0.6 p*")
         if (allocated(error)) return
         ! cold starts: the same solution outside the band, the adhesionless side's branch inside
         call check(error, all(ac(2:4) == 1.0_dp) .and. all(abs(qc(2:4) - q(6:8)) <= 1.0e-6_dp*pstar), &
