@@ -52,7 +52,8 @@ contains
             new_unittest("load-path-enumerated", test_path_plan), &
             new_unittest("load-path-one-load-is-the-single-solve", test_path_single), &
             new_unittest("load-path-branches-both-ways", test_path_hysteresis), &
-            new_unittest("load-path-pull-off-of-the-jkr-wave", test_path_pull_off) &
+            new_unittest("load-path-pull-off-of-the-jkr-wave", test_path_pull_off), &
+            new_unittest("load-path-resumed-and-joined", test_path_resume_merge) &
             ]
     end subroutine collect_study
 
@@ -497,6 +498,60 @@ contains
                    "the closed form's pull-off between the last load carried and the first lost")
         call remove(out)
     end subroutine test_path_pull_off
+
+    !> Two paths (two seeds of the wave, a law of range 4 cells on 1024 cells) through the pull-off
+    !> and back (0.025, 0, -0.025, -0.035, -0.045, -0.015, 0, 0.025 p*): stopped right after the
+    !> separation and resumed (the warm start of the next case, from the separation, restored from
+    !> the resume file), and run as two rank parts joined, both give the uninterrupted study's
+    !> /summary and /paths
+    subroutine test_path_resume_merge(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(h5file_t) :: f
+        character(len=:), allocatable :: whole, resumed, part0, part1, merged, study, other
+        character(len=64), allocatable :: ca(:), cb(:)
+        logical, allocatable :: ia(:), ib(:)
+        integer(i8), allocatable :: ra(:, :), rb(:, :)
+        real(dp), allocatable :: x(:)
+        integer :: nfail, j, m
+        study = "&grid nx = 1024, ny = 1, lx_m = 1.0e-4, ly_m = 9.765625e-8 /"// &
+            " &surface kind = 'cosine', amplitude_m = 1.0e-6, wavelength_m = 1.0e-4 /"// &
+            " &material model = 'elastic', young_pa = 1.0e7, poisson = 0.0 /"// &
+            " &adhesion law = 'exponential', energy_j_m2 = 0.019739208802178717, range_m = 3.90625e-7 /"// &
+            " &solver tolerance = 1e-10, fft_planner = 'estimate' / &output fields = .false. /"// &
+            loads_of([0.025_dp, 0.0_dp, -0.025_dp, -0.035_dp, -0.045_dp, -0.015_dp, 0.0_dp, 0.025_dp])//", seeds = 1, 2 /"
+        whole = unique_name('path-whole.h5'); resumed = unique_name('path-resumed.h5')
+        part0 = unique_name('path-part0.h5'); part1 = unique_name('path-part1.h5'); merged = unique_name('path-merged.h5')
+        call read_text('path-rm', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, whole, nfail, error); if (allocated(error)) return
+        call summary_column(whole, 'path_jump', x, error); if (allocated(error)) return
+        call check(error, all(nint(x) == [0, 0, 0, 0, JUMP_OUT, 0, JUMP_IN, 0, 0, 0, 0, 0, JUMP_OUT, 0, JUMP_IN, 0]) &
+                   .and. nfail == 4, "each path separates at -0.045 p* and comes back at 0"); if (allocated(error)) return
+        call paths_column(whole, 'pull_off_case', x, error); if (allocated(error)) return
+        call check(error, all(x == [4.0_dp, 12.0_dp]), "/paths: a pull-off per path"); if (allocated(error)) return
+        call run_study(cfg, resumed, nfail, error, stop_after=5); if (allocated(error)) return
+        call run_study(cfg, resumed, nfail, error); if (allocated(error)) return
+        call run_study(cfg, part0, nfail, error, part=[0, 2]); if (allocated(error)) return
+        call run_study(cfg, part1, nfail, error, part=[1, 2]); if (allocated(error)) return
+        call merge_study_parts(cfg, merged, [character(len=len(part0)) :: part0, part1], error)
+        if (allocated(error)) return
+        do m = 1, 2
+            other = merge(resumed, merged, m == 1)
+            do j = 1, 2
+                call f%open(whole, 'r', error); if (allocated(error)) return
+                call f%read_table(trim(merge('/summary', '/paths  ', j == 1)), ca, ia, ra, error); if (allocated(error)) return
+                call f%close()
+                call f%open(other, 'r', error); if (allocated(error)) return
+                call f%read_table(trim(merge('/summary', '/paths  ', j == 1)), cb, ib, rb, error); if (allocated(error)) return
+                call f%close()
+                call check(error, all(ca == cb) .and. all(shape(ra) == shape(rb)), "columns and rows")
+                if (allocated(error)) return
+                call check(error, count_differences(ca, ia, ra, rb), 0, trim(merge('resumed', 'joined ', m == 1))// &
+                           " study differs from the uninterrupted one"); if (allocated(error)) return
+            end do
+        end do
+        call remove(whole); call remove(resumed); call remove(part0); call remove(part1); call remove(merged)
+    end subroutine test_path_resume_merge
 
     subroutine record_progress(info)
         type(study_progress_t), intent(in) :: info
