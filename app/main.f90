@@ -15,7 +15,7 @@ program veslide_main
     use veslide_memory, only: format_gib, device_estimate_bytes, case_memory
     use veslide_system, only: available_memory_bytes
     use veslide_kinds, only: i8, dp
-    use veslide_study, only: run_study, study_progress_t, plan_study, study_plan_t
+    use veslide_study, only: run_study, study_progress_t, plan_study, study_plan_t, JUMP_IN, JUMP_OUT
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_version, only: version_string
     use veslide_strings, only: str
@@ -248,14 +248,32 @@ contains
             flush (stdout)
             return
         end if
-        write (stdout, '("case ",i0,"/",i0,": seed ",i0,", eps ",f5.3,", alpha ",f6.1," deg, p ",es9.3, &
+        write (stdout, '("case ",i0,"/",i0,": seed ",i0,", eps ",f5.3,", alpha ",f6.1," deg, p ",es10.3, &
             &" Pa, v ",es9.3," m/s: area ",f8.5,", f ",es10.3,", ",i0," FFT pairs",a,", ",f7.2," s; elapsed ",f8.1, &
             &" s, left ~",f8.1," s")') info%done, info%total, info%seed, info%eccentricity, info%alpha_deg, &
             info%pressure_pa, info%speed_m_s, info%contact_area_fraction, info%friction_coefficient, &
-            info%operator_applications, trim(merge('               ', ', NOT CONVERGED', info%converged)), &
-            info%case_s, info%elapsed_s, info%elapsed_s/(info%done - info%resumed)*(info%total - info%done)
+            info%operator_applications, trim(merge('               ', ', NOT CONVERGED', info%converged))// &
+            path_note(info), info%case_s, info%elapsed_s, &
+            info%elapsed_s/(info%done - info%resumed)*(info%total - info%done)
         flush (stdout)
     end subroutine print_progress
+
+    !> A load path's case: its place on the path, the approach given (approach control; p is then
+    !> the load carried), and a jump since the previous case
+    function path_note(info) result(note)
+        type(study_progress_t), intent(in) :: info
+        character(len=:), allocatable :: note
+        character(len=16) :: buf
+        note = ''
+        if (info%path_step == 0) return
+        note = ", step "//str(info%path_step)
+        if (info%approach_m /= huge(1.0_dp)) then
+            write (buf, '(es10.3)') info%approach_m
+            note = note//", approach "//trim(adjustl(buf))//" m"
+        end if
+        if (info%path_jump == JUMP_IN) note = note//", JUMP-IN"
+        if (info%path_jump == JUMP_OUT) note = note//", JUMP-OUT"
+    end function path_note
 
     !> A line every few seconds of a long solve
     subroutine print_solver_progress(info)

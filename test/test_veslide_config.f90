@@ -77,7 +77,8 @@ contains
         tests = [new_unittest("pressure-positive", test_load), &
                  new_unittest("adhesion-law-and-parameters", test_adhesion), &
                  new_unittest("tensile-load-with-adhesion", test_adhesion_load), &
-                 new_unittest("adhesion-in-motion-refused", test_adhesion_motion)]
+                 new_unittest("adhesion-in-motion-refused", test_adhesion_motion), &
+                 new_unittest("load-path-of-approaches", test_sweep_approaches)]
     end subroutine collect_config_load
 
     subroutine collect_config_motion(tests)
@@ -349,6 +350,31 @@ contains
 
     !> With a law the load may be tensile (and the law is the case's, its third parameter
     !> derived); without one a tensile load names &adhesion
+    !> &sweep approaches_m: a path of approaches with an adhesive law, each in range, refused
+    !> without a law, beside pressures_pa and beside &load approach_m
+    subroutine test_sweep_approaches(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(error_t), allocatable :: e
+        character(len=*), parameter :: law = "&adhesion law = 'dugdale', energy_j_m2 = 0.05, stress_pa = 5e7 /"
+        call read_text('path1', law//new_line('a')//"&sweep approaches_m = 1e-7, -2e-7, 1e-7 /", cfg, e)
+        call check(error, .not. allocated(e), "a path of approaches with &adhesion is read"); if (allocated(error)) return
+        call check(error, size(cfg%sweep%approaches) == 3 .and. cfg%sweep%approaches(2) == -2.0e-7_dp .and. &
+                   cfg%sweep%is_study(), "the approaches read, in order"); if (allocated(error)) return
+        call expect_message('path2', "&sweep approaches_m = 1e-7, -2e-7 /", [character(len=24) :: &
+                            "&sweep approaches_m", "adhesive law", "pressures_pa"], error)
+        if (allocated(error)) return
+        call expect_message('path3', law//new_line('a')//"&sweep approaches_m = 1e-7, 2, 0 /", &
+                            [character(len=24) :: "&sweep approaches_m(2) =", "out of range", ">= -1 and <= 1 [m]"], error)
+        if (allocated(error)) return
+        call expect_message('path4', law//new_line('a')//"&sweep approaches_m = 1e-7, pressures_pa = 1e3 /", &
+                            [character(len=24) :: "pressures_pa", "approaches_m", "give one"], error)
+        if (allocated(error)) return
+        call expect_message('path5', law//new_line('a')//"&load approach_m = 1e-7 /"//new_line('a')// &
+                            "&sweep approaches_m = 1e-7, 0 /", [character(len=24) :: "&load approach_m", &
+                            "&sweep approaches_m", "one place"], error)
+    end subroutine test_sweep_approaches
+
     subroutine test_adhesion_load(error)
         type(error_t), allocatable, intent(out) :: error
         type(config_t) :: cfg

@@ -14,7 +14,7 @@ program veslide_batch
     use veslide_error, only: error_t, exit_status
     use veslide_config, only: config_t, read_config
     use veslide_output, only: prepare_output, release_output, commit_output, discard_output
-    use veslide_study, only: run_study, merge_study_parts, study_progress_t, plan_study_transforms
+    use veslide_study, only: run_study, merge_study_parts, study_progress_t, plan_study_transforms, JUMP_IN, JUMP_OUT
     use veslide_device, only: device_enabled, device_count, device_select
     use veslide_case, only: case_t, run_case
     use veslide_case_file, only: write_case
@@ -276,9 +276,20 @@ contains
             &", f ",es10.3,", ",i0," FFT pairs",a,", ",f7.2," s; rank done in ~",f8.1," s")') rank, nranks, &
             info%case_number, info%done, info%total, info%speed_m_s, info%contact_area_fraction, &
             info%friction_coefficient, info%operator_applications, &
-            trim(merge('               ', ', NOT CONVERGED', info%converged)), info%case_s, &
+            trim(merge('               ', ', NOT CONVERGED', info%converged))//path_note(info), info%case_s, &
             info%elapsed_s/(info%done - info%resumed)*(info%total - info%done)
         flush (stdout)
     end subroutine print_progress
+
+    !> A load path's case: its place on the path and a jump since the previous case (as veslide's)
+    function path_note(info) result(note)
+        type(study_progress_t), intent(in) :: info
+        character(len=:), allocatable :: note
+        note = ''
+        if (info%path_step == 0) return
+        note = ", step "//str(info%path_step)
+        if (info%path_jump == JUMP_IN) note = note//", JUMP-IN"
+        if (info%path_jump == JUMP_OUT) note = note//", JUMP-OUT"
+    end function path_note
 
 end program veslide_batch

@@ -81,3 +81,58 @@ def test_adhesion_in_motion(exe, tmp_path):
     assert s["adhesive_pressure_pa"] > 0.0 and s["adhesive_area_fraction"] > 0.0
     assert s["compressive_pressure_pa"] - s["adhesive_pressure_pa"] == pytest.approx(s["mean_pressure_pa"],
                                                                                      rel=1e-9)
+
+
+def wave_path(approaches, n=1024, **adhesion):
+    """Johnson's wave on n cells (range 4 cells unless given), loaded along a path of approaches"""
+    law = {"law": "exponential", "energy_j_m2": W, "range_m": 4*LAMBDA/n}
+    law.update(adhesion)
+    return params(grid={"nx": n, "ny": 1, "lx_m": LAMBDA, "ly_m": LAMBDA/n},
+                  surface={"kind": "cosine", "amplitude_m": AMP, "wavelength_m": LAMBDA},
+                  material={"young_pa": E, "poisson": 0.0}, adhesion=law,
+                  sweep={"approaches_m": list(approaches)}, output={"fields": False})
+
+
+@pytest.mark.filterwarnings("ignore:.*contact-resolution")       # (the separated cases close no cell)
+def test_load_path_read_by_the_api(exe, tmp_path):
+    """A path of approaches there and back: /summary holds each case's place on the path and its
+    event, /paths the path's jumps and pull-off (the most tensile load at a minimum along the
+    path, here where the contact is lost), as `Result.summary` and `Result.paths`."""
+    down = [2e-7, 1e-7, 0.0, -5e-8, -1e-7, -1.5e-7, -2e-7, -3e-7]
+    r = veslide.run(wave_path(down + down[-2::-1]), output=tmp_path/"path.h5", exe=exe, progress=None)
+    s, paths = r.summary, r.paths
+    n = 2*len(down) - 1
+    assert list(s["path_step"]) == list(range(1, n + 1)) and (s["converged"] == 1).all()
+    assert s["approach_m"].to_numpy() == pytest.approx(down + down[-2::-1], rel=1e-12, abs=1e-20)
+    assert np.isnan(s["pressure_pa"]).all()          # (approach control: the load is a result)
+    assert len(paths) == 1 and paths.attrs["control"] == "approach"
+    assert paths.attrs["units"]["pull_off_pa"] == "Pa"
+    row = paths.iloc[0]
+    k = int(np.argmin(s["mean_pressure_pa"]))
+    assert row["pull_off_pa"] == s["mean_pressure_pa"][k] and row["pull_off_case"] == s["case"][k]
+    assert row["pull_off_pa"] < 0 and 1 < row["pull_off_case"] < n
+    assert row["n_jump_out"] == (s["path_jump"] == -1).sum() >= 1
+    assert row["n_jump_in"] == (s["path_jump"] == 1).sum() >= 1
+    assert row["first_case"] == 1 and row["last_case"] == n
+
+
+@pytest.mark.parametrize("sweep, adhesive, words", [
+    ({"approaches_m": [1e-7, -1e-7]}, False, ["&sweep approaches_m", "adhesive law"]),
+    ({"approaches_m": [1e-7, 2.0]}, True, ["&sweep approaches_m(2)", "allowed", ">= -1 and <= 1 [m]"]),
+    ({"approaches_m": [1e-7], "pressures_pa": [1e3]}, True, ["pressures_pa", "approaches_m", "give one"]),
+    ({"pressures_pa": [1e3, -1e3]}, False, ["&sweep pressures_pa(2)", "allowed", "&adhesion"]),
+])
+def test_load_path_refused(exe, tmp_path, sweep, adhesive, words):
+    """A path the program cannot run is refused at input: exit status 1, one line naming the
+    group, the variable and what is allowed, and no file written."""
+    p = wave_path([0.0], n=64)
+    p["sweep"] = sweep
+    if not adhesive:
+        del p["adhesion"]
+    out = tmp_path/"refused.h5"
+    with pytest.raises(veslide.InputError) as info:
+        veslide.run(p, output=out, exe=exe, progress=None)
+    message = str(info.value).strip()
+    assert "\n" not in message and all(w in message for w in words), message
+    assert info.value.returncode == 1 and info.value.group == "sweep"
+    assert not out.exists() and not list(tmp_path.glob("refused*"))

@@ -67,6 +67,9 @@ def _table(ds):
     # the columns that identify a case (the study's parameters), as the program names them
     if "parameters" in ds.attrs:
         df.attrs["parameters"] = [text(p) for p in np.atleast_1d(ds.attrs["parameters"])]
+    # /paths: 'load' or 'approach' (the control of the study's load paths)
+    if "control" in ds.attrs:
+        df.attrs["control"] = text(ds.attrs["control"])
     return df
 
 
@@ -172,7 +175,8 @@ class Cases(Mapping):
 class Result:
     """A veslide result file (or one case group of a study), read with `veslide.read`.
 
-    Attributes read at once: `scalars`, `summary`, `ensemble`, `input`, `input_text`,
+    Attributes read at once: `scalars`, `summary`, `ensemble`, `paths` (a load path study's
+    /paths: each path's jumps and pull-off, docs/adhesion.md; None otherwise), `input`, `input_text`,
     `provenance`, `anisotropy`, `patches`, `persson`, `parameters`, `validity` (the validity
     measures of a case, /validity: values, `.units`, `.attrs` with each threshold and when it
     warns; `validity_table` as a DataFrame); read when first used: `fields`, `cases`,
@@ -241,6 +245,7 @@ class Result:
                 self.parameters = {c: (int(v) if c in ("case", "seed") else float(v)) for c, v in zip(cols, vals)}
             self.summary = _table(g["summary"]) if "summary" in g else None
             self.ensemble = _table(g["ensemble"]) if "ensemble" in g else None
+            self.paths = _table(g["paths"]) if "paths" in g else None
             numbers = sorted(int(k) for k in g["cases"]) if "cases" in g else []
             if self.partial and self.summary is not None:
                 done = set(int(c) for c in self.summary["case"])   # a row is written after its case

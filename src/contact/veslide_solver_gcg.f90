@@ -33,7 +33,8 @@
 !> solution (the gap opens without bound), reported as not converged.
 !> Where more than one solution exists at one load (JKR: a contact and no contact; a partial and
 !> a full one), the method returns the one its start leads to: a warm start from the last load
-!> of a sweep follows its branch; a cold start begins in contact at the highest point.
+!> of a sweep follows its branch (a start in full contact stays there while the law admits it);
+!> a cold start begins in contact at the highest point.
 !>
 !> A non-symmetric operator (A = 1/K complex, Re A > 0 for a passive solid) has no energy: the
 !> problem is the inclusion 0 in T(g) + dPsi(g) with T(g) = A (g + h) monotone and Psi the law's
@@ -190,6 +191,13 @@ contains
             logical :: have_lo, have_hi
             integer :: k
             d = total(g)/cells
+            ! a start in full contact (a warm start from a load path's last case) stays there
+            ! while the law admits it at the target: closed everywhere, the load is the closed
+            ! gap's multiplier, so any load down to the one that pulls the trough open is carried
+            ! (without this the secant opens the gap at the first tensile load: another branch)
+            if (d <= 0.0_dp) then
+                if (full_contact()) return
+            end if
             call solve_at(d, p_d, ok, tol)
             if (.not. ok) return
             have_lo = .false.; have_hi = .false.

@@ -5,6 +5,12 @@
 !> along speed; then one loop over the chains (all of them, or one rank's share) and one row
 !> writer. Each case is a specification of its own (`chain_spec`: the input's, with the chain's
 !> values and the speed set on a copy); the configuration is only read.
+!> With an adhesive law, a list of loads (&sweep pressures_pa, or approaches_m under approach
+!> control) is a load path instead: one chain per (seed, temperature, eccentricity, angle, speed)
+!> runs through the loads in the order given, each case warm-started from the previous one in
+!> either direction, so that it follows the branch it is on (hysteresis); jump-in and jump-out
+!> between consecutive cases are flagged in /summary (path_step, path_jump) and each path's
+!> pull-off and first jump-in tabulated in /paths. A path is one chain: it stays on one rank.
 !> Each surface is generated once per (seed, eccentricity, angle), each speed's kernel built once.
 !> Every finished case is written at once under /cases/NNNNNN with its parameters and appended as
 !> a row of /summary (case, seed, parameters, every scalar of the case; int64 where integer), then
@@ -13,6 +19,7 @@
 !> supplies: the library never prints. Rank files of a distributed study are joined by
 !> `merge_study_parts`, with the same row and ensemble code.
 module veslide_study
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use veslide_kinds, only: dp, i8, pi, radians
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
@@ -37,7 +44,8 @@ module veslide_study
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
-              seed_statistics, write_ensemble, chain_spec, param_names, param_units, plan_study_transforms
+              seed_statistics, write_ensemble, chain_spec, param_names, param_units, plan_study_transforms, &
+              path_jump, write_paths, JUMP_IN, JUMP_OUT
 
     !> The parameter columns that lead every /summary row; temperature_c (the 7th) in the studies
     !> of a material with a temperature shift (whose temperature may be swept). The attribute
@@ -46,12 +54,19 @@ module veslide_study
                                                      'alpha_deg', 'pressure_pa', 'speed_m_s', 'temperature_c']
     character(len=*), parameter :: param_units(7) = [character(len=6) :: '-', '-', '-', 'degree', 'Pa', 'm/s', 'degC']
 
-    !> One speed chain: a surface and a load, run through every speed
+    !> The events path_jump flags between consecutive cases of a load path: the contact made (from
+    !> none, or to full contact) or lost (to none, to a case that did not converge, or from full
+    !> contact)
+    integer, parameter :: JUMP_IN = 1, JUMP_OUT = -1
+
+    !> One chain: a surface and a load run through every speed, or (a load path) a surface and a
+    !> speed run through every load
     type :: study_chain_t
         integer(i8) :: seed = 0_i8
         real(dp) :: eccentricity = 0.0_dp, alpha_deg = 0.0_dp, pressure_pa = 0.0_dp
         real(dp) :: temperature_c = 0.0_dp
-        integer :: first_case = 0          !! global number of its first case; speeds follow
+        integer :: first_case = 0          !! global number of its first case; speeds (or loads) follow
+        integer :: speed_index = 0         !! a load path's speed (index into the plan's speeds); 0 otherwise
     end type study_chain_t
 
     type :: study_plan_t
@@ -60,6 +75,12 @@ module veslide_study
         integer(i8), allocatable :: seeds(:)
         integer :: ncase = 0
         integer :: nparam = 6                  !! parameter columns (7 with temperature_c)
+        !> a load path (an adhesive law with &sweep pressures_pa or approaches_m): each chain runs
+        !> through `loads` in the order given, at one speed
+        logical :: path = .false.
+        logical :: approach = .false.          !! the path's loads are approaches [m] (approach control)
+        real(dp), allocatable :: loads(:)      !! the path: pressures [Pa] or approaches [m]
+        integer :: nstep = 0                   !! cases per chain: the speeds, or the path's loads
     end type study_plan_t
 
     !> What a progress callback is told after each case
@@ -76,6 +97,11 @@ module veslide_study
         real(dp) :: contact_area_fraction = 0.0_dp, friction_coefficient = 0.0_dp
         integer :: operator_applications = 0
         logical :: converged = .false.
+        !> a load path's: the case's place on it (0 outside a path), its event (JUMP_IN, JUMP_OUT
+        !> or 0), and under approach control the approach given [m] (pressure_pa is then the load
+        !> the case carried)
+        integer :: path_step = 0, path_jump = 0
+        real(dp) :: approach_m = huge(1.0_dp)
         !> what the case's validity measures warn of (its input's warnings are the study's, said once)
         type(warning_t), allocatable :: warnings(:)
     end type study_progress_t
@@ -94,18 +120,32 @@ contains
         type(config_t), intent(in) :: cfg
         type(study_plan_t), intent(out) :: plan
         real(dp), allocatable :: alphas(:), eccs(:), pressures(:), temps(:)
-        integer :: is, ie, ia, ip, it, k
+        integer :: is, ie, ia, ip, it, iv, k, nv
         plan%speeds = case_speeds(cfg)
         alphas = list_or(cfg%sweep%alphas, cfg%surface%alpha_deg)
         eccs = list_or(cfg%sweep%eccentricities, cfg%surface%eccentricity)
-        pressures = list_or(cfg%sweep%pressures, cfg%load%mean_pressure_pa)
+        plan%path = cfg%adhesion%law /= 'none' .and. size(cfg%sweep%pressures) + size(cfg%sweep%approaches) > 0
+        if (plan%path) then
+            ! the loads are the path within a chain; a chain per speed
+            plan%approach = size(cfg%sweep%approaches) > 0
+            if (plan%approach) then
+                plan%loads = cfg%sweep%approaches
+            else
+                plan%loads = cfg%sweep%pressures
+            end if
+            pressures = [cfg%load%mean_pressure_pa]
+            nv = size(plan%speeds); plan%nstep = size(plan%loads)
+        else
+            pressures = list_or(cfg%sweep%pressures, cfg%load%mean_pressure_pa)
+            nv = 1; plan%nstep = size(plan%speeds)
+        end if
         temps = list_or(cfg%sweep%temperatures, cfg%material%temperature_c)
         if (size(cfg%sweep%seeds) > 0) then
             plan%seeds = cfg%sweep%seeds
         else
             plan%seeds = [cfg%surface%seed]
         end if
-        allocate (plan%chains(size(plan%seeds)*size(eccs)*size(alphas)*size(pressures)*size(temps)))
+        allocate (plan%chains(size(plan%seeds)*size(eccs)*size(alphas)*size(pressures)*size(temps)*nv))
         plan%nparam = merge(7, 6, cfg%material%shift /= 'none')
         k = 0
         ! seeds outermost (the ensemble's rows), then temperatures (each temperature's kernels built
@@ -115,15 +155,18 @@ contains
                 do ie = 1, size(eccs)
                     do ia = 1, size(alphas)
                         do ip = 1, size(pressures)
-                            k = k + 1
-                            plan%chains(k) = study_chain_t(plan%seeds(is), eccs(ie), alphas(ia), pressures(ip), &
-                                                           temps(it), (k - 1)*size(plan%speeds) + 1)
+                            do iv = 1, nv
+                                k = k + 1
+                                plan%chains(k) = study_chain_t(plan%seeds(is), eccs(ie), alphas(ia), pressures(ip), &
+                                                               temps(it), (k - 1)*plan%nstep + 1, &
+                                                               merge(iv, 0, plan%path))
+                            end do
                         end do
                     end do
                 end do
             end do
         end do
-        plan%ncase = size(plan%chains)*size(plan%speeds)
+        plan%ncase = size(plan%chains)*plan%nstep
     contains
         pure function list_or(list, single) result(v)
             real(dp), intent(in) :: list(:), single
@@ -197,12 +240,13 @@ contains
         type(case_t) :: c
         type(results_t) :: r
         type(study_progress_t) :: info
-        integer :: ic, iv, k, j, rank, nranks, nmine, nrow
+        type(study_chain_t) :: ch
+        integer :: ic, iv, is, k, j, rank, nranks, nmine, nrow, jump_now
         integer, allocatable :: keep(:)
         logical, allocatable :: done(:)
         integer(i8) :: surface_seed, estimate
         real(dp) :: surface_ecc, surface_alpha, t_start, t_case, kernels_temperature, surface_slope
-        logical :: have_surface
+        logical :: have_surface, warm
 
         nfail = 0
         rank = 0; nranks = 1
@@ -210,7 +254,7 @@ contains
             rank = part(1); nranks = max(1, part(2))
         end if
         call plan_study(cfg, plan)
-        nmine = count([(modulo(ic - 1, nranks) == rank, ic = 1, size(plan%chains))])*size(plan%speeds)
+        nmine = count([(modulo(ic - 1, nranks) == rank, ic = 1, size(plan%chains))])*plan%nstep
 
         call case_spec_of(cfg, base, error); if (allocated(error)) return
         call size_and_check_memory(base, estimate, error, node_ranks=node_ranks, speeds=plan%speeds)
@@ -269,21 +313,43 @@ contains
                     have_surface = .true.
                     surface_seed = chain%seed; surface_ecc = chain%eccentricity; surface_alpha = chain%alpha_deg
                 end if
-                do iv = 1, size(plan%speeds)
-                    k = chain%first_case + iv - 1
+                do is = 1, plan%nstep
+                    k = chain%first_case + is - 1
                     if (done(k)) cycle
                     if (present(stop_after)) then
                         if (info%done - info%resumed >= stop_after) then
                             call f%close(error); return
                         end if
                     end if
-                    if (iv > 1 .and. .not. allocated(p_prev)) call restore_warm_start(k - 1)
-                    c%spec = chain_spec(base, chain, mat, plan%speeds(iv))
+                    ! the case's speed and load: a speed chain's speed, or a load path's load
+                    iv = is
+                    ch = chain
+                    if (plan%path) then
+                        iv = chain%speed_index
+                        if (plan%approach) then    ! (the load is the result: no parameter)
+                            ch%pressure_pa = ieee_value(0.0_dp, ieee_quiet_nan)
+                        else
+                            ch%pressure_pa = plan%loads(is)
+                        end if
+                    end if
+                    if (is > 1 .and. .not. allocated(p_prev)) call restore_warm_start(k - 1)
+                    c%spec = chain_spec(base, ch, mat, plan%speeds(iv))
+                    if (plan%approach) then
+                        c%spec%approach_m = plan%loads(is); c%spec%mean_pressure_pa = 0.0_dp
+                    end if
                     c%h = h; c%surface_rms_slope = surface_slope
                     c%kernel = kernels(iv); c%kernel_seconds = kernel_seconds(iv)
                     c%memory_estimate_bytes = estimate
                     t_case = wall_seconds()
-                    if (iv > 1 .and. cfg%sweep%warm_start .and. allocated(p_prev)) then
+                    warm = is > 1 .and. cfg%sweep%warm_start .and. allocated(p_prev)
+                    ! under load control, a path whose last case lost the contact (the gap opened
+                    ! without bound, or no cell closed) stays apart under tension (warm-started from
+                    ! the separation) and comes back from first contact under a compressive or zero
+                    ! load (a cold start)
+                    if (warm .and. plan%path .and. .not. plan%approach) then
+                        if (separated(k - 1)) warm = c%spec%mean_pressure_pa < 0.0_dp
+                    end if
+                    if (warm) then
                         call solve_prepared(fft, c, error, p_init=p_prev, g_init=g_prev)
                     else
                         call solve_prepared(fft, c, error)
@@ -292,8 +358,8 @@ contains
                     p_prev = c%state%p; g_prev = c%state%g
                     if (.not. c%state%converged) nfail = nfail + 1
                     call case_results(c, r)
-                    call write_row(k, chain, plan%speeds(iv), error); if (allocated(error)) return
-                    if (iv < size(plan%speeds) .and. cfg%sweep%warm_start) then
+                    call write_row(k, ch, plan%speeds(iv), is, error); if (allocated(error)) return
+                    if (is < plan%nstep .and. cfg%sweep%warm_start) then
                         call save_warm_start(k, error); if (allocated(error)) return
                     end if
                     info%done = info%done + 1
@@ -301,8 +367,14 @@ contains
                         info%elapsed_s = wall_seconds() - t_start
                         info%case_s = wall_seconds() - t_case; info%case_number = k
                         info%seed = chain%seed; info%eccentricity = chain%eccentricity
-                        info%alpha_deg = chain%alpha_deg; info%pressure_pa = chain%pressure_pa
+                        info%alpha_deg = chain%alpha_deg; info%pressure_pa = ch%pressure_pa
                         info%speed_m_s = plan%speeds(iv)
+                        if (plan%path) then
+                            info%path_step = is; info%path_jump = jump_now
+                            if (plan%approach) then
+                                info%approach_m = plan%loads(is); info%pressure_pa = r%get('mean_pressure_pa')
+                            end if
+                        end if
                         info%contact_area_fraction = r%get('contact_area_fraction')
                         info%friction_coefficient = r%get('friction_coefficient')
                         info%operator_applications = c%state%operator_applications
@@ -319,6 +391,9 @@ contains
         if (size(plan%seeds) > 1 .and. nranks == 1) then
             call write_ensemble(f, columns, units, is_int, table(:, 1:nrow), size(plan%seeds), error)
             if (allocated(error)) return
+        end if
+        if (plan%path .and. nranks == 1 .and. nrow == plan%ncase) then
+            call write_paths(f, columns, units, is_int, table(:, 1:nrow), plan, error); if (allocated(error)) return
         end if
         call f%close(error)
         call fft%destroy()
@@ -398,16 +473,28 @@ contains
             call w%close()
         end subroutine restore_warm_start
 
-        !> /cases/NNNNNN and the /summary row of case k
-        subroutine write_row(k, chain, speed, error)
+        !> Did case k, the last one written, lose the contact (not converged, or no cell closed)?
+        logical function separated(k) result(yes)
+            integer, intent(in) :: k
+            integer :: ja, jc
+            yes = .false.
+            if (nrow == 0 .or. .not. allocated(columns)) return
+            if (table(1, nrow) /= k) return
+            ja = findloc(columns, 'contact_area_fraction_cells', dim=1); jc = findloc(columns, 'converged', dim=1)
+            yes = table(jc, nrow) /= 1 .or. cell(table, is_int, ja, nrow) <= 0.0_dp
+        end function separated
+
+        !> /cases/NNNNNN and the /summary row of case k (at place `step` of its chain)
+        subroutine write_row(k, chain, speed, step, error)
             integer, intent(in) :: k
             type(study_chain_t), intent(in) :: chain
             real(dp), intent(in) :: speed
+            integer, intent(in) :: step
             type(error_t), allocatable, intent(out) :: error
             character(len=16) :: tag
             character(len=:), allocatable :: names
             real(dp) :: values(7)
-            integer :: j, np
+            integer :: j, np, nk, ja, jc
             write (tag, '("/cases/",i6.6)') k
             call write_case_group(f, trim(tag), c, error, r); if (allocated(error)) return
             np = plan%nparam
@@ -425,15 +512,32 @@ contains
             ! temperature_c)
             if (.not. allocated(keep)) &
                 keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names(1:np)), j = 1, r%n)])
+            nk = np + size(keep)
             if (.not. allocated(table)) then
-                allocate (columns(np + size(keep)), units(np + size(keep)), is_int(np + size(keep)))
-                allocate (table(np + size(keep), nmine))
+                ! a load path's two columns last: the case's place on its path and its event
+                j = nk + merge(2, 0, plan%path)
+                allocate (columns(j), units(j), is_int(j))
+                allocate (table(j, nmine))
                 columns(1:np) = param_names(1:np); units(1:np) = param_units(1:np)
                 is_int(1:np) = .false.; is_int(1:2) = .true.
                 do j = 1, size(keep)
                     columns(np + j) = r%scalars(keep(j))%name; units(np + j) = r%scalars(keep(j))%units
                     is_int(np + j) = r%scalars(keep(j))%is_integer
                 end do
+                if (plan%path) then
+                    columns(nk + 1:nk + 2) = [character(len=64) :: 'path_step', 'path_jump']
+                    units(nk + 1:nk + 2) = '-'; is_int(nk + 1:nk + 2) = .true.
+                end if
+            end if
+            ! the event since the path's previous case (the last row written, when it is k - 1)
+            jump_now = 0
+            if (plan%path .and. step > 1 .and. nrow > 0) then
+                if (table(1, nrow) == k - 1) then
+                    ja = findloc(columns, 'contact_area_fraction_cells', dim=1)
+                    jc = findloc(columns, 'converged', dim=1)
+                    jump_now = path_jump(table(jc, nrow) == 1, cell(table, is_int, ja, nrow), c%state%converged, &
+                                         r%get('contact_area_fraction_cells'))
+                end if
             end if
             nrow = nrow + 1
             table(1:np, nrow) = [int(k, i8), chain%seed, transfer(values(3:np), 0_i8, np - 2)]
@@ -444,6 +548,7 @@ contains
                     table(np + j, nrow) = transfer(r%scalars(keep(j))%value, 0_i8)
                 end if
             end do
+            if (plan%path) table(nk + 1:nk + 2, nrow) = [int(step, i8), int(jump_now, i8)]
             call f%append_row('/summary', columns, units, is_int, table(:, nrow), error); if (allocated(error)) return
             if (.not. f%attr_exists('/summary', 'parameters')) then     ! (the first row made the table)
                 call f%writeattr('/summary', 'parameters', param_names(1:np), error); if (allocated(error)) return
@@ -452,6 +557,109 @@ contains
         end subroutine write_row
 
     end subroutine run_study
+
+    !> The event between consecutive cases of a load path, from their convergence and contact area
+    !> fraction (closed cells): JUMP_IN where the contact is made (from none, or after a case that
+    !> did not converge) or becomes full; JUMP_OUT where it is lost (to none, or to a case that did
+    !> not converge) or leaves full contact; 0 otherwise
+    pure integer function path_jump(conv0, area0, conv1, area1) result(jump)
+        logical, intent(in) :: conv0, conv1
+        real(dp), intent(in) :: area0, area1
+        logical :: in0, in1
+        jump = 0
+        in0 = conv0 .and. area0 > 0.0_dp; in1 = conv1 .and. area1 > 0.0_dp
+        if (in0 .and. .not. in1) then
+            jump = JUMP_OUT
+        else if (in1 .and. .not. in0) then
+            jump = JUMP_IN
+        else if (in0 .and. in1) then
+            if (area0 < 1.0_dp .and. area1 >= 1.0_dp) jump = JUMP_IN
+            if (area0 >= 1.0_dp .and. area1 < 1.0_dp) jump = JUMP_OUT
+        end if
+    end function path_jump
+
+    !> /paths, a row per load path of the complete /summary `table` (rows in case order): the
+    !> path's seed, spectrum, speed (and temperature), its cases, the jumps flagged along it, the
+    !> first case after a jump-in and its load, and the pull-off: under load control the most
+    !> tensile load carried just before the contact was lost (the last case before separation),
+    !> under approach control the most tensile load at a minimum of the load along the path (both
+    !> neighbours carry more); case 0 and NaN where the path shows none. The attribute `control`
+    !> says which ('load' or 'approach').
+    subroutine write_paths(f, columns, units, is_int, table, plan, error)
+        type(h5file_t), intent(inout) :: f
+        character(len=*), intent(in) :: columns(:), units(:)
+        logical, intent(in) :: is_int(:)
+        integer(i8), intent(in) :: table(:, :)
+        type(study_plan_t), intent(in) :: plan
+        type(error_t), allocatable, intent(out) :: error
+        character(len=64), allocatable :: pcols(:), punits(:)
+        logical, allocatable :: pint(:)
+        integer(i8), allocatable :: e(:, :)
+        real(dp) :: load(plan%nstep), area(plan%nstep), pull
+        integer :: jump(plan%nstep)
+        logical :: conv(plan%nstep)
+        integer :: ic, n, s, k0, jm, jc, jj, ja, ipull, ijin, nt
+        if (size(table, 2) /= plan%ncase .or. size(units) /= size(columns)) then
+            call fatal_error(error, "veslide:study:write_paths: the table is not the complete study"); return
+        end if
+        jm = findloc(columns, 'mean_pressure_pa', dim=1); jc = findloc(columns, 'converged', dim=1)
+        jj = findloc(columns, 'path_jump', dim=1); ja = findloc(columns, 'contact_area_fraction_cells', dim=1)
+        if (min(jm, jc, jj, ja) == 0) then
+            call fatal_error(error, "veslide:study:write_paths: /summary lacks a column of the load path"); return
+        end if
+        nt = merge(1, 0, plan%nparam == 7)
+        pcols = [character(len=64) :: 'seed', 'eccentricity', 'alpha_deg', 'speed_m_s']
+        punits = [character(len=64) :: '-', '-', 'degree', 'm/s']
+        if (nt == 1) then
+            pcols = [character(len=64) :: pcols, 'temperature_c']; punits = [character(len=64) :: punits, 'degC']
+        end if
+        pcols = [character(len=64) :: pcols, 'first_case', 'last_case', 'n_jump_in', 'n_jump_out', 'jump_in_case', &
+                 'jump_in_pa', 'pull_off_case', 'pull_off_pa']
+        punits = [character(len=64) :: punits, '-', '-', '-', '-', '-', 'Pa', '-', 'Pa']
+        pint = [.true., .false., .false., .false., [(.false., s = 1, nt)], .true., .true., .true., .true., .true., &
+                .false., .true., .false.]
+        n = plan%nstep
+        allocate (e(size(pcols), size(plan%chains)))
+        do ic = 1, size(plan%chains)
+            associate (chain => plan%chains(ic))
+                k0 = chain%first_case
+                do s = 1, n
+                    load(s) = cell(table, is_int, jm, k0 + s - 1); area(s) = cell(table, is_int, ja, k0 + s - 1)
+                    conv(s) = table(jc, k0 + s - 1) == 1; jump(s) = int(table(jj, k0 + s - 1))
+                end do
+                ijin = findloc(jump, JUMP_IN, dim=1)
+                ipull = 0; pull = huge(1.0_dp)
+                do s = 2, n
+                    if (plan%approach) then
+                        if (s == n) exit
+                        if (.not. all(conv(s - 1:s + 1))) cycle
+                        if (load(s) <= load(s - 1) .and. load(s) <= load(s + 1) .and. load(s) < pull) then
+                            ipull = s; pull = load(s)
+                        end if
+                    else if (jump(s) == JUMP_OUT .and. (.not. conv(s) .or. area(s) <= 0.0_dp)) then
+                        if (load(s - 1) < pull) then
+                            ipull = s - 1; pull = load(s - 1)
+                        end if
+                    end if
+                end do
+                e(1:4, ic) = [chain%seed, transfer([chain%eccentricity, chain%alpha_deg, &
+                              plan%speeds(chain%speed_index)], 0_i8, 3)]
+                if (nt == 1) e(5, ic) = transfer(chain%temperature_c, 0_i8)
+                e(5 + nt:, ic) = [int(k0, i8), int(k0 + n - 1, i8), int(count(jump == JUMP_IN), i8), &
+                                  int(count(jump == JUMP_OUT), i8), &
+                                  merge(int(k0 + ijin - 1, i8), 0_i8, ijin > 0), &
+                                  transfer(merge(load(max(ijin, 1)), nan(), ijin > 0), 0_i8), &
+                                  merge(int(k0 + ipull - 1, i8), 0_i8, ipull > 0), &
+                                  transfer(merge(pull, nan(), ipull > 0), 0_i8)]
+            end associate
+        end do
+        call f%write_table('/paths', pcols, punits, pint, e, error); if (allocated(error)) return
+        call f%writeattr('/paths', 'control', trim(merge('approach', 'load    ', plan%approach)), error)
+    contains
+        real(dp) function nan()
+            nan = ieee_value(0.0_dp, ieee_quiet_nan)
+        end function nan
+    end subroutine write_paths
 
     !> The value of cell (j, i) of a table as a real
     pure real(dp) function cell(bits, is_int, j, i) result(x)
@@ -593,6 +801,9 @@ contains
         if (size(plan%seeds) > 1) then
             call write_ensemble(f, columns, units, is_int, table, size(plan%seeds), error)
             if (allocated(error)) return
+        end if
+        if (plan%path) then
+            call write_paths(f, columns, units, is_int, table, plan, error); if (allocated(error)) return
         end if
         call f%close(error)
 

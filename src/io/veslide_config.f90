@@ -130,7 +130,7 @@ contains
         cfg%solver%method = 'auto'; cfg%solver%kernel = 'spectral'; cfg%solver%fft_planner = 'measure'
         cfg%solver%device = 'auto'
         allocate (cfg%sweep%speeds(0), cfg%sweep%alphas(0), cfg%sweep%eccentricities(0), cfg%sweep%pressures(0), &
-                  cfg%sweep%temperatures(0))
+                  cfg%sweep%temperatures(0), cfg%sweep%approaches(0))
         allocate (cfg%sweep%seeds(0))
         cfg%output%file = 'veslide.h5'
         cfg%adhesion%law = 'none'
@@ -178,6 +178,10 @@ contains
         if (cfg%load%approach_m /= huge(1.0_dp) .and. size(cfg%sweep%pressures) > 0) then
             call fatal_error(error, "veslide: "//p//": &load approach_m (approach control) with &sweep pressures_pa:"// &
                              " give the loads or the approach, not both"); return
+        end if
+        if (cfg%load%approach_m /= huge(1.0_dp) .and. size(cfg%sweep%approaches) > 0) then
+            call fatal_error(error, "veslide: "//p//": &load approach_m with &sweep approaches_m: give the"// &
+                             " approaches in one place (the &sweep list replaces &load)"); return
         end if
         if (cfg%analysis%zeta2 == 0.0_dp) cfg%analysis%zeta2 = max(cfg%surface%k_cut, cfg%analysis%zeta1)
         call require(error, cfg%analysis%zeta1 >= 0.0_dp .and. cfg%analysis%zeta1 < cfg%analysis%zeta2 .and. &

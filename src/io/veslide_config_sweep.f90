@@ -14,6 +14,8 @@ module veslide_config_sweep
         real(dp), allocatable :: alphas(:)          !! PSD angles [deg]
         real(dp), allocatable :: eccentricities(:)  !! PSD eccentricities
         real(dp), allocatable :: pressures(:)       !! nominal pressures [Pa]
+        !> rigid-body approaches since first contact [m] (approach control; an adhesive law's)
+        real(dp), allocatable :: approaches(:)
         real(dp), allocatable :: temperatures(:)    !! temperatures [degC] (a material with a shift)
         integer(i8), allocatable :: seeds(:)        !! seeds (a list; n_seeds is expanded by the configuration)
         integer :: n_seeds = 0                      !! seeds seed, seed+1, ... when > 0
@@ -22,12 +24,13 @@ module veslide_config_sweep
         procedure :: is_study => sweep_is_study
     end type sweep_config_t
 
-    character(len=*), parameter :: names(11) = [character(len=14) :: 'speeds_m_s', 'speed_min_m_s', &
+    character(len=*), parameter :: names(12) = [character(len=14) :: 'speeds_m_s', 'speed_min_m_s', &
         'speed_max_m_s', 'n_speeds', 'alphas_deg', 'eccentricities', 'pressures_pa', 'seeds', 'n_seeds', 'warm_start', &
-        'temperatures_c']
-    character(len=*), parameter :: kinds(11) = [character(len=29) :: 'a list of real numbers', 'a real number', &
+        'temperatures_c', 'approaches_m']
+    character(len=*), parameter :: kinds(12) = [character(len=29) :: 'a list of real numbers', 'a real number', &
         'a real number', 'an integer', 'a list of real numbers', 'a list of real numbers', 'a list of real numbers', &
-        'a list of integers', 'an integer', 'a logical (.true. or .false.)', 'a list of real numbers']
+        'a list of integers', 'an integer', 'a logical (.true. or .false.)', 'a list of real numbers', &
+        'a list of real numbers']
     integer(i8), parameter :: unset_seed = -huge(1_i8)
 
 contains
@@ -36,7 +39,7 @@ contains
     pure logical function sweep_is_study(self) result(yes)
         class(sweep_config_t), intent(in) :: self
         yes = size(self%speeds) + size(self%alphas) + size(self%eccentricities) + size(self%pressures) + &
-              size(self%temperatures) + size(self%seeds) + self%n_seeds > 0
+              size(self%temperatures) + size(self%seeds) + self%n_seeds + size(self%approaches) > 0
     end function sweep_is_study
 
     !> Read &sweep from its text (absent: no study) and check it
@@ -49,15 +52,15 @@ contains
         logical, intent(in), optional :: adhesive
         logical :: tensile
         real(dp) :: speeds_m_s(max_list), alphas_deg(max_list), eccentricities(max_list), pressures_pa(max_list)
-        real(dp) :: speed_min_m_s, speed_max_m_s, temperatures_c(max_list)
+        real(dp) :: speed_min_m_s, speed_max_m_s, temperatures_c(max_list), approaches_m(max_list)
         integer :: n_speeds, n_seeds, stat, k, ns
         integer(i8) :: seeds(max_list)
         logical :: warm_start
         character(len=512) :: msg
         character(len=:), allocatable :: lines(:)
         namelist /sweep/ speeds_m_s, speed_min_m_s, speed_max_m_s, n_speeds, alphas_deg, eccentricities, &
-            pressures_pa, seeds, n_seeds, warm_start, temperatures_c
-        temperatures_c = unset_real()
+            pressures_pa, seeds, n_seeds, warm_start, temperatures_c, approaches_m
+        temperatures_c = unset_real(); approaches_m = unset_real()
         speeds_m_s = unset_real(); alphas_deg = unset_real(); eccentricities = unset_real()
         pressures_pa = unset_real(); seeds = unset_seed
         speed_min_m_s = unset_real(); speed_max_m_s = unset_real(); n_speeds = 0; n_seeds = 0
@@ -73,6 +76,7 @@ contains
         call check_list(error, eccentricities, path, 'sweep', 'eccentricities')
         call check_list(error, pressures_pa, path, 'sweep', 'pressures_pa')
         call check_list(error, temperatures_c, path, 'sweep', 'temperatures_c')
+        call check_list(error, approaches_m, path, 'sweep', 'approaches_m')
         if (allocated(error)) return
         ns = count(seeds /= unset_seed)
         if (any(seeds(1:ns) == unset_seed) .or. any(seeds(ns + 1:) /= unset_seed)) then
@@ -83,6 +87,7 @@ contains
         self%eccentricities = eccentricities(1:list_length(eccentricities))
         self%pressures = pressures_pa(1:list_length(pressures_pa))
         self%temperatures = temperatures_c(1:list_length(temperatures_c))
+        self%approaches = approaches_m(1:list_length(approaches_m))
         self%seeds = seeds(1:ns)
         if (n_speeds /= 0 .or. .not. is_unset(speed_min_m_s) .or. .not. is_unset(speed_max_m_s)) then
             if (n_speeds == 0) then
@@ -130,6 +135,22 @@ contains
                              " tensile only with &adhesion)")
             end if
         end do
+        if (size(self%approaches) > 0) then
+            ! approach control along a load path (veslide_study): an adhesive law's
+            if (.not. tensile) then
+                call fatal_error(error, "veslide: "//path//": &sweep approaches_m (approach control) needs an"// &
+                    " adhesive law (&adhesion law = 'exponential' or 'dugdale'); give pressures_pa instead"); return
+            end if
+            if (size(self%pressures) > 0) then
+                call fatal_error(error, "veslide: "//path//": &sweep gives both pressures_pa and approaches_m;"// &
+                                 " give one (a path of loads, or of approaches)"); return
+            end if
+        end if
+        do k = 1, size(self%approaches)
+            call require(error, finite_in(self%approaches(k), -1.0_dp, 1.0_dp), path, 'sweep', &
+                         'approaches_m('//str(k)//')', str(self%approaches(k)), ">= -1 and <= 1 [m] (the rigid-body"// &
+                         " approach since first contact)")
+        end do
         do k = 1, size(self%temperatures)
             call require(error, finite_in(self%temperatures(k), -273.15_dp, 1.0e4_dp, open_low=.true.), path, 'sweep', &
                          'temperatures_c('//str(k)//')', str(self%temperatures(k)), "> -273.15 [C]")
@@ -149,12 +170,12 @@ contains
             integer, intent(out) :: stat
             character(len=*), intent(out) :: msg
             real(dp) :: speeds_m_s(max_list), alphas_deg(max_list), eccentricities(max_list), pressures_pa(max_list)
-            real(dp) :: speed_min_m_s, speed_max_m_s, temperatures_c(max_list)
+            real(dp) :: speed_min_m_s, speed_max_m_s, temperatures_c(max_list), approaches_m(max_list)
             integer :: n_speeds, n_seeds
             integer(i8) :: seeds(max_list)
             logical :: warm_start
             namelist /sweep/ speeds_m_s, speed_min_m_s, speed_max_m_s, n_speeds, alphas_deg, eccentricities, &
-                pressures_pa, seeds, n_seeds, warm_start, temperatures_c
+                pressures_pa, seeds, n_seeds, warm_start, temperatures_c, approaches_m
             read (lines, nml=sweep, iostat=stat, iomsg=msg)
         end subroutine try
     end subroutine read_sweep_config
