@@ -77,7 +77,7 @@ contains
         tests = [new_unittest("pressure-positive", test_load), &
                  new_unittest("adhesion-law-and-parameters", test_adhesion), &
                  new_unittest("tensile-load-with-adhesion", test_adhesion_load), &
-                 new_unittest("adhesion-in-motion-refused", test_adhesion_motion), &
+                 new_unittest("adhesion-in-motion-takes-gcg", test_adhesion_motion), &
                  new_unittest("load-path-of-approaches", test_sweep_approaches)]
     end subroutine collect_config_load
 
@@ -406,12 +406,18 @@ contains
                             [character(len=24) :: "&load approach_m", "&sweep pressures_pa"], error)
     end subroutine test_adhesion_load
 
-    !> An adhesive law on a viscoelastic solid in motion: refused at input, with the reason
+    !> An adhesive law on a viscoelastic solid in motion: taken by gcg (its splitting); a hard-wall
+    !> method asked for is refused at input, naming gcg
     subroutine test_adhesion_motion(error)
         type(error_t), allocatable, intent(out) :: error
-        call expect_message('adh7', "&material model = 'one_term' /"//new_line('a')//"&motion speed_m_s = 0.1 /"// &
-                            new_line('a')//"&adhesion law = 'exponential', energy_j_m2 = 0.05, range_m = 1e-9 /", &
-                            [character(len=24) :: "'auto' finds no method", "'exponential'", "non-symmetric"], error)
+        type(config_t) :: cfg
+        character(len=*), parameter :: moving = "&grid nx = 32 / &surface k_cut = 8 / &material model = 'one_term' /"// &
+                                        " &motion speed_m_s = 0.1 /"// &
+                                        " &adhesion law = 'exponential', energy_j_m2 = 0.05, range_m = 1e-9 /"
+        ! 'auto' (gcg's splitting) takes it; a hard-wall method is refused, naming gcg
+        call read_text('adh7', moving, cfg, error); if (allocated(error)) return
+        call expect_message('adh8', moving//" &solver method = 'pdr' /", &
+                            [character(len=24) :: "&solver method = 'pdr'", "'exponential'", "'gcg'"], error)
     end subroutine test_adhesion_motion
 
     !> &interface is optional (mu_f = 0, no shear) and reads its one variable

@@ -38,7 +38,8 @@ contains
             new_unittest("profiles-viscoelastic-dr", test_profiles_visco_dr), &
             new_unittest("layers-elastic-every-method", test_layers_elastic), &
             new_unittest("layers-viscoelastic-every-method", test_layers_visco), &
-            new_unittest("profiles-and-layers-adhesive-gcg", test_adhesive) &
+            new_unittest("profiles-and-layers-adhesive-gcg", test_adhesive), &
+            new_unittest("profiles-viscoelastic-adhesive-gcg", test_adhesive_visco) &
             ]
     end subroutine collect_hard
 
@@ -185,6 +186,22 @@ contains
     !> within 1e-3 of the load
     subroutine test_adhesive(error)
         type(error_t), allocatable, intent(out) :: error
+        call run_adhesive(.false., error)
+    end subroutine test_adhesive
+
+    !> The viscoelastic profiles (sliding, a non-symmetric operator: gcg's splitting) with the
+    !> law of test_adhesive: each converges or says why, and with an attraction 1e-10 of the load
+    !> the converged solution is the hard wall's (pdr's), as there
+    subroutine test_adhesive_visco(error)
+        type(error_t), allocatable, intent(out) :: error
+        call run_adhesive(.true., error)
+    end subroutine test_adhesive_visco
+
+    !> test_adhesive's checks on the profiles of the elastic or `viscoelastic` half (with the
+    !> elastic layers in the elastic half)
+    subroutine run_adhesive(viscoelastic, error)
+        logical, intent(in) :: viscoelastic
+        type(error_t), allocatable, intent(out) :: error
         type(config_t) :: cfg
         type(case_t) :: c, hard
         character(len=:), allocatable :: name, first
@@ -192,7 +209,7 @@ contains
         real(dp) :: worst
         character(len=12) :: text
         failed = 0; differ = 0; its = 0; loud = 0; floor = 0; worst = 0.0_dp
-        do k = 1, profile_case_count() + layer_case_count()/2
+        do k = 1, profile_case_count() + merge(0, layer_case_count()/2, viscoelastic)
             call scene(k, 2.0_dp); if (allocated(error)) return
             call run_case(cfg, c, error)
             if (allocated(error)) then
@@ -223,7 +240,7 @@ contains
             call scene(k, 1.0e-10_dp); if (allocated(error)) return
             call run_case(cfg, c, error); if (allocated(error)) return
             if (.not. c%state%converged) cycle
-            cfg%adhesion%law = 'none'; cfg%solver%method = 'bccg'
+            cfg%adhesion%law = 'none'; cfg%solver%method = merge('pdr ', 'bccg', viscoelastic)
             call complete_config(cfg, error); if (allocated(error)) return
             call run_case(cfg, hard, error); if (allocated(error)) return
             if (any((c%state%g <= 0.0_dp) .neqv. (hard%state%p > 0.0_dp)) .or. &
@@ -250,7 +267,7 @@ contains
             integer, intent(in) :: k
             real(dp), intent(in) :: ratio
             if (k <= profile_case_count()) then
-                call profile_case(k, 'auto', .false., cfg, name, error)
+                call profile_case(k, 'auto', viscoelastic, cfg, name, error)
             else
                 call layer_case(k - profile_case_count(), 'auto', cfg, name, error)
             end if
@@ -263,7 +280,7 @@ contains
             call complete_config(cfg, error)
             name = 'adhesive '//name
         end subroutine scene
-    end subroutine test_adhesive
+    end subroutine run_adhesive
 
     !> Does the case carry a warning of code `code`?
     logical function has_warning(c, code) result(yes)
