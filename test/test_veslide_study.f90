@@ -300,26 +300,20 @@ contains
         character(len=*), intent(in) :: path, name
         real(dp), allocatable, intent(out) :: x(:)
         type(error_t), allocatable, intent(out) :: error
-        type(h5file_t) :: f
-        character(len=64), allocatable :: columns(:)
-        logical, allocatable :: is_int(:)
-        integer(i8), allocatable :: rows(:, :)
-        integer :: j
-        call f%open(path, 'r', error); if (allocated(error)) return
-        call f%read_table('/summary', columns, is_int, rows, error); if (allocated(error)) return
-        call f%close()
-        j = findloc(columns, name, dim=1)
-        call check(error, j > 0, "/summary has no column "//name); if (allocated(error)) return
-        if (is_int(j)) then
-            x = real(rows(j, :), dp)
-        else
-            x = transfer(rows(j, :), 0.0_dp, size(rows, 2))
-        end if
+        call table_column(path, '/summary', name, x, error)
     end subroutine summary_column
 
     !> The values of column `name` of /paths
     subroutine paths_column(path, name, x, error)
         character(len=*), intent(in) :: path, name
+        real(dp), allocatable, intent(out) :: x(:)
+        type(error_t), allocatable, intent(out) :: error
+        call table_column(path, '/paths', name, x, error)
+    end subroutine paths_column
+
+    !> The values of column `name` of the table `table` of a study's file
+    subroutine table_column(path, table, name, x, error)
+        character(len=*), intent(in) :: path, table, name
         real(dp), allocatable, intent(out) :: x(:)
         type(error_t), allocatable, intent(out) :: error
         type(h5file_t) :: f
@@ -328,16 +322,16 @@ contains
         integer(i8), allocatable :: rows(:, :)
         integer :: j
         call f%open(path, 'r', error); if (allocated(error)) return
-        call f%read_table('/paths', columns, is_int, rows, error); if (allocated(error)) return
+        call f%read_table(table, columns, is_int, rows, error); if (allocated(error)) return
         call f%close()
         j = findloc(columns, name, dim=1)
-        call check(error, j > 0, "/paths has no column "//name); if (allocated(error)) return
+        call check(error, j > 0, table//" has no column "//name); if (allocated(error)) return
         if (is_int(j)) then
             x = real(rows(j, :), dp)
         else
             x = transfer(rows(j, :), 0.0_dp, size(rows, 2))
         end if
-    end subroutine paths_column
+    end subroutine table_column
 
     !> &sweep pressures_pa = x*p*, joined
     function loads_of(x) result(text)
