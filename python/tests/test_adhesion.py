@@ -136,3 +136,32 @@ def test_load_path_refused(exe, tmp_path, sweep, adhesive, words):
     assert "\n" not in message and all(w in message for w in words), message
     assert info.value.returncode == 1 and info.value.group == "sweep"
     assert not out.exists() and not list(tmp_path.glob("refused*"))
+
+
+@pytest.mark.parametrize("law", ["exponential", "dugdale"])
+def test_sliding_approach_is_load_control(exe, tmp_path, law):
+    """Johnson's wave sliding over a one-term solid (E0 = E, Einf = 10 E0, creep time 10 ms, at
+    v tau/lambda = 0.05, 1024 cells, range 4 cells): gcg's splitting under approach control keeps
+    the approach, and under load control at the load it found gives the same solution (the same
+    closed cells, and with the exponential law pressures within 1e-6 p*); the friction opposes
+    the motion."""
+    n = 1024
+    base = dict(grid={"nx": n, "ny": 1, "lx_m": LAMBDA, "ly_m": LAMBDA/n},
+                surface={"kind": "cosine", "amplitude_m": AMP, "wavelength_m": LAMBDA},
+                material={"model": "one_term", "einf_pa": 10*E, "ratio": 10.0, "tau_s": 0.01, "poisson": 0.0},
+                motion={"speed_m_s": 0.05*LAMBDA/0.01},
+                adhesion={"law": law, "energy_j_m2": W, "range_m": 4*LAMBDA/n},
+                solver={"tolerance": 1e-10})
+    a = veslide.run(params(load={"approach_m": 0.5*AMP}, **base), output=tmp_path/"a.h5", exe=exe, progress=None)
+    assert a.scalars["converged"] == 1 and a.scalars["approach_m"] == pytest.approx(0.5*AMP, rel=1e-12)
+    load = a.scalars["mean_pressure_pa"]
+    b = veslide.run(params(load={"mean_pressure_pa": load}, **base), output=tmp_path/"b.h5", exe=exe,
+                    progress=None)
+    assert b.scalars["converged"] == 1
+    ga, gb = a.fields.gap_m.values, b.fields.gap_m.values
+    assert np.array_equal(ga <= 0.0, gb <= 0.0)
+    if law == "exponential":
+        # (Dugdale's discrete solution is not unique: a cell held at the zone's edge, g = rho,
+        # takes any attraction in [0, sigma0], and the contact's pressures follow it)
+        assert np.max(np.abs(a.fields.pressure_pa.values - b.fields.pressure_pa.values)) <= 1e-6*PSTAR
+    assert a.scalars["friction_coefficient"] > 0.0 and b.scalars["friction_coefficient"] > 0.0
