@@ -181,7 +181,8 @@ contains
     !> --memory: the estimate of the run's peak memory, per process on `processes` processes (the
     !> memory a job must request; refused runs are refused on this estimate), then stop
     subroutine print_memory()
-        integer(i8) :: estimate, available, on_device
+        integer(i8) :: estimate, available, on_device, roomy
+        character(len=:), allocatable :: room_note
         type(study_plan_t) :: plan
         type(device_info_t) :: info
         real(dp) :: free_b, total_b
@@ -205,8 +206,18 @@ contains
         end if
         if (available >= 0) write (stdout, '(a)') "available to this process here and now: "//format_gib(available)
         if (on_device > 0) then
+            ! what the solve holds where the device has room for all it takes (pdr: cuFFT's own
+            ! work area), when that is more than it needs
+            if (cfg%sweep%is_study()) then
+                roomy = device_estimate_bytes(spec, speeds=plan%speeds, room=.true.)
+            else
+                roomy = device_estimate_bytes(spec, room=.true.)
+            end if
+            room_note = ""
+            if (roomy > on_device) room_note = " at least, "//format_gib(roomy)//" where it has room for all it"// &
+                " takes (cuFFT's own work area)"
             write (stdout, '(a)') "on the device (&solver device = '"//cfg%solver%device//"'): about "// &
-                format_gib(on_device)//" of device memory"
+                format_gib(on_device)//" of device memory"//room_note
             call device_info(info, error)
             if (.not. allocated(error)) call device_memory(free_b, total_b, error)
             if (.not. allocated(error) .and. free_b >= 0) write (stdout, '(a)') "free on the "//info%name// &

@@ -45,6 +45,7 @@ program veslide_bench
                               device_peak_bytes, device_reset_peak, device_bytes_in_use, device_clock, device_check, &
                               device_profile
     use veslide_transform, only: transform_t
+    use veslide_memory, only: device_bytes_per_cell
     use veslide_validity, only: case_validity
     implicit none
     character(len=64) :: arg
@@ -242,7 +243,7 @@ contains
         type(case_t) :: c
         type(error_t), allocatable :: error
         character(len=256) :: csv_path, cpu_list
-        real(dp) :: free_b, total_b, need, tpair(2), work(2), peak, base, tcpu
+        real(dp) :: free_b, total_b, need, tpair(2), work(2), peak, base, tcpu, est(2)
         integer :: k, u, l, st, ncpu
         integer, allocatable :: cpu_sizes(:)
         if (.not. device_enabled .or. device_count() == 0) then
@@ -257,12 +258,14 @@ contains
         if (st /= 0 .or. l == 0) csv_path = 'results/bench-gpu.csv'
         open (newunit=u, file=trim(csv_path), status='replace', action='write')
         write (u, '(a)') 'backend,n,solve_s,fft_pairs,iterations,pair_ms,pair_min_work_ms,pairs_per_pair,'// &
-            'peak_bytes_per_cell,work_bytes_per_cell,work_min_bytes_per_cell,area,friction,converged,transfer_s'
+            'peak_bytes_per_cell,work_bytes_per_cell,work_min_bytes_per_cell,area,friction,converged,transfer_s,'// &
+            'estimate_bytes_per_cell,estimate_lean_bytes_per_cell'
         write (stdout, '(a)') "paper scene, tolerance 1e-8, method auto (pdr)"
         write (stdout, '(a)') "| N | solve [s] | of which set-up and transfers [s] | FFT pairs | iterations |"// &
             " cuFFT pair [ms] | per FFT pair spent [cuFFT pairs] | the same without set-up and transfers |"// &
-            " peak device [B/cell] | cuFFT work [B/cell] (min policy) | pair, min work [ms] | area | friction |"
-        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+            " peak device [B/cell] | estimate, lean [B/cell] | cuFFT work [B/cell] (min policy) | pair, min work [ms] |"// &
+            " area | friction |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
         do k = 1, size(sizes)
             call device_memory(free_b, total_b, error); call check(error)
             need = 110.0_dp*real(sizes(k), dp)**2
@@ -284,19 +287,21 @@ contains
                 deallocate (error); cycle
             end if
             peak = (device_peak_bytes() - base)/real(sizes(k), dp)**2
+            ! veslide --memory's estimate where the device has room, and the lean one (the refusal's)
+            est = [device_bytes_per_cell(c%spec, room=.true.), device_bytes_per_cell(c%spec)]
             write (stdout, '("| ",i0," | ",f9.3," | ",f8.3," | ",i0," | ",i0," | ",f8.3," | ",f6.2," | ",f6.2," | ",f6.1, &
-                &" | ",f5.1," (",f5.1,") | ",f8.3," | ",f9.6," | ",es11.4," |")') sizes(k), c%solve_seconds, &
-                c%state%transfer_seconds, c%state%operator_applications, &
+                &" | ",f5.1,", ",f5.1," | ",f5.1," (",f5.1,") | ",f8.3," | ",f9.6," | ",es11.4," |")') sizes(k), &
+                c%solve_seconds, c%state%transfer_seconds, c%state%operator_applications, &
                 c%state%iterations, 1e3*tpair(1), c%solve_seconds/c%state%operator_applications/tpair(1), &
-                (c%solve_seconds - c%state%transfer_seconds)/c%state%operator_applications/tpair(1), peak, &
+                (c%solve_seconds - c%state%transfer_seconds)/c%state%operator_applications/tpair(1), peak, est, &
                 work(1)/real(sizes(k), dp)**2, work(2)/real(sizes(k), dp)**2, 1e3*tpair(2), &
                 contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa
-            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1,",",es14.7)') 'gpu', &
+            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1,3(",",es14.7))') 'gpu', &
                 sizes(k), &
                 c%solve_seconds, c%state%operator_applications, c%state%iterations, 1e3*tpair(1), 1e3*tpair(2), &
                 c%solve_seconds/c%state%operator_applications/tpair(1), peak, work(1)/real(sizes(k), dp)**2, &
                 work(2)/real(sizes(k), dp)**2, contact_area_fraction(c%state%p), &
-                -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged, c%state%transfer_seconds
+                -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged, c%state%transfer_seconds, est
             flush (stdout); flush (u)
             call device_profile()                  ! (VESLIDE_DEVICE_PROFILE=1: where the solve's time went)
         end do
@@ -335,10 +340,11 @@ contains
                 cpu_sizes(k), ncpu, c%solve_seconds, c%state%operator_applications, 1e3*tcpu, &
                 c%solve_seconds/c%state%operator_applications/tcpu, contact_area_fraction(c%state%p), &
                 -c%force_pa(1)/cfg%load%mean_pressure_pa
-            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1,",",es14.7)') 'cpu', &
+            write (u, '(a,",",i0,",",es14.7,",",i0,",",i0,6(",",es14.7),2(",",es17.10),",",l1,3(",",es14.7))') 'cpu', &
                 cpu_sizes(k), c%solve_seconds, c%state%operator_applications, c%state%iterations, 1e3*tcpu, 0.0_dp, &
                 c%solve_seconds/c%state%operator_applications/tcpu, 0.0_dp, 0.0_dp, 0.0_dp, &
-                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged, 0.0_dp
+                contact_area_fraction(c%state%p), -c%force_pa(1)/cfg%load%mean_pressure_pa, c%state%converged, 0.0_dp, &
+                0.0_dp, 0.0_dp
             flush (stdout); flush (u)
         end do
         close (u)

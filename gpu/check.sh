@@ -27,7 +27,7 @@ for s in "${suites[@]}"; do
 done
 if command -v compute-sanitizer >/dev/null 2>&1; then
     for t in passes-shared passes-kernel-and-contact passes-bccg passes-pdr passes-dr-and-anderson transform-against-fftw \
-             dense-visco-pdr; do
+             work-area-lent dense-visco-pdr; do
         if compute-sanitizer --tool memcheck --error-exitcode 3 "$tests" device "$t" > /tmp/memcheck.log 2>&1; then
             passed=$((passed + 1)); echo "memcheck $t: clean"
         else

@@ -1,9 +1,14 @@
 #!/usr/bin/env bash
 # On the GPU machine, from the repository root with gpu/dist packed by gpu/pack.sh: the device
 # checks (gpu/check.sh) and the benchmark (veslide-bench gpu) in stages, each with a time limit,
-# inside a budget of VESLIDE_REMOTE_BUDGET seconds (default 420); a stage that no longer fits is
-# skipped and said so. Logs and the benchmark's CSV go to $OUT (default gpu-out/), at most 8
-# files: summary.txt, device.log, bench.log, bench-gpu.csv, profile.log, suites.log, big.log.
+# inside a budget of VESLIDE_REMOTE_BUDGET seconds (default 540: the whole within 10 minutes); a
+# stage that no longer fits is skipped and said so. In order: the suite 'device'; the paper scene
+# at 4096^2, 8192^2, 16384^2 with the CPU path at 4096^2 in the same run; at 32768^2; the other
+# suites and compute-sanitizer's memcheck (gpu/check.sh); pdr's lean layout at 4096^2 and 8192^2
+# (VESLIDE_DEVICE_LEAN=1: cuFFT's work area in u, the device memory veslide --memory's refusal
+# counts on); the per-pass profile at 4096^2, 8192^2. Logs and the benchmark's CSV go to $OUT
+# (default gpu-out/), at most 8 files: summary.txt, device.log, bench.log (with big.log and
+# lean.log appended to bench-gpu.csv), profile.log, suites.log.
 set -uo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 out=${OUT:-gpu-out}; mkdir -p "$out"
@@ -20,7 +25,7 @@ fi
 export LD_LIBRARY_PATH="$PWD/$dist/lib${cudalib:+:$cudalib}"
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-$(nproc)} OMP_WAIT_POLICY=passive
 export VESLIDE_FFTW_WISDOM=none
-budget=${VESLIDE_REMOTE_BUDGET:-420}
+budget=${VESLIDE_REMOTE_BUDGET:-540}
 start=$(date +%s)
 summary="$out/summary.txt"
 {
@@ -43,16 +48,20 @@ stage() {
 }
 bin=$dist/bin
 stage "device suite" 120 "$out/device.log" "$bin/veslide-tests" device
-VESLIDE_BENCH_CSV="$out/bench-gpu.csv" stage "benchmark 1024..16384 and the CPU at 2048, 4096" 240 \
-    "$out/bench.log" "$bin/veslide-bench" gpu 1024 2048 4096 8192 16384
+VESLIDE_BENCH_CPU=4096 VESLIDE_BENCH_CSV="$out/bench-gpu.csv" stage "benchmark 4096..16384 and the CPU at 4096" \
+    200 "$out/bench.log" "$bin/veslide-bench" gpu 4096 8192 16384
+VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/big.csv stage "benchmark 32768" 120 "$out/bench.log" \
+    "$bin/veslide-bench" gpu 32768
+stage "the other suites and memcheck (gpu/check.sh)" 150 "$out/suites.log" bash gpu/check.sh "$bin"
+echo "## pdr's lean layout (VESLIDE_DEVICE_LEAN=1)" >> "$out/bench.log"
+VESLIDE_DEVICE_LEAN=1 VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/lean.csv \
+    stage "pdr's lean layout at 4096, 8192 (VESLIDE_DEVICE_LEAN=1)" 60 "$out/bench.log" "$bin/veslide-bench" gpu 4096 8192
 VESLIDE_DEVICE_PROFILE=1 VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/profile.csv \
     stage "profile at 4096, 8192" 60 "$out/profile.log" "$bin/veslide-bench" gpu 4096 8192
-stage "the other suites and memcheck (gpu/check.sh)" 180 "$out/suites.log" bash gpu/check.sh "$bin"
-VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/big.csv stage "benchmark 32768" 150 "$out/big.log" \
-    "$bin/veslide-bench" gpu 32768
-cat /tmp/big.csv >> "$out/bench-gpu.csv" 2>/dev/null
+tail -n +2 /tmp/big.csv >> "$out/bench-gpu.csv" 2>/dev/null
+{ echo "# lean layout (VESLIDE_DEVICE_LEAN=1)"; tail -n +2 /tmp/lean.csv; } >> "$out/bench-gpu.csv" 2>/dev/null
 echo "total: $(($(date +%s) - start)) s" >> "$summary"
 cat "$summary"
 grep -E "passed|failed|FAIL" "$out/device.log" | tail -5
 tail -5 "$out/suites.log"
-grep -E "^\|" "$out/bench.log" "$out/big.log" 2>/dev/null | cut -c1-200
+grep -E "^\||^device:|lean" "$out/bench.log" 2>/dev/null | cut -c1-240

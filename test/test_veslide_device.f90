@@ -13,7 +13,8 @@ module test_veslide_device
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_device, only: device_enabled, device_count, device_emulated, device_info_t, device_info, &
-                              device_peak_bytes, device_reset_peak, device_bytes_in_use, device_check
+                              device_peak_bytes, device_reset_peak, device_bytes_in_use, device_check, &
+                              device_moved_bytes, device_has_room
     use veslide_arrays, only: rarray_t, carray_t, iarray_t, sarray_t
     use veslide_transform, only: transform_t
     use veslide_passes, only: fill, scale, divide, subtract, scaled_copy, divided_copy, centre_scale, centre_divide, &
@@ -22,10 +23,11 @@ module test_veslide_device
     use veslide_kernel_passes, only: resolvent_multiplier, resolvent_apply
     use veslide_contact_passes, only: gap_and_contact_sums, gap_measures, project_and_sum
     use veslide_contact_law, only: contact_law_t
-    use veslide_bccg_passes, only: metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
+    use veslide_bccg_passes, only: metric_t, metric, metric_values, set_contact, statistics, residual, precondition, &
+                                   set_sum, direction, energy, step, &
                                    update_transform, step_transform, gap_multiply, add_points, clipped_points
     use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
-                                  full_contact, gap_to_z, sum_of, one_plus, difference_from
+                                  add_scaled, full_contact, gap_to_z, sum_of, one_plus, difference_from
     use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap, dr_load_sums, dr_shift
     use veslide_anderson_passes, only: anderson_columns, anderson_update
     use veslide_material, only: material_t, new_elastic
@@ -35,11 +37,13 @@ module test_veslide_device
     use veslide_solver, only: solve_contact, gpu_visible
     use veslide_config, only: config_t
     use veslide_case, only: case_t, run_case
+    use veslide_memory, only: device_bytes_per_cell
+    use veslide_study, only: run_study
     use veslide_scenes, only: hard_case_count, hard_case
     use test_veslide_hard, only: check_friction_sign
     use veslide_analysis, only: contact_area_fraction
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
-    use test_support, only: solve_case
+    use test_support, only: solve_case, unique_name, remove
     use dense_reference, only: dense_compare
     use reference_oracles, only: paper_rough, paper_solid, peak_speed
     implicit none
@@ -83,7 +87,10 @@ contains
             new_unittest("device-against-cpu", test_against_cpu), &
             new_unittest("repeats-bit-for-bit", test_repeat), &
             new_unittest("refusals", test_refusals), &
-            new_unittest("memory-counted-and-returned", test_memory) &
+            new_unittest("memory-counted-and-returned", test_memory), &
+            new_unittest("work-area-lent", test_work_area), &
+            new_unittest("memory-estimate-is-the-peak", test_memory_estimate), &
+            new_unittest("study-warm-start-stays-on-the-device", test_study_kept) &
             ]
     end subroutine collect_device
 
@@ -304,6 +311,7 @@ contains
         integer(int8), allocatable :: acth(:, :)
         type(rarray_t) :: xh, xd, ph, pd, vh, vd, ksh, ksd, wah, wad
         type(carray_t) :: kdh, kdd, kh, kdv, pkh, pkd, hkh, hkd
+        type(metric_t) :: mh, md
         type(iarray_t) :: ah, ad
         type(grid_t) :: grid
         real(dp) :: wa(na), wb(ny), r3h(3, ny), r3d(3, ny), r4h(4, ny), r4d(4, ny), rh(ny), rdv(ny), ch(ny), cdv(ny), &
@@ -317,12 +325,14 @@ contains
         call twin_real(nx, ny, v, vh, vd)
         call twin_complex(na, ny, kd, kdh, kdd)
         call twin_real(na, ny, ks, ksh, ksd)
-        ! metric, both ways
-        call metric(ksh, kdh, 0.7_dp, modulus=.true.); call metric(ksd, kdd, 0.7_dp, modulus=.true.)
+        ! metric, both ways (on the device formed where each pass reads it: its values as formed)
+        call metric(mh, kdh, 0.7_dp, modulus=.true.); call metric(md, kdd, 0.7_dp, modulus=.true.)
+        call metric_values(mh, ksh); call metric_values(md, ksd)
         call same_real(error, ksh, ksd, "metric |K|")
-        call metric(ksh, kdh, 0.7_dp, modulus=.false.); call metric(ksd, kdd, 0.7_dp, modulus=.false.)
+        kd(1, 1) = (0.0_dp, 0.3_dp); kd(3, 2) = (-1.0_dp, 0.2_dp); call kdd%upload(kd)   ! M = 0, M < 0
+        call metric(mh, kdh, 0.7_dp, modulus=.false.); call metric(md, kdd, 0.7_dp, modulus=.false.)
+        call metric_values(mh, ksh); call metric_values(md, ksd)
         call same_real(error, ksh, ksd, "metric Re K")
-        ks(1, 1) = 0.0_dp; ks(3, 2) = -1.0_dp; call ksd%upload(ks)     ! zeros of the multiplier
         call ah%create(nx, ny, .false.); call ad%create(nx, ny, .true.)
         call set_contact(ah, ph); call set_contact(ad, pd)
         wa = [(merge(1.0_dp, 2.0_dp, i == 1 .or. i == na), i=1, na)]; wb = 1.0_dp
@@ -338,11 +348,11 @@ contains
         call set_sum(xh, ah, rh); call set_sum(xd, ad, rdv)
         call same_values(error, rdv, rh, "set_sum")
         call twin_complex(na, ny, k, kh, kdv)
-        call precondition(kh, ksh, wa, wah, wb, 1.0e3_dp, ch); call precondition(kdv, ksd, wa, wad, wb, 1.0e3_dp, cdv)
+        call precondition(kh, mh, wa, wah, wb, 1.0e3_dp, ch); call precondition(kdv, md, wa, wad, wb, 1.0e3_dp, cdv)
         call same_complex(error, kh, kdv, "precondition"); call same_values(error, cdv, ch, "precondition r.z")
         call direction(xh, ah, vh, 0.4_dp, 0.03_dp); call direction(xd, ad, vd, 0.4_dp, 0.03_dp)
         call same_real(error, xh, xd, "direction x"); call same_real(error, vh, vd, "direction v")
-        call energy(kh, ksh, wa, wah, wb, ch); call energy(kdv, ksd, wa, wad, wb, cdv)
+        call energy(kh, mh, wa, wah, wb, ch); call energy(kdv, md, wa, wad, wb, cdv)
         call same_values(error, cdv, ch, "energy")
         call step(xh, ah, ph, vh, 1.1_dp, 0.9_dp, rh, ncl(1), clip)
         call step(xd, ad, pd, vd, 1.1_dp, 0.9_dp, rdv, ncl(2), clip)
@@ -355,10 +365,10 @@ contains
         call twin_complex(na, ny, pk, pkh, pkd); call twin_complex(na, ny, hk, hkh, hkd)
         call update_transform(pkh, kh, 1.2_dp, 0.3_dp); call update_transform(pkd, kdv, 1.2_dp, 0.3_dp)
         call same_complex(error, pkh, pkd, "update_transform")
-        call step_transform(pkh, kh, ksh, hkh, 1.2_dp, 0.3_dp, 0.8_dp)
-        call step_transform(pkd, kdv, ksd, hkd, 1.2_dp, 0.3_dp, 0.8_dp)
+        call step_transform(pkh, kh, mh, hkh, 1.2_dp, 0.3_dp, 0.8_dp)
+        call step_transform(pkd, kdv, md, hkd, 1.2_dp, 0.3_dp, 0.8_dp)
         call same_complex(error, pkh, pkd, "step_transform p^"); call same_complex(error, kh, kdv, "step_transform gap")
-        call gap_multiply(kh, pkh, ksh, hkh, 0.6_dp); call gap_multiply(kdv, pkd, ksd, hkd, 0.6_dp)
+        call gap_multiply(kh, pkh, mh, hkh, 0.6_dp); call gap_multiply(kdv, pkd, md, hkd, 0.6_dp)
         call same_complex(error, kh, kdv, "gap_multiply")
         ex = cmplx(0.3_dp, -0.2_dp, dp)*reshape([(real(i, dp), i=1, 3*na)], [na, 3])
         ey = cmplx(-0.1_dp, 0.4_dp, dp)*reshape([(real(i, dp), i=1, 3*ny)], [ny, 3])
@@ -367,35 +377,37 @@ contains
         call device_errors(error, "bccg passes")
         call xd%destroy(); call pd%destroy(); call vd%destroy(); call ksd%destroy(); call wad%destroy()
         call kdd%destroy(); call kdv%destroy(); call pkd%destroy(); call hkd%destroy(); call ad%destroy()
-        call ah%destroy()
+        call ah%destroy(); call mh%destroy(); call md%destroy()
     end subroutine test_passes_bccg
 
     subroutine test_passes_pdr(error)
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: na = nx/2 + 1
-        real(dp), allocatable, target :: x(:, :), h(:, :), p(:, :), z(:, :), ks(:, :)
+        real(dp), allocatable, target :: x(:, :), h(:, :), p(:, :), z(:, :)
         complex(dp), allocatable, target :: kd(:, :), k(:, :), hk(:, :), cm(:, :), pk(:, :)
-        type(rarray_t) :: xh, xd, hh, hd, ph, pd, zh, zd, ksh, ksd
+        type(rarray_t) :: xh, xd, hh, hd, ph, pd, zh, zd
         type(carray_t) :: kdh, kdd, kh, kdv, hkh, hkd, cmh, cmd, pkh, pkd
+        type(metric_t) :: mh, md
         real(dp) :: rh(ny), rdv(ny), r2h(2, ny), r2d(2, ny), gmin(2)
         integer(i8) :: nc(2)
         call twin_real(nx, ny, x, xh, xd); call twin_real(nx, ny, h, hh, hd)
         call twin_real(nx, ny, p, ph, pd, lo=-0.3_dp, hi=1.0_dp); call twin_real(nx, ny, z, zh, zd)
-        call twin_real(na, ny, ks, ksh, ksd, lo=-0.1_dp, hi=2.0_dp)
         call twin_complex(na, ny, kd, kdh, kdd)
-        kd = cmplx(abs(real(kd)) + 0.1_dp, aimag(kd), dp); call kdd%upload(kd)
+        kd = cmplx(abs(real(kd)) + 0.1_dp, aimag(kd), dp); kd(1, 1) = (0.0_dp, 0.0_dp)   ! (M = 0 there)
+        call kdd%upload(kd)
+        call metric(mh, kdh, 0.7_dp, modulus=.true.); call metric(md, kdd, 0.7_dp, modulus=.true.)
         call twin_complex(na, ny, k, kh, kdv); call twin_complex(na, ny, hk, hkh, hkd)
         call twin_complex(na, ny, cm, cmh, cmd); call twin_complex(na, ny, pk, pkh, pkd)
-        call step_constant(cmh, kh, ksh, kdh, 0.9_dp, 0.4_dp, 37.0_dp)
-        call step_constant(cmd, kdv, ksd, kdd, 0.9_dp, 0.4_dp, 37.0_dp)
+        call step_constant(cmh, kh, mh, kdh, 0.9_dp, 0.4_dp, 37.0_dp)
+        call step_constant(cmd, kdv, md, kdd, 0.9_dp, 0.4_dp, 37.0_dp)
         call same_complex(error, cmh, cmd, "step_constant")
-        call resolvent(kh, hkh, ksh, kdh, cmh, 0.4_dp, 37.0_dp); call resolvent(kdv, hkd, ksd, kdd, cmd, 0.4_dp, 37.0_dp)
+        call resolvent(kh, hkh, mh, kdh, cmh, 0.4_dp, 37.0_dp); call resolvent(kdv, hkd, md, kdd, cmd, 0.4_dp, 37.0_dp)
         call same_complex(error, kh, kdv, "resolvent x^"); call same_complex(error, hkh, hkd, "resolvent heights")
         call scaled_product(kh, kdh, pkh, 0.3_dp); call scaled_product(kdv, kdd, pkd, 0.3_dp)
         call same_complex(error, kh, kdv, "scaled_product")
-        call full_contact(kh, ksh, kdh, 5.0_dp); call full_contact(kdv, ksd, kdd, 5.0_dp)
+        call full_contact(kh, mh, kdh, 5.0_dp); call full_contact(kdv, md, kdd, 5.0_dp)
         call same_complex(error, kh, kdv, "full_contact")
-        call gap_to_z(kh, ksh, 0.9_dp, 37.0_dp); call gap_to_z(kdv, ksd, 0.9_dp, 37.0_dp)
+        call gap_to_z(kh, mh, 0.9_dp, 37.0_dp); call gap_to_z(kdv, md, 0.9_dp, 37.0_dp)
         call same_complex(error, kh, kdv, "gap_to_z")
         call residual_sums(xh, hh, 0.1_dp, 2.0_dp, ph, rh, nc(1)); call residual_sums(xd, hd, 0.1_dp, 2.0_dp, pd, rdv, nc(2))
         call same_values(error, rdv, rh, "residual_sums")
@@ -405,11 +417,12 @@ contains
         call same_values(error, reshape(r2d, [2*ny]), reshape(r2h, [2*ny]), "residual_gap")
         if (.not. allocated(error)) call check(error, gmin(1) == gmin(2), "min g")
         call relax(zh, ph, xh, 1.5_dp); call relax(zd, pd, xd, 1.5_dp); call same_real(error, zh, zd, "relax")
+        call add_scaled(zh, xh, -1.5_dp); call add_scaled(zd, xd, -1.5_dp); call same_real(error, zh, zd, "add_scaled")
         call sum_of(zh, ph, xh); call sum_of(zd, pd, xd); call same_real(error, zh, zd, "sum_of")
         call one_plus(zh, xh); call one_plus(zd, xd); call same_real(error, zh, zd, "one_plus")
         call difference_from(zh, ph); call difference_from(zd, pd); call same_real(error, zh, zd, "difference_from")
         call device_errors(error, "pdr passes")
-        call xd%destroy(); call hd%destroy(); call pd%destroy(); call zd%destroy(); call ksd%destroy()
+        call xd%destroy(); call hd%destroy(); call pd%destroy(); call zd%destroy(); call md%destroy(); call mh%destroy()
         call kdd%destroy(); call kdv%destroy(); call hkd%destroy(); call cmd%destroy(); call pkd%destroy()
     end subroutine test_passes_pdr
 
@@ -697,5 +710,169 @@ contains
         if (allocated(error)) return
         call check(error, device_bytes_in_use() <= before + 1.0e6_dp, "device memory not given back")
     end subroutine test_memory
+
+    !> cuFFT's work area lent by an array the caller does not read across a transform: used when
+    !> it is large enough (the emulated device models it as nx ny doubles and writes NaN there at
+    !> every transform, as a GPU leaves garbage), the transform's own otherwise
+    subroutine test_work_area(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n1 = 32, n2 = 24
+        type(transform_t) :: t
+        type(rarray_t) :: big, small
+        real(dp) :: a(n1, n2), b(n1, n2 - 1), before, start
+        start = device_bytes_in_use()
+        call t%on_device(n1, n2, error); if (allocated(error)) return
+        call big%create(n1, n2, .true.); call small%create(n1, n2 - 1, .true.)
+        call random_number(a); call big%upload(a)
+        call random_number(b); call small%upload(b)
+        call t%x%upload(a)
+        before = device_bytes_in_use()
+        call t%lend_work(small)
+        call check(error, .not. t%lent .and. device_bytes_in_use() == before + t%work_bytes, &
+                   "a work area smaller than cuFFT's was taken, or the transform's own not counted")
+        if (allocated(error)) return
+        call t%lend_work(big)
+        call check(error, t%lent .eqv. t%work_bytes > 0.0_dp, "a large enough work area was not taken")
+        if (allocated(error)) return
+        call t%forward(); call t%backward_unscaled()
+        call device_errors(error, "transform with a lent work area"); if (allocated(error)) return
+        call small%download(b)
+        call check(error, all(b == b), "the transform wrote into an array it no longer holds")
+        if (allocated(error)) return
+        if (device_emulated()) then
+            call big%download(a)
+            call check(error, all(a /= a), "the emulated device did not spoil the lent work area")
+            if (allocated(error)) return
+        end if
+        call t%destroy()
+        call check(error, device_bytes_in_use() == start + 8.0_dp*n1*n2 + 8.0_dp*n1*(n2 - 1), &
+                   "the transform's buffers and own work area not given back")
+        call big%destroy(); call small%destroy()
+    end subroutine test_work_area
+
+    !> `veslide --memory`'s device estimate (veslide_memory) against the device's own count of what
+    !> a solve holds at its peak (every allocation, cuFFT's work area included; on the emulated
+    !> device its model, nx ny doubles): bccg, pdr, dr and pdr with mixing in the layout the
+    !> device's room gives them (room, on the emulated device, whose free memory is unknown, but
+    !> with VESLIDE_DEVICE_LEAN=1), and pdr in its
+    !> lean layout, which the refusal's estimate is (the same solution to round-off, and at most a
+    !> few FFT pairs apart): per cell at least the estimate's bytes, and no more than
+    !> what the estimate leaves out as small: the half-spectra's row beyond nx/2 (at most 6 of
+    !> them, 16 ny bytes each: the estimate counts 8 per cell), bccg's few clipped points
+    !> transformed directly (at most 8, 16 (nx/2 + 1 + ny) bytes each) and the Hermitian weights
+    !> (8 (nx/2 + 1)): 2.3 bytes per cell at 128^2, less than any array of the grid but act's
+    subroutine test_memory_estimate(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 128
+        integer, parameter :: cases(4) = [1, 4, 4, 4]
+        character(len=4), parameter :: methods(4) = [character(len=4) :: 'bccg', 'pdr', 'dr', 'pdr']
+        integer, parameter :: memories(4) = [-1, -1, -1, 3]
+        !> holds cuFFT's work area of its own (the estimate counts 8 bytes per cell for it, the
+        !> most cuFFT takes: it takes none on small grids)
+        logical, parameter :: own_work(4) = [.false., .true., .false., .true.]
+        type(transform_t) :: t
+        type(config_t) :: cfg
+        type(case_t) :: c
+        type(contact_problem_t) :: problem
+        type(contact_state_t) :: lean
+        type(solver_options_t) :: opts
+        type(fft2d_t) :: fft
+        character(len=:), allocatable :: name
+        real(dp) :: before, measured, estimate, cells, small, dpres, work
+        integer :: i
+        logical :: room
+        ! (the row partials' buffer, which a solve keeps, grown first by a small one)
+        call hard_case(4, 16, cfg, name, error); if (allocated(error)) return
+        cfg%solver%device = 'gpu'
+        call run_case(cfg, c, error); if (allocated(error)) return
+        cells = real(n, dp)**2
+        small = (6*16.0_dp*n + 8*16.0_dp*(n/2 + 1 + n) + 8.0_dp*(n/2 + 1))/cells
+        call t%on_device(n, n, error); if (allocated(error)) return
+        work = t%work_bytes/cells
+        call t%destroy()
+        room = device_has_room(0.0_dp)      ! (no with VESLIDE_DEVICE_LEAN=1: pdr's lean layout)
+        call report("cuFFT's work area [bytes/cell]", work)
+        do i = 1, size(cases)
+            call hard_case(cases(i), n, cfg, name, error); if (allocated(error)) return
+            cfg%solver%device = 'gpu'; cfg%solver%method = trim(methods(i))
+            cfg%solver%anderson_memory = memories(i); cfg%solver%tolerance = 1.0e-6_dp
+            name = trim(methods(i))//trim(merge(" with mixing 3", "              ", memories(i) > 0))
+            before = device_bytes_in_use()
+            call device_reset_peak()
+            call run_case(cfg, c, error); if (allocated(error)) return
+            measured = (device_peak_bytes() - before)/cells
+            estimate = device_bytes_per_cell(c%spec, room=room)
+            if (own_work(i) .and. (room .or. memories(i) > 0)) estimate = estimate - 8.0_dp + work
+            call check(error, c%state%device == 'gpu', name//": not on the device"); if (allocated(error)) return
+            call check_estimate(name)
+            if (allocated(error)) return
+        end do
+        ! the last case again, pdr in its lean layout, on the case's kernel and heights
+        name = "pdr, lean layout"
+        call new_contact_problem(problem, c%kernel, c%h, c%spec%mean_pressure_pa, error); if (allocated(error)) return
+        call fft%init(n, n, error, planner='estimate'); if (allocated(error)) return
+        opts = c%spec%solver; opts%anderson_memory = -1; opts%device_lean = .true.
+        before = device_bytes_in_use()
+        call device_reset_peak()
+        call solve_contact(problem, fft, opts, lean, error); if (allocated(error)) return
+        measured = (device_peak_bytes() - before)/cells
+        cfg%solver%anderson_memory = -1
+        call run_case(cfg, c, error); if (allocated(error)) return       ! (the same case, room: its layout)
+        estimate = device_bytes_per_cell(c%spec)
+        call check_estimate(name); if (allocated(error)) return
+        dpres = maxval(abs(lean%p - c%state%p))/maxval(c%state%p)
+        call report(name//": |dp|/max p against the layout with room", dpres)
+        call report(name//": FFT pairs, lean - with room", real(lean%operator_applications - &
+                                                                 c%state%operator_applications, dp))
+        call check(error, lean%converged .and. lean%device == 'gpu', name//": not converged on the device")
+        if (allocated(error)) return
+        ! (both within the tolerance 1e-6 of the solution)
+        call check(error, dpres <= 1.0e-5_dp, name//": the pressures differ by "//real_text(dpres))
+        call fft%destroy()
+
+    contains
+
+        subroutine check_estimate(what)
+            character(len=*), intent(in) :: what
+            call report(what//": device peak [bytes/cell]", measured)
+            call report(what//": its estimate [bytes/cell]", estimate)
+            call check(error, measured >= estimate .and. measured <= estimate + small, what//": the device"// &
+                       " held "//real_text(measured)//" bytes per cell, the estimate says "//real_text(estimate))
+        end subroutine check_estimate
+
+    end subroutine test_memory_estimate
+
+    !> A study's chain of speeds on the device keeps its fields there from case to case: the next
+    !> speed's warm start is formed where the last case's p and g are, and the heights stay, so
+    !> that only the first case's heights and start and each case's multiplier go up (dr, which
+    !> uploads nothing else: pdr's inner solves also send up the transforms of a few clipped
+    !> points); every case converges on the device (the results equal those with the uploads bit
+    !> for bit: scripts/same_outputs.py --device gpu, study_speeds and study_pdr)
+    subroutine test_study_kept(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 32
+        type(config_t) :: cfg
+        character(len=:), allocatable :: name, out
+        real(dp) :: up0, up, cells, expected, v
+        integer :: nfail
+        call hard_case(4, n, cfg, name, error); if (allocated(error)) return
+        cfg%solver%device = 'gpu'; cfg%solver%method = 'dr'
+        v = cfg%motion%speed_m_s
+        cfg%sweep%speeds = [v, 1.3_dp*v, 1.7_dp*v]
+        cfg%output%fields = .false.
+        out = unique_name('device-study.h5')
+        up0 = device_moved_bytes(.true.)
+        call run_study(cfg, out, nfail, error)
+        call remove(out)
+        if (allocated(error)) return
+        up = device_moved_bytes(.true.) - up0
+        cells = real(n, dp)**2
+        expected = 2*8*cells + 3*16.0_dp*(n/2 + 1)*n
+        call report("uploaded [bytes/cell]", up/cells)
+        call report("uploaded with the warm starts sent up [bytes/cell]", (up + 2*3*8*cells)/cells)
+        call check(error, nfail == 0, "a case of the study did not converge"); if (allocated(error)) return
+        call check(error, up == expected, "uploaded "//real_text(up)//" bytes, expected "//real_text(expected)// &
+                   " (the first case's heights and start, each case's multiplier)")
+    end subroutine test_study_kept
 
 end module test_veslide_device

@@ -17,8 +17,11 @@
 !>              points leave the set); per row sum p (and the number clipped)
 !>  update_transform / step_transform / gap_multiply: the spectral updates of p^ and of the gap
 !>  add_points  p^ += the transforms of a few point values (clipped points)
+!> The metric's multiplier M/N (`metric_t`) is an array on the host; on the device it is not
+!> held: each pass that reads it forms it from K_d with the operations the array was filled with
+!> (the same bits; 4 bytes per cell fewer).
 module veslide_bccg_passes
-    use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_long
+    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_int, c_double, c_long
     use, intrinsic :: iso_fortran_env, only: int8
     use veslide_kinds, only: dp, i8
     use veslide_grid, only: grid_t
@@ -26,8 +29,22 @@ module veslide_bccg_passes
     use veslide_device, only: device_alloc, device_free, device_upload, device_download
     implicit none
     private
-    public :: metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
+    public :: metric_t, metric, metric_values, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
               update_transform, step_transform, gap_multiply, add_points, clipped_points
+
+    !> M/N = f |K_d| (`modulus`) or f Re K_d on the spectral storage, where a solve runs: on the
+    !> host the array `ks`; on the device K_d (held by the caller while this is used), from which
+    !> each pass forms it
+    type :: metric_t
+        integer :: n1 = 0, n2 = 0
+        logical :: device = .false.
+        type(rarray_t) :: ks                  !! host: the values
+        type(c_ptr) :: kd = c_null_ptr        !! device: K_d
+        real(dp) :: f = 0.0_dp
+        logical :: modulus = .false.
+    contains
+        procedure :: destroy => metric_destroy
+    end type metric_t
 
 #ifdef VESLIDE_CUDA
     interface
@@ -60,10 +77,11 @@ module veslide_bccg_passes
             real(c_double), intent(out) :: rows(*)
         end subroutine residual_gpu
         !> cols(nb): sum of wa w |k|^2 per spectral column (times wb on the host)
-        subroutine precondition_gpu(na, nb, k, ks, wa, n2, cols) bind(c, name='veslide_bccg_precondition')
+        subroutine precondition_gpu(na, nb, k, kd, f, modulus, wa, n2, cols) bind(c, name='veslide_bccg_precondition')
             import :: c_int, c_ptr, c_double
-            integer(c_int), value :: na, nb
-            type(c_ptr), value :: k, ks, wa
+            integer(c_int), value :: na, nb, modulus
+            type(c_ptr), value :: k, kd, wa
+            real(c_double), value :: f
             real(c_double), value :: n2
             real(c_double), intent(out) :: cols(*)
         end subroutine precondition_gpu
@@ -79,10 +97,11 @@ module veslide_bccg_passes
             type(c_ptr), value :: x, act, v
             real(c_double), value :: beta, shift
         end subroutine direction_gpu
-        subroutine energy_gpu(na, nb, k, ks, wa, cols) bind(c, name='veslide_bccg_energy')
+        subroutine energy_gpu(na, nb, k, kd, f, modulus, wa, cols) bind(c, name='veslide_bccg_energy')
             import :: c_int, c_ptr, c_double
-            integer(c_int), value :: na, nb
-            type(c_ptr), value :: k, ks, wa
+            integer(c_int), value :: na, nb, modulus
+            type(c_ptr), value :: k, kd, wa
+            real(c_double), value :: f
             real(c_double), intent(out) :: cols(*)
         end subroutine energy_gpu
         !> rows(2, ny): [sum p, points clipped]
@@ -94,12 +113,12 @@ module veslide_bccg_passes
             real(c_double), intent(out) :: rows(*)
         end subroutine step_gpu
         !> mode 0: pk = a pk + alpha k;  1: that, then k = pk (b ks) - hk;  2: k = pk (a ks) - hk
-        subroutine spectral_gpu(n, pk, k, ks, hk, a, alpha, b, mode) bind(c, name='veslide_bccg_spectral')
+        subroutine spectral_gpu(n, pk, k, kd, f, modulus, hk, a, alpha, b, mode) bind(c, name='veslide_bccg_spectral')
             import :: c_long, c_ptr, c_double, c_int
             integer(c_long), value :: n
-            type(c_ptr), value :: pk, k, ks, hk
-            real(c_double), value :: a, alpha, b
-            integer(c_int), value :: mode
+            type(c_ptr), value :: pk, k, kd, hk
+            real(c_double), value :: f, a, alpha, b
+            integer(c_int), value :: modulus, mode
         end subroutine spectral_gpu
         subroutine add_points_gpu(na, nb, m, pk, ex, ey) bind(c, name='veslide_bccg_add_points')
             import :: c_int, c_ptr
@@ -116,19 +135,44 @@ contains
 
     ! ---- dispatchers --------------------------------------------------------------------
 
-    !> ks = f |K_d| (`modulus`) or f Re K_d
-    subroutine metric(ks, kd, f, modulus)
-        type(rarray_t), intent(inout) :: ks
+    !> m = f |K_d| (`modulus`) or f Re K_d, where kd is: on the host its values, on the device
+    !> K_d itself (which the caller keeps while m is used)
+    subroutine metric(m, kd, f, modulus)
+        type(metric_t), intent(inout) :: m
         type(carray_t), intent(in) :: kd
         real(dp), intent(in) :: f
         logical, intent(in) :: modulus
+        call m%destroy()
+        m%n1 = kd%n1; m%n2 = kd%n2; m%device = kd%device; m%f = f; m%modulus = modulus
+        if (kd%device) then
+            m%kd = kd%d; return
+        end if
+        call m%ks%create(kd%n1, kd%n2, .false.)
+        call metric_cpu(m%ks%h, kd%h, f, modulus)
+    end subroutine metric
+
+    subroutine metric_destroy(self)
+        class(metric_t), intent(inout) :: self
+        call self%ks%destroy()
+        self%kd = c_null_ptr; self%n1 = 0; self%n2 = 0; self%device = .false.
+    end subroutine metric_destroy
+
+    !> The values of m into ks (of m's shape, where m is: on the device formed as the passes form them)
+    subroutine metric_values(m, ks)
+        type(metric_t), intent(in) :: m
+        type(rarray_t), intent(inout) :: ks
 #ifdef VESLIDE_CUDA
-        if (ks%device) then
-            call metric_gpu(elements(ks), ks%d, kd%d, f, merge(1_c_int, 0_c_int, modulus)); return
+        if (m%device) then
+            call metric_gpu(elements(ks), ks%d, m%kd, m%f, modulus_flag(m)); return
         end if
 #endif
-        call metric_cpu(ks%h, kd%h, f, modulus)
-    end subroutine metric
+        ks%h = m%ks%h
+    end subroutine metric_values
+
+    pure integer(c_int) function modulus_flag(m)
+        type(metric_t), intent(in) :: m
+        modulus_flag = merge(1_c_int, 0_c_int, m%modulus)
+    end function modulus_flag
 
     !> act = 1 where p is in contact (the hard wall: p > 0), else 0
     subroutine set_contact(act, p)
@@ -191,17 +235,18 @@ contains
 
     subroutine precondition(k, ks, wa, wa_dev, wb, n2, cols)
         type(carray_t), intent(inout) :: k
-        type(rarray_t), intent(in) :: ks, wa_dev
+        type(metric_t), intent(in) :: ks
+        type(rarray_t), intent(in) :: wa_dev
         real(dp), intent(in) :: wa(:), wb(:), n2
         real(dp), intent(out) :: cols(:)
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call precondition_gpu(k%n1, k%n2, k%d, ks%d, wa_dev%d, n2, cols)
+            call precondition_gpu(k%n1, k%n2, k%d, ks%kd, ks%f, modulus_flag(ks), wa_dev%d, n2, cols)
             cols = wb*cols
             return
         end if
 #endif
-        call precondition_cpu(k%h, ks%h, wa, wb, n2, cols)
+        call precondition_cpu(k%h, ks%ks%h, wa, wb, n2, cols)
     end subroutine precondition
 
     subroutine direction(x, act, v, beta, shift)
@@ -218,17 +263,18 @@ contains
 
     subroutine energy(k, ks, wa, wa_dev, wb, cols)
         type(carray_t), intent(in) :: k
-        type(rarray_t), intent(in) :: ks, wa_dev
+        type(metric_t), intent(in) :: ks
+        type(rarray_t), intent(in) :: wa_dev
         real(dp), intent(in) :: wa(:), wb(:)
         real(dp), intent(out) :: cols(:)
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call energy_gpu(k%n1, k%n2, k%d, ks%d, wa_dev%d, cols)
+            call energy_gpu(k%n1, k%n2, k%d, ks%kd, ks%f, modulus_flag(ks), wa_dev%d, cols)
             cols = wb*cols
             return
         end if
 #endif
-        call energy_cpu(k%h, ks%h, wa, wb, cols)
+        call energy_cpu(k%h, ks%ks%h, wa, wb, cols)
     end subroutine energy
 
     !> The step; `clip_rows` (device only): the points clipped per row, for clipped_points
@@ -259,7 +305,7 @@ contains
         real(dp), intent(in) :: a, alpha
 #ifdef VESLIDE_CUDA
         if (pk%device) then
-            call spectral_gpu(elements(pk), pk%d, k%d, k%d, k%d, a, alpha, 0.0_dp, PK_UPDATE); return
+            call spectral_gpu(elements(pk), pk%d, k%d, k%d, 0.0_dp, 0_c_int, k%d, a, alpha, 0.0_dp, PK_UPDATE); return
         end if
 #endif
         call update_transform_cpu(pk%h, k%h, a, alpha)
@@ -268,29 +314,31 @@ contains
     !> pk = a pk + alpha k, then k = pk (a_new ks) - hk (the gap's transform)
     subroutine step_transform(pk, k, ks, hk, a, alpha, a_new)
         type(carray_t), intent(inout) :: pk, k
-        type(rarray_t), intent(in) :: ks
+        type(metric_t), intent(in) :: ks
         type(carray_t), intent(in) :: hk
         real(dp), intent(in) :: a, alpha, a_new
 #ifdef VESLIDE_CUDA
         if (pk%device) then
-            call spectral_gpu(elements(pk), pk%d, k%d, ks%d, hk%d, a, alpha, a_new, PK_STEP); return
+            call spectral_gpu(elements(pk), pk%d, k%d, ks%kd, ks%f, modulus_flag(ks), hk%d, a, alpha, a_new, PK_STEP)
+            return
         end if
 #endif
-        call step_transform_cpu(pk%h, k%h, ks%h, hk%h, a, alpha, a_new)
+        call step_transform_cpu(pk%h, k%h, ks%ks%h, hk%h, a, alpha, a_new)
     end subroutine step_transform
 
     !> k = pk (a ks) - hk
     subroutine gap_multiply(k, pk, ks, hk, a)
         type(carray_t), intent(inout) :: k
         type(carray_t), intent(in) :: pk, hk
-        type(rarray_t), intent(in) :: ks
+        type(metric_t), intent(in) :: ks
         real(dp), intent(in) :: a
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(elements(k), pk%d, k%d, ks%d, hk%d, a, 0.0_dp, 0.0_dp, PK_GAP); return
+            call spectral_gpu(elements(k), pk%d, k%d, ks%kd, ks%f, modulus_flag(ks), hk%d, a, 0.0_dp, 0.0_dp, PK_GAP)
+            return
         end if
 #endif
-        call gap_multiply_cpu(k%h, pk%h, ks%h, hk%h, a)
+        call gap_multiply_cpu(k%h, pk%h, ks%ks%h, hk%h, a)
     end subroutine gap_multiply
 
     !> pk += sum over the points k of ex(i, k) ey(j, k), (i, j) the half-spectrum entry of each

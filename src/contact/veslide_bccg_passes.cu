@@ -7,14 +7,11 @@
 
 namespace {
 
+// (the metric's values, formed as each pass forms them: vs::metric_v)
 struct metric_f {
     double *ks;
-    const double2 *kd;
-    double f;
-    int modulus;
-    VS_HD void operator()(long n) const {
-        ks[n] = modulus ? f * hypot(kd[n].x, kd[n].y) : kd[n].x * f;
-    }
+    vs::metric_v m;
+    VS_HD void operator()(long n) const { ks[n] = m[n]; }
 };
 
 struct set_contact_f {
@@ -70,13 +67,14 @@ struct residual_f {
 
 struct precondition_f {
     double2 *k;
-    const double *ks, *wa;
+    vs::metric_v ks;
+    const double *wa;
     double n2;
     int na;
     VS_HD void operator()(int i, int j, double *s, double *) const {
         long n = i + (long)na * j;
-        double w = 0.0;
-        if (ks[n] > 0.0) w = 1.0 / (ks[n] * n2);
+        double w = 0.0, m = ks[n];
+        if (m > 0.0) w = 1.0 / (m * n2);
         double2 kv = k[n];
         s[0] += wa[i] * w * (kv.x * kv.x + kv.y * kv.y);
         k[n] = vs::cx(kv.x * w, kv.y * w);
@@ -106,7 +104,8 @@ struct direction_f {
 
 struct energy_f {
     const double2 *k;
-    const double *ks, *wa;
+    vs::metric_v ks;
+    const double *wa;
     int na;
     VS_HD void operator()(int i, int j, double *s, double *) const {
         long n = i + (long)na * j;
@@ -144,7 +143,7 @@ struct step_f {
 
 struct bccg_spectral_f {
     double2 *pk, *k;
-    const double *ks;
+    vs::metric_v ks;
     const double2 *hk;
     double a, alpha, b;
     int mode;
@@ -175,8 +174,10 @@ struct add_points_f {
 
 extern "C" {
 
+// The metric M/N is not held on the device: each pass that reads it forms it from K_d (kd, f,
+// modulus: vs::metric_v); this pass writes its values into ks (a test's, or a caller's copy)
 void veslide_bccg_metric(long n, double *ks, const double2 *kd, double f, int modulus) {
-    vs::for_each(metric_f{ks, kd, f, modulus}, n);
+    vs::for_each(metric_f{ks, vs::metric_v{kd, f, modulus}}, n);
 }
 
 void veslide_bccg_set_contact(long n, int8_t *act, const double *p) { vs::for_each(set_contact_f{act, p}, n); }
@@ -194,17 +195,18 @@ void veslide_bccg_set_sum(int nx, int ny, const double *x, const int8_t *act, do
     vs::reduce_rows<1, 0>(set_sum_f{x, act, nx}, nx, ny, rows);
 }
 
-void veslide_bccg_precondition(int na, int nb, double2 *k, const double *ks, const double *wa, double n2,
-                               double *cols) {
-    vs::reduce_rows<1, 0>(precondition_f{k, ks, wa, n2, na}, na, nb, cols);
+void veslide_bccg_precondition(int na, int nb, double2 *k, const double2 *kd, double f, int modulus,
+                               const double *wa, double n2, double *cols) {
+    vs::reduce_rows<1, 0>(precondition_f{k, vs::metric_v{kd, f, modulus}, wa, n2, na}, na, nb, cols);
 }
 
 void veslide_bccg_direction(long n, double *x, const int8_t *act, double *v, double beta, double shift) {
     vs::for_each(direction_f{x, v, act, beta, shift}, n);
 }
 
-void veslide_bccg_energy(int na, int nb, const double2 *k, const double *ks, const double *wa, double *cols) {
-    vs::reduce_rows<1, 0>(energy_f{k, ks, wa, na}, na, nb, cols);
+void veslide_bccg_energy(int na, int nb, const double2 *k, const double2 *kd, double f, int modulus,
+                         const double *wa, double *cols) {
+    vs::reduce_rows<1, 0>(energy_f{k, vs::metric_v{kd, f, modulus}, wa, na}, na, nb, cols);
 }
 
 void veslide_bccg_step(int nx, int ny, double *x, int8_t *act, double *p, double *v, double a, double alpha,
@@ -212,9 +214,9 @@ void veslide_bccg_step(int nx, int ny, double *x, int8_t *act, double *p, double
     vs::reduce_rows<2, 0>(step_f{x, p, v, act, a, alpha, nx}, nx, ny, rows);
 }
 
-void veslide_bccg_spectral(long n, double2 *pk, double2 *k, const double *ks, const double2 *hk, double a,
-                           double alpha, double b, int mode) {
-    vs::for_each(bccg_spectral_f{pk, k, ks, hk, a, alpha, b, mode}, n);
+void veslide_bccg_spectral(long n, double2 *pk, double2 *k, const double2 *kd, double f, int modulus,
+                           const double2 *hk, double a, double alpha, double b, int mode) {
+    vs::for_each(bccg_spectral_f{pk, k, vs::metric_v{kd, f, modulus}, hk, a, alpha, b, mode}, n);
 }
 
 void veslide_bccg_add_points(int na, int nb, int m, double2 *pk, const double2 *ex, const double2 *ey) {

@@ -27,7 +27,8 @@ module veslide_contact
     use veslide_arrays, only: rarray_t, carray_t
     use veslide_transform, only: transform_t
     use veslide_passes, only: multiply_spectrum
-    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures
+    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures, project_and_sum
+    use veslide_passes, only: fill, scale
     use veslide_contact_law, only: contact_law_t, ADH_STRESS
     use veslide_device, only: device_check
     use veslide_clock, only: wall_seconds
@@ -89,6 +90,9 @@ module veslide_contact
         type(rarray_t) :: h                       !! heights as given [m]
         type(carray_t) :: kd                      !! the kernel's multiplier K_d [m/Pa]
         type(rarray_t) :: p, u, g                 !! the state's pressure, displacement, gap
+        !> device: g holds the gap of the start (the previous case of a study, kept there:
+        !> solve_contact's `keep`), which the solvers take instead of uploading g_init
+        logical :: gap_held = .false.
     contains
         procedure :: finish => fields_finish
         procedure :: apply_kernel => fields_apply_kernel
@@ -187,13 +191,16 @@ contains
 
     !> A fresh state: fields allocated, pressure uniform or from `p_init` (made admissible by the
     !> law's proximal map, clipped at zero for the hard wall, and rescaled to the load)
-    subroutine problem_start(self, state, p_init)
+    subroutine problem_start(self, state, p_init, factor)
         class(contact_problem_t), intent(in) :: self
         type(contact_state_t), intent(out) :: state
         real(dp), intent(in), optional :: p_init(:, :)
+        !> the start is law%project(p_init) times `factor` (0: the uniform pressure)
+        real(dp), intent(out), optional :: factor
         integer :: nx, ny
-        real(dp) :: total
+        real(dp) :: total, f
         integer :: j
+        if (present(factor)) factor = 0.0_dp
         nx = size(self%h, 1); ny = size(self%h, 2)
         allocate (state%p(nx, ny), state%u(nx, ny), state%g(nx, ny))
         !$omp parallel do schedule(static)
@@ -205,8 +212,10 @@ contains
             if (all(shape(p_init) == [nx, ny])) then
                 total = field_sum(self%kernel%grid, self%law%project(p_init))
                 if (total > 0.0_dp) then
+                    f = self%p_mean_pa*self%kernel%grid%cells()/total
                     state%p = self%law%project(p_init)
-                    state%p = state%p*(self%p_mean_pa*self%kernel%grid%cells()/total)
+                    state%p = state%p*f
+                    if (present(factor)) factor = f
                 end if
             end if
         end if
@@ -236,15 +245,54 @@ contains
     !> `fft`: views of them (`device` false), or copies on the device with its own transforms
     !> (collective on a distributed grid, which the device refuses). `self`, `state` and `fft`
     !> must stay where they are while the fields live.
-    subroutine problem_fields(self, f, fft, state, device, error)
+    subroutine problem_fields(self, f, fft, state, device, error, kept_start, same_heights)
         class(contact_problem_t), intent(in), target :: self
-        type(contact_fields_t), intent(out) :: f
+        !> the fields (made anew; on the device, where `kept_start` is given and they are the
+        !> previous case's of the grid, kept there)
+        type(contact_fields_t), intent(inout) :: f
         type(fft2d_t), intent(inout), target :: fft
         type(contact_state_t), intent(inout), target :: state
         logical, intent(in) :: device
         type(error_t), allocatable, intent(out) :: error
+        !> a study's next case on the device: its start is law%project of the pressure `f` holds
+        !> (the previous case's) times `kept_start` (0: the uniform pressure; problem%start's
+        !> factor), and g_init is the gap `f` holds; only the multiplier goes up, and the heights
+        !> unless `same_heights`
+        real(dp), intent(in), optional :: kept_start
+        logical, intent(in), optional :: same_heights
         integer :: nx, ny
         real(dp) :: t0
+        real(dp), allocatable :: rows(:)
+        logical :: kept
+        nx = size(self%h, 1); ny = size(self%h, 2)
+        kept = device .and. f%device .and. present(kept_start)
+        if (kept) kept = f%p%n1 == nx .and. f%p%n2 == ny .and. .not. self%kernel%grid%is_distributed()
+        if (.not. kept) call f%finish()
+        f%gap_held = .false.
+        if (kept) then
+            ! the previous case's fields: the start formed where it is (the host's operations on
+            ! the same values: the same bits), the multiplier (and new heights) up
+            t0 = wall_seconds()
+            if (present(same_heights)) then
+                if (.not. same_heights) call f%h%upload(self%h)
+            else
+                call f%h%upload(self%h)
+            end if
+            call self%kernel%multiplier_array(f%kd, .true.)
+            if (kept_start > 0.0_dp) then
+                allocate (rows(ny))
+                call project_and_sum(self%law, f%p, rows)
+                call scale(f%p, kept_start)
+            else
+                call fill(f%p, self%p_mean_pa)
+            end if
+            f%gap_held = .true.
+            call f%t%lend_work(f%u)
+            call device_check(error, "veslide:contact:fields")
+            if (allocated(error)) call f%finish()
+            state%transfer_seconds = wall_seconds() - t0
+            return
+        end if
         f%device = device
         if (.not. device) then
             call f%t%on_host(fft)
@@ -257,29 +305,40 @@ contains
             call fatal_error(error, "veslide:contact:fields: a grid distributed over processes cannot be solved on"// &
                              " a device (an MPI study gives each rank its own)"); return
         end if
-        nx = size(self%h, 1); ny = size(self%h, 2)
         t0 = wall_seconds()
         call f%t%on_device(nx, ny, error); if (allocated(error)) return
         call f%h%create(nx, ny, .true.); call f%h%upload(self%h)
         call self%kernel%multiplier_array(f%kd, .true.)
         call f%p%create(nx, ny, .true.); call f%p%upload(state%p)
-        call f%u%create(nx, ny, .true.); call f%g%create(nx, ny, .true.)
+        ! cuFFT's work area in u (at most 8 bytes per cell, measured: u's size; u is made as large
+        ! should a plan need more): u = K p is formed after the transforms that make it
+        ! (apply_kernel) and read by no solver across a transform (one that does, pdr with
+        ! Anderson mixing, gives the transform its own: lend_work)
+        call f%u%create(nx, ny, .true., at_least=int(f%t%work_bytes, i8)); call f%g%create(nx, ny, .true.)
+        call f%t%lend_work(f%u)
         call device_check(error, "veslide:contact:fields")
         if (allocated(error)) call f%finish()
         state%transfer_seconds = wall_seconds() - t0
     end subroutine problem_fields
 
     !> The fields done with: on the device p, u and g read back into `state` (when given) and
-    !> the device memory freed; on the host the views dropped
-    subroutine fields_finish(self, state)
+    !> the device memory freed (but with `keep`: kept for a study's next case, problem%fields's
+    !> `kept_start`); on the host the views dropped
+    subroutine fields_finish(self, state, keep)
         class(contact_fields_t), intent(inout) :: self
         type(contact_state_t), intent(inout), optional :: state
+        logical, intent(in), optional :: keep
         real(dp) :: t0
         if (self%device .and. present(state)) then
             t0 = wall_seconds()
             call self%p%download(state%p); call self%u%download(state%u); call self%g%download(state%g)
             state%transfer_seconds = state%transfer_seconds + (wall_seconds() - t0)
         end if
+        self%gap_held = .false.
+        if (present(keep)) then
+            if (keep .and. self%device) return
+        end if
+        self%device = .false.
         call self%t%destroy()
         call self%h%destroy(); call self%kd%destroy()
         call self%p%destroy(); call self%u%destroy(); call self%g%destroy()

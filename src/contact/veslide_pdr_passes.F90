@@ -10,6 +10,8 @@
 !>                  hard wall only, veslide_solver_table: its contact, veslide_contact_law_maps.inc)
 !>  residual_gap    per row sum(y g), sum(y), g = K y - H + d; the smallest g
 !>  relax           z = z + lambda (y - x)
+!>  add_scaled      a = a + s b (the device's relaxation in two parts: z - lambda x before the
+!>                  inner solve, + lambda y after it, so that x need not be kept across it)
 !>  full_contact    k = h^/((N^2 s) K_d) (the pressure of full contact, less its mean)
 !>  gap_to_z        k = gamma g^/(M N^2) (z = y + gamma M^-1 g)
 !>  combine         a = b + c, a = 1 + b, or a = b - a
@@ -17,9 +19,11 @@ module veslide_pdr_passes
     use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_long
     use veslide_kinds, only: dp, i8
     use veslide_arrays, only: rarray_t, carray_t, elements
+    use veslide_bccg_passes, only: metric_t
     implicit none
     private
-    public :: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, full_contact, &
+    public :: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, add_scaled, &
+              full_contact, &
               gap_to_z, sum_of, one_plus, difference_from
 
     integer(c_int), parameter :: COMBINE_SUM = 0, COMBINE_ONE_PLUS = 1, COMBINE_DIFFERENCE = 2
@@ -27,12 +31,14 @@ module veslide_pdr_passes
 #ifdef VESLIDE_CUDA
     interface
         !> mode 0: step_constant, 1: resolvent, 2: scaled_product, 3: full_contact, 4: gap_to_z
-        subroutine spectral_gpu(n, mode, k, hk, cm, ks, kd, pk, gamma, gs, c) bind(c, name='veslide_pdr_spectral')
+        !> the metric M/N formed from (ks_kd, ks_f, ks_modulus) where read (veslide_bccg_passes)
+        subroutine spectral_gpu(n, mode, k, hk, cm, ks_kd, ks_f, ks_modulus, kd, pk, gamma, gs, c) &
+            bind(c, name='veslide_pdr_spectral')
             import :: c_long, c_int, c_ptr, c_double
             integer(c_long), value :: n
-            integer(c_int), value :: mode
-            type(c_ptr), value :: k, hk, cm, ks, kd, pk
-            real(c_double), value :: gamma, gs, c
+            integer(c_int), value :: mode, ks_modulus
+            type(c_ptr), value :: k, hk, cm, ks_kd, kd, pk
+            real(c_double), value :: ks_f, gamma, gs, c
         end subroutine spectral_gpu
         !> rows(2, ny): [sum of x - (h - h_mean)/hs over p > 0, count]
         subroutine residual_sums_gpu(nx, ny, x, h, h_mean, hs, p, rows) bind(c, name='veslide_pdr_residual_sums')
@@ -56,6 +62,12 @@ module veslide_pdr_passes
             type(c_ptr), value :: z, y, x
             real(c_double), value :: lambda
         end subroutine relax_gpu
+        subroutine add_scaled_gpu(n, a, b, s) bind(c, name='veslide_pdr_add_scaled')
+            import :: c_long, c_ptr, c_double
+            integer(c_long), value :: n
+            type(c_ptr), value :: a, b
+            real(c_double), value :: s
+        end subroutine add_scaled_gpu
         subroutine combine_gpu(n, a, b, c, mode) bind(c, name='veslide_pdr_combine')
             import :: c_long, c_ptr, c_int
             integer(c_long), value :: n
@@ -75,28 +87,30 @@ contains
     subroutine step_constant(cm, k, ks, kd, gamma, gs, n)
         type(carray_t), intent(inout) :: cm
         type(carray_t), intent(in) :: k, kd
-        type(rarray_t), intent(in) :: ks
+        type(metric_t), intent(in) :: ks
         real(dp), intent(in) :: gamma, gs, n
 #ifdef VESLIDE_CUDA
         if (cm%device) then
-            call spectral_gpu(elements(cm), 0_c_int, k%d, k%d, cm%d, ks%d, kd%d, kd%d, gamma, gs, n); return
+            call spectral_gpu(elements(cm), 0_c_int, k%d, k%d, cm%d, ks%kd, ks%f, flag(ks), kd%d, kd%d, gamma, gs, n)
+            return
         end if
 #endif
-        call step_constant_cpu(cm%h, k%h, ks%h, kd%h, gamma, gs, n)
+        call step_constant_cpu(cm%h, k%h, ks%ks%h, kd%h, gamma, gs, n)
     end subroutine step_constant
 
     !> The resolvent of z (z^ in k) and the inner heights: see the module's header
     subroutine resolvent(k, hk, ks, kd, cm, gs, n)
         type(carray_t), intent(inout) :: k, hk
-        type(rarray_t), intent(in) :: ks
+        type(metric_t), intent(in) :: ks
         type(carray_t), intent(in) :: kd, cm
         real(dp), intent(in) :: gs, n
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(elements(k), 1_c_int, k%d, hk%d, cm%d, ks%d, kd%d, kd%d, 0.0_dp, gs, n); return
+            call spectral_gpu(elements(k), 1_c_int, k%d, hk%d, cm%d, ks%kd, ks%f, flag(ks), kd%d, kd%d, 0.0_dp, gs, n)
+            return
         end if
 #endif
-        call resolvent_cpu(k%h, hk%h, ks%h, kd%h, cm%h, gs, n)
+        call resolvent_cpu(k%h, hk%h, ks%ks%h, kd%h, cm%h, gs, n)
     end subroutine resolvent
 
     !> k = (s kd) pk
@@ -106,7 +120,8 @@ contains
         real(dp), intent(in) :: s
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(elements(k), 2_c_int, k%d, k%d, k%d, kd%d, kd%d, pk%d, 0.0_dp, 0.0_dp, s); return
+            call spectral_gpu(elements(k), 2_c_int, k%d, k%d, k%d, kd%d, 0.0_dp, 0_c_int, kd%d, pk%d, 0.0_dp, 0.0_dp, s)
+            return
         end if
 #endif
         call scaled_product_cpu(k%h, kd%h, pk%h, s)
@@ -115,29 +130,37 @@ contains
     !> k = k/(c kd) where ks > 0, else 0
     subroutine full_contact(k, ks, kd, c)
         type(carray_t), intent(inout) :: k
-        type(rarray_t), intent(in) :: ks
+        type(metric_t), intent(in) :: ks
         type(carray_t), intent(in) :: kd
         real(dp), intent(in) :: c
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(elements(k), 3_c_int, k%d, k%d, k%d, ks%d, kd%d, kd%d, 0.0_dp, 0.0_dp, c); return
+            call spectral_gpu(elements(k), 3_c_int, k%d, k%d, k%d, ks%kd, ks%f, flag(ks), kd%d, kd%d, 0.0_dp, 0.0_dp, c)
+            return
         end if
 #endif
-        call full_contact_cpu(k%h, ks%h, kd%h, c)
+        call full_contact_cpu(k%h, ks%ks%h, kd%h, c)
     end subroutine full_contact
 
     !> k = k (gamma/(ks n n)) where ks > 0, else 0
     subroutine gap_to_z(k, ks, gamma, n)
         type(carray_t), intent(inout) :: k
-        type(rarray_t), intent(in) :: ks
+        type(metric_t), intent(in) :: ks
         real(dp), intent(in) :: gamma, n
 #ifdef VESLIDE_CUDA
         if (k%device) then
-            call spectral_gpu(elements(k), 4_c_int, k%d, k%d, k%d, ks%d, k%d, k%d, gamma, 0.0_dp, n); return
+            call spectral_gpu(elements(k), 4_c_int, k%d, k%d, k%d, ks%kd, ks%f, flag(ks), k%d, k%d, gamma, 0.0_dp, n)
+            return
         end if
 #endif
-        call gap_to_z_cpu(k%h, ks%h, gamma, n)
+        call gap_to_z_cpu(k%h, ks%ks%h, gamma, n)
     end subroutine gap_to_z
+
+    !> The metric's form on the device (1: f |K_d|, 0: f Re K_d)
+    pure integer(c_int) function flag(ks)
+        type(metric_t), intent(in) :: ks
+        flag = merge(1_c_int, 0_c_int, ks%modulus)
+    end function flag
 
     !> rows(j) = sum over the contact cells (p > 0) of row j of x - (h - h_mean)/hs; nc their number
     subroutine residual_sums(x, h, h_mean, hs, p, rows, nc)
@@ -186,6 +209,19 @@ contains
 #endif
         call relax_cpu(z%h, y%h, x%h, lambda)
     end subroutine relax
+
+    !> a = a + s b
+    subroutine add_scaled(a, b, s)
+        type(rarray_t), intent(inout) :: a
+        type(rarray_t), intent(in) :: b
+        real(dp), intent(in) :: s
+#ifdef VESLIDE_CUDA
+        if (a%device) then
+            call add_scaled_gpu(elements(a), a%d, b%d, s); return
+        end if
+#endif
+        call add_scaled_cpu(a%h, b%h, s)
+    end subroutine add_scaled
 
     !> a = b + c
     subroutine sum_of(a, b, c)
@@ -339,6 +375,19 @@ contains
         end do
         !$omp end parallel do
     end subroutine relax_cpu
+
+    subroutine add_scaled_cpu(a, b, s)
+        real(dp), intent(inout) :: a(:, :)
+        real(dp), intent(in) :: b(:, :), s
+        integer :: i, j
+        !$omp parallel do schedule(guided) private(i)
+        do j = 1, size(a, 2)
+            do i = 1, size(a, 1)
+                a(i, j) = a(i, j) + s*b(i, j)
+            end do
+        end do
+        !$omp end parallel do
+    end subroutine add_scaled_cpu
 
     subroutine combine_cpu(a, b, c, mode)
         real(dp), intent(inout) :: a(:, :)

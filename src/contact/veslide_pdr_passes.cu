@@ -9,7 +9,7 @@ namespace {
 // 3 full_contact, 4 gap_to_z
 struct pdr_spectral_f {
     double2 *k, *hk, *cm;
-    const double *ks;
+    vs::metric_v ks;
     const double2 *kd, *pk;
     double gamma, gs, c;
     int mode;
@@ -83,6 +83,13 @@ struct relax_f {
     VS_HD void operator()(long n) const { z[n] = z[n] + lambda * (y[n] - x[n]); }
 };
 
+struct add_scaled_f {
+    double *a;
+    const double *b;
+    double s;
+    VS_HD void operator()(long n) const { a[n] = a[n] + s * b[n]; }
+};
+
 struct combine_f {
     double *a;
     const double *b, *c;
@@ -101,9 +108,9 @@ struct combine_f {
 
 extern "C" {
 
-void veslide_pdr_spectral(long n, int mode, double2 *k, double2 *hk, double2 *cm, const double *ks,
-                          const double2 *kd, const double2 *pk, double gamma, double gs, double c) {
-    vs::for_each(pdr_spectral_f{k, hk, cm, ks, kd, pk, gamma, gs, c, mode}, n);
+void veslide_pdr_spectral(long n, int mode, double2 *k, double2 *hk, double2 *cm, const double2 *ks_kd, double ks_f,
+                          int ks_modulus, const double2 *kd, const double2 *pk, double gamma, double gs, double c) {
+    vs::for_each(pdr_spectral_f{k, hk, cm, vs::metric_v{ks_kd, ks_f, ks_modulus}, kd, pk, gamma, gs, c, mode}, n);
 }
 
 void veslide_pdr_residual_sums(int nx, int ny, const double *x, const double *h, double h_mean, double hs,
@@ -119,6 +126,8 @@ void veslide_pdr_residual_gap(int nx, int ny, const double *x, const double *h, 
 void veslide_pdr_relax(long n, double *z, const double *y, const double *x, double lambda) {
     vs::for_each(relax_f{z, y, x, lambda}, n);
 }
+
+void veslide_pdr_add_scaled(long n, double *a, const double *b, double s) { vs::for_each(add_scaled_f{a, b, s}, n); }
 
 void veslide_pdr_combine(long n, double *a, const double *b, const double *c, int mode) {
     vs::for_each(combine_f{a, b, c, mode}, n);

@@ -57,7 +57,7 @@ contains
     !> kernel's multiplier and the start go in, p, u and g come out, nothing else crosses. Every
     !> method ends with the one verdict on its result: u = K p computed afresh and the residual
     !> measured (`problem%confirm`), converged exactly when that residual is <= the tolerance.
-    subroutine solve_contact(problem, fft, opts, state, error, p_init, g_init)
+    subroutine solve_contact(problem, fft, opts, state, error, p_init, g_init, keep, same_heights)
         type(contact_problem_t), intent(inout), target :: problem
         type(fft2d_t), intent(inout), target :: fft
         type(solver_options_t), intent(in) :: opts
@@ -66,9 +66,17 @@ contains
         real(dp), intent(in), optional :: p_init(:, :)
         !> gap that goes with p_init [m] (the splitting method starts from both)
         real(dp), intent(in), optional :: g_init(:, :)
+        !> a study's fields, kept on the device from one case to the next of its chain: where they
+        !> hold the previous case's p and g, and p_init and g_init are those (downloaded), the
+        !> start is formed there and neither goes up (nor the heights, when `same_heights`); left
+        !> holding this case's (freed where the case is not solved on the device)
+        type(contact_fields_t), intent(inout), optional, target :: keep
+        logical, intent(in), optional :: same_heights
         integer :: method
         type(solver_options_t) :: o
-        type(contact_fields_t) :: f
+        type(contact_fields_t), target :: own
+        type(contact_fields_t), pointer :: f
+        real(dp) :: factor
         logical :: device
 
         if (problem%kernel%grid%nx /= fft%nx .or. problem%kernel%grid%ny /= fft%ny) then
@@ -84,10 +92,25 @@ contains
         end if
         o = opts
         o%anderson_memory = default_anderson_memory(method, opts%anderson_memory)
-        call solve_on_device(opts%device, problem, device, error, method, o); if (allocated(error)) return
-        call problem%start(state, p_init)
+        call solve_on_device(opts%device, problem, device, error, method, o)
+        if (allocated(error)) then
+            if (present(keep)) call keep%finish()
+            return
+        end if
+        call problem%start(state, p_init, factor)
         if (method == SOLVER_PK) call polonsky_keer(problem, fft, o, state)
-        call problem%fields(f, fft, state, device, error); if (allocated(error)) return
+        if (present(keep)) then
+            f => keep
+            if (present(p_init) .and. present(g_init)) then
+                call problem%fields(f, fft, state, device, error, kept_start=factor, same_heights=same_heights)
+            else
+                call problem%fields(f, fft, state, device, error)
+            end if
+        else
+            f => own
+            call problem%fields(f, fft, state, device, error)
+        end if
+        if (allocated(error)) return
         select case (method)
         case (SOLVER_BCCG)
             call bccg_solve(problem, f, o, state)
@@ -113,7 +136,7 @@ contains
         ! the verdict, on the number reported
         call problem%confirm(f, state, opts%tolerance)
         call device_check(error, "veslide:solver:solve_contact: "//state%method//" on the device")
-        call f%finish(state)
+        call f%finish(state, keep=present(keep) .and. .not. allocated(error))
         state%device = merge('gpu', 'cpu', device)
         call restore_threads()     ! the thread governor may have lowered them (veslide_threads)
     end subroutine solve_contact

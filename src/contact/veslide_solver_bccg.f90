@@ -44,7 +44,7 @@ module veslide_solver_bccg
                               complex_divide, centre_scale, zero_mean_mode
     use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL
     use veslide_contact_passes, only: project_and_sum
-    use veslide_bccg_passes, only: metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, &
+    use veslide_bccg_passes, only: metric_t, metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, &
                                    step, update_transform, step_transform, gap_multiply, add_points, clipped_points
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
@@ -64,8 +64,10 @@ module veslide_solver_bccg
         integer :: nx = 0, ny = 0, nq = 0      !! ny: this process's rows
         real(dp) :: cells = 0.0_dp             !! N = nx ny, the whole grid's cells
         logical :: device = .false.            !! the arrays are on the device
-        type(rarray_t) :: ks                   !! M/N on the spectral storage (grid%spectral_shape);
-                                               !! the preconditioner 1/(M N) = 1/(ks N^2) is taken
+        type(metric_t) :: ks                   !! M/N on the spectral storage (grid%spectral_shape):
+                                               !! an array on the host, formed from K_d where read
+                                               !! on the device (veslide_bccg_passes); the
+                                               !! preconditioner 1/(M N) = 1/(ks N^2) is taken
                                                !! from it where used (4 bytes per cell fewer)
         !> Hermitian weights as a product wa(a) wb(b) over the storage positions (a, b); wa also
         !> where the solve runs (wa_dev, (na, 1))
@@ -91,7 +93,7 @@ module veslide_solver_bccg
 
 contains
 
-    !> Set up for the grid of the transform `t`, on its backend; the caller fills `ks` with the
+    !> Set up for the grid of the transform `t`, on its backend; the caller sets `ks` to the
     !> symmetric multiplier M/N (real, >= 0, zero on the mean mode; `metric`)
     subroutine bccg_init(self, t, grid)
         class(bccg_t), intent(inout) :: self
@@ -104,7 +106,6 @@ contains
         self%nx = t%nx; self%ny = t%x%n2; self%nq = t%nx/2 + 1
         self%cells = grid%cells()
         sh = grid%spectral_shape()
-        call self%ks%create(sh(1), sh(2), self%device)
         if (grid%transposed) then
             self%wa = [(1.0_dp, i=1, sh(1))]
             self%wb = [(grid%hermitian_weight(grid%i0 + i), i=1, sh(2))]

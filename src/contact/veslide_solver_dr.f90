@@ -92,7 +92,11 @@ contains
         call aa%init(nx, ny, m, f%device, problem%kernel%grid)
         call divided_copy(z, f%p, p_mean)       ! z = p + gamma g
         if (present(gap0)) then
-            call f%t%x%upload(gap0)
+            if (f%gap_held) then
+                call f%t%x%assign(f%g)                ! gap0, kept on the device from a study's last case
+            else
+                call f%t%x%upload(gap0)
+            end if
             call dr_add_gap(z, f%t%x, gamma, hs)
         end if
         accelerated = .false.

@@ -43,6 +43,9 @@ module veslide_solver_options
         !> told about the solve every `progress_every_s` seconds (none: silent)
         procedure(solver_progress_callback), pointer, nopass :: progress => null()
         real(dp) :: progress_every_s = 5.0_dp
+        !> on the device, pdr's lean layout (veslide_solver_pdr) even where the device has room for
+        !> the exact one (tests; not an input)
+        logical :: device_lean = .false.
     end type solver_options_t
 
     !> What a solver's progress callback is told

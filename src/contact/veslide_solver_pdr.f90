@@ -16,6 +16,13 @@
 !>   z <- z + lambda (y - x), over-relaxed (lambda = 1.5; Eckstein & Bertsekas, Math. Program.
 !>       55 (1992) 293: convergent for 0 < lambda < 2), or with `anderson_memory` > 0 the plain
 !>       step accelerated by Anderson mixing (`anderson_t`; 16 + 8 m bytes per cell more).
+!> On the device x is kept in u, as on the CPU (the same arithmetic), and cuFFT has a work area of
+!> its own (8 bytes per cell), where the device has room for it; where it has not (or with
+!> `opts%device_lean`), the lean layout: the relaxation in two parts, z - lambda x before the
+!> inner solve and + lambda y after it (the same step to round-off, not bit for bit: the path can
+!> take an iteration more or fewer), so that x is not kept across the inner solve and u lends
+!> cuFFT its work area (veslide_solver_table: 8 bytes per cell fewer). With mixing, which keeps
+!> f = y - x in u, the transform always has its own.
 !> At the fixed point x = y = p. The solver works on the kernel's multiplier where the solve
 !> runs (a view on the host: no copy of it). The inner problems are solved to a tolerance that follows the
 !> outer residual (0.3 of it, and never below a third of the target); every outer
@@ -35,8 +42,9 @@ module veslide_solver_pdr
     use veslide_passes, only: divide, scale, scaled_copy, divided_copy, centre_divide, count_below
     use veslide_bccg_passes, only: metric
     use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
+                                  add_scaled, &
                                   full_contact, gap_to_z, sum_of, one_plus, difference_from
-    use veslide_device, only: device_failed
+    use veslide_device, only: device_failed, device_has_room
     implicit none
     private
     public :: preconditioned_douglas_rachford
@@ -68,7 +76,7 @@ contains
         real(dp), allocatable :: rows(:, :)
         integer :: its, sh(2)
         integer(i8) :: nc, cnt(1)
-        logical :: accelerated, mixing
+        logical :: accelerated, mixing, two_part
         type(progress_ticker_t) :: ticker
 
         sh = problem%kernel%grid%spectral_shape()
@@ -81,6 +89,13 @@ contains
         gamma = opts%step
         if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp
         mixing = opts%anderson_memory > 0
+        ! on the device: cuFFT's own work area where there is room (u keeps x), else the lean
+        ! layout (the relaxation in two parts; u lends the work area)
+        two_part = .false.
+        if (f%device) then
+            two_part = .not. mixing .and. (opts%device_lean .or. .not. device_has_room(f%t%work_bytes))
+            if (.not. two_part) call f%t%lend_work()
+        end if
 
         ! multipliers: K/N = s K_d and M/N = |K|/N (held by the inner solver as b%ks),
         ! dimensionless; the resolvent's constant part cm
@@ -97,7 +112,11 @@ contains
         ! start: y = p, z = p + gamma M^-1 g (g the gap of the start, when given)
         call divide(f%p, p_mean)
         if (present(gap0)) then
-            call f%t%x%upload(gap0)
+            if (f%gap_held) then
+                call f%t%x%assign(f%g)                ! gap0, kept on the device from a study's last case
+            else
+                call f%t%x%upload(gap0)
+            end if
             call divide(f%t%x, hs)
             call z_from_gap()
         else
@@ -116,7 +135,11 @@ contains
             call resolvent(f%t%k, b%hk, b%ks, f%kd, cm, gs, n)
             call f%t%backward_unscaled()
             b%pairs = b%pairs + 1.0_dp
-            call f%u%assign(f%t%x)                        ! x
+            if (two_part) then
+                call add_scaled(f%g, f%t%x, -relaxation)  ! z - lambda x
+            else
+                call f%u%assign(f%t%x)                    ! x
+            end if
 
             ! y = the metric projection of 2x - z onto C
             itol = max(opts%tolerance/3.0_dp, inner_fraction*res_prev)
@@ -165,6 +188,8 @@ contains
             if (mixing) then
                 call difference_from(f%u, f%p)            ! f = y - x
                 accelerated = aa%step(f%g, f%u)
+            else if (two_part) then
+                call add_scaled(f%g, f%p, relaxation)     ! (z - lambda x) + lambda y
             else
                 call relax(f%g, f%p, f%u, relaxation)
             end if

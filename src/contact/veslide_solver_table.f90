@@ -7,9 +7,10 @@
 !> | method | operator       | contact laws | device | bytes per cell, host | on the device         |
 !> |--------|----------------|--------------|--------|----------------------|-----------------------|
 !> | pk     | symmetric only | hard wall    | no     | 16                   | -                     |
-!> | bccg   | symmetric only | hard wall    | yes    | 36                   | 29                    |
+!> | bccg   | symmetric only | hard wall    | yes    | 36                   | 25                    |
 !> | dr     | any            | hard wall    | yes    | 40 + 8 m             | 40 + 8 m              |
-!> | pdr    | any            | hard wall    | yes    | 41 (+ 16 + 8 m)      | 37 (+ 16 + 8 m)       |
+!> | pdr    | any            | hard wall    | yes    | 41 (+ 16 + 8 m)      | 33 or 41 (+ 24 + 8 m) |
+!> | gcg    | any            | adhesive     | no     | 64 (32 symmetric)    | -                     |
 !>
 !> The operator is symmetric for an elastic solid or a solid at rest (`operator_symmetric`); a
 !> viscoelastic solid in motion gives a non-symmetric one, which Polonsky-Keer and BCCG (conjugate
@@ -26,10 +27,14 @@
 !> of heights and pressure, the contact set); dr 40 + 8 m (z, the previous z and f, the transform
 !> of h, the resolvent, Anderson's single-precision history of memory m, 5 by default); pdr 41
 !> (bccg's fields with M = |K|, the resolvent's constant part), and 16 + 8 m more when Anderson
-!> mixes its steps (m > 0; by default it does not). On the device: bccg 29 (M 4, the transforms of
-!> the heights and of the pressure 16, the direction 8, the contact set 1), pdr bccg's and the
-!> resolvent's constant part (37, with mixing 16 + 8 m more), dr 40 + 8 m; Anderson mixing there
-!> takes a memory of at most `device_max_memory`.
+!> mixes its steps (m > 0; by default it does not). On the device: bccg 25 (the transforms of the
+!> heights and of the pressure 16, the direction 8, the contact set 1; M is formed from K_d where
+!> read, veslide_bccg_passes), pdr bccg's and the resolvent's constant part (33), and 8 more for
+!> cuFFT's own work area where the device has room for it (then it keeps the CPU's arithmetic;
+!> its lean layout otherwise, veslide_solver_pdr), with mixing 24 + 8 m more (Anderson's 16 and
+!> cuFFT's own work area 8: u, which lends it otherwise, keeps f = y - x across transforms), dr
+!> 40 + 8 m; cuFFT's work area is u's memory (veslide_contact's fields) but for those. Anderson
+!> mixing there takes a memory of at most `device_max_memory`.
 !> A new solver is a row here; a new contact law a column of `laws` (veslide_contact_law).
 module veslide_solver_table
     use veslide_kinds, only: dp, radians
@@ -55,6 +60,9 @@ module veslide_solver_table
         real(dp) :: host_bytes = 0.0_dp          !! its own arrays on the host [bytes per cell]
         real(dp) :: device_bytes = 0.0_dp        !! on the device, where it runs there [bytes per cell]
         real(dp) :: mixing_bytes = 0.0_dp        !! more when it mixes (m > 0), besides 8 m [bytes per cell]
+        real(dp) :: device_mixing_bytes = 0.0_dp !! the same on the device [bytes per cell]
+        !> on the device, more without mixing where the device has room (cuFFT's own work area)
+        real(dp) :: device_room_bytes = 0.0_dp
     end type solver_info_t
 
     !> The methods, in the order their alternatives are named
@@ -75,13 +83,14 @@ contains
                                 host_bytes=16.0_dp)
         case (SOLVER_BCCG)
             row = solver_info_t(method=SOLVER_BCCG, symmetric_only=.true., laws=hard_wall, device=.true., &
-                                host_bytes=36.0_dp, device_bytes=29.0_dp)
+                                host_bytes=36.0_dp, device_bytes=25.0_dp)
         case (SOLVER_DR)
             row = solver_info_t(method=SOLVER_DR, laws=hard_wall, device=.true., mixes=.true., anderson_default=5, &
                                 host_bytes=40.0_dp, device_bytes=40.0_dp)
         case (SOLVER_PDR)
             row = solver_info_t(method=SOLVER_PDR, laws=hard_wall, device=.true., mixes=.true., anderson_default=0, &
-                                host_bytes=41.0_dp, device_bytes=37.0_dp, mixing_bytes=16.0_dp)
+                                host_bytes=41.0_dp, device_bytes=33.0_dp, mixing_bytes=16.0_dp, &
+                                device_mixing_bytes=24.0_dp, device_room_bytes=8.0_dp)
         case (SOLVER_GCG)
             ! g, its search direction, the gradient and the transform of the direction; on a
             ! non-symmetric operator the splitting's z, x, heights and A = 1/K, 32 more (veslide_solver_gcg)
@@ -203,19 +212,25 @@ contains
                   str(device_max_memory)//" does, and -1, each method's own), or set &solver device = 'cpu'"
     end function memory_refusal
 
-    !> Bytes per cell of `method`'s own arrays (on the device when `device`) with Anderson memory
-    !> `memory` (the options': negative for the method's own)
-    pure real(dp) function solver_bytes_per_cell(method, memory, device) result(b)
+    !> Bytes per cell of `method`'s own arrays (on the device when `device`: at least, or with
+    !> `room`, where the device has room for all it takes) with Anderson memory `memory` (the
+    !> options': negative for the method's own)
+    pure real(dp) function solver_bytes_per_cell(method, memory, device, room) result(b)
         integer, intent(in) :: method, memory
         logical, intent(in) :: device
+        logical, intent(in), optional :: room
         type(solver_info_t) :: row
         integer :: m
+        logical :: room_
+        room_ = .false.; if (present(room)) room_ = room
         row = solver_info(method)
         b = merge(row%device_bytes, row%host_bytes, device)
-        if (.not. row%mixes) return
         m = memory
         if (m < 0) m = row%anderson_default
-        if (m > 0) b = b + row%mixing_bytes + 8*m
+        if (.not. row%mixes) m = 0
+        if (device .and. room_ .and. m == 0) b = b + row%device_room_bytes
+        if (.not. row%mixes) return
+        if (m > 0) b = b + merge(row%device_mixing_bytes, row%mixing_bytes, device) + 8*m
     end function solver_bytes_per_cell
 
     !> The reason alone (empty when `method` takes the case)

@@ -19,7 +19,7 @@ module veslide_device
     public :: device_enabled, device_emulated, device_count, device_select, device_info_t, device_info, &
               device_alloc, device_free, device_upload, device_download, device_copy, device_zero, &
               device_sync, device_check, device_failed, device_bytes_in_use, device_peak_bytes, &
-              device_reset_peak, device_clock, device_memory, device_profile
+              device_reset_peak, device_clock, device_memory, device_profile, device_has_room, device_moved_bytes
 
     !> Was the library built with a device (-DVESLIDE_CUDA)?
 #ifdef VESLIDE_CUDA
@@ -113,6 +113,10 @@ module veslide_device
         end function c_peak_bytes
         subroutine c_reset_peak() bind(c, name='veslide_device_reset_peak')
         end subroutine c_reset_peak
+        real(c_double) function c_moved(up) bind(c, name='veslide_device_moved_bytes')
+            import :: c_double, c_int
+            integer(c_int), value :: up
+        end function c_moved
         real(c_double) function c_clock() bind(c, name='veslide_device_clock')
             import :: c_double
         end function c_clock
@@ -193,6 +197,25 @@ contains
         call no_device(error, "veslide:device:memory")
 #endif
     end subroutine device_memory
+
+    !> Has the device room for `bytes` more beside what it holds, with the allowance veslide_memory
+    !> keeps for the runtime and the row partials (64 MiB)? Yes where its free memory is unknown
+    !> (the emulated device); no with VESLIDE_DEVICE_LEAN=1 in the environment (a solver's lean
+    !> layout asked for: veslide_solver_pdr)
+    logical function device_has_room(bytes) result(yes)
+        real(dp), intent(in) :: bytes
+        real(dp) :: free_b, total_b
+        type(error_t), allocatable :: error
+        character(len=8) :: lean
+        integer :: l, st
+        yes = .false.
+        call get_environment_variable('VESLIDE_DEVICE_LEAN', lean, l, st)
+        if (st == 0 .and. lean == '1') return
+        call device_memory(free_b, total_b, error)
+        yes = .true.
+        if (allocated(error)) return
+        if (free_b >= 0.0_dp) yes = free_b >= bytes + 64.0_dp*1024*1024
+    end function device_has_room
 
     !> `bytes` of device memory at `p` (the failure, if any, is kept for device_check)
     subroutine device_alloc(p, bytes)
@@ -309,6 +332,18 @@ contains
         b = 0.0_dp
 #endif
     end function device_peak_bytes
+
+    !> Bytes moved to the device (`up`) or from it by uploads and downloads of arrays since the
+    !> program began (the row partials not counted)
+    real(dp) function device_moved_bytes(up) result(b)
+        logical, intent(in) :: up
+#ifdef VESLIDE_CUDA
+        b = c_moved(merge(1_c_int, 0_c_int, up))
+#else
+        b = 0.0_dp
+        if (up) b = 0.0_dp
+#endif
+    end function device_moved_bytes
 
     !> Start a new peak from what is held now
     subroutine device_reset_peak()

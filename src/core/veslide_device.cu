@@ -324,8 +324,13 @@ int veslide_device_free(void *p) {
     return vs::failed();
 }
 
+// bytes moved to and from the device by upload and download (the arrays; not the row partials)
+static double moved_up = 0, moved_down = 0;
+double veslide_device_moved_bytes(int up) { return up ? moved_up : moved_down; }
+
 int veslide_device_upload(void *dest, const void *src, size_t bytes) {
     if (bytes == 0) return 0;
+    moved_up += (double)bytes;
 #ifdef VESLIDE_EMULATE
     vs::host_copy(dest, src, bytes);
     return 0;
@@ -336,6 +341,7 @@ int veslide_device_upload(void *dest, const void *src, size_t bytes) {
 
 int veslide_device_download(void *dest, const void *src, size_t bytes) {
     if (bytes == 0) return 0;
+    moved_down += (double)bytes;
 #ifdef VESLIDE_EMULATE
     vs::host_copy(dest, src, bytes);
     return 0;

@@ -15,7 +15,7 @@ module veslide_case
                                paraboloid_surface, cylinder_surface
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
     use veslide_persson, only: persson_estimate
-    use veslide_contact, only: contact_problem_t, new_contact_problem_moving
+    use veslide_contact, only: contact_problem_t, contact_fields_t, new_contact_problem_moving
     use veslide_solver_options, only: solver_options_t, solver_progress_callback
     use veslide_solver, only: solve_contact
     use veslide_analysis, only: slope_force
@@ -170,12 +170,15 @@ contains
     !> Solve a case whose specification, heights and kernel are set, then run its analyses;
     !> `p_init`, `g_init` warm-start the solver (a speed sweep passes the previous speed's solution);
     !> `progress` is told about the solve every few seconds
-    subroutine solve_prepared(fft, c, error, p_init, g_init, progress)
+    subroutine solve_prepared(fft, c, error, p_init, g_init, progress, keep, same_heights)
         type(fft2d_t), intent(inout) :: fft
         type(case_t), intent(inout) :: c
         type(error_t), allocatable, intent(out) :: error
         real(dp), intent(in), optional :: p_init(:, :), g_init(:, :)
         procedure(solver_progress_callback), optional :: progress
+        !> a study's device fields, kept from case to case of a chain (solve_contact's)
+        type(contact_fields_t), intent(inout), optional :: keep
+        logical, intent(in), optional :: same_heights
         type(contact_problem_t) :: problem
         type(solver_options_t) :: opts
         real(dp) :: t0, d_given
@@ -195,7 +198,8 @@ contains
         t0 = wall_seconds()
         opts = c%spec%solver
         if (present(progress)) opts%progress => progress
-        call solve_contact(problem, fft, opts, c%state, error, p_init=p_init, g_init=g_init)
+        call solve_contact(problem, fft, opts, c%state, error, p_init=p_init, g_init=g_init, keep=keep, &
+                           same_heights=same_heights)
         call problem%release(c%kernel, c%h)
         if (allocated(error)) return
         c%solve_seconds = wall_seconds() - t0

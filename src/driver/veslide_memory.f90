@@ -19,9 +19,11 @@
 !> A solve on the device (veslide_device) holds its solver's arrays there, not on the host: the
 !> host keeps the case (heights, kernel, FFT buffers for the analyses, p, u, g) and the device
 !> holds, per cell, the heights (8), the kernel's multiplier (8), the transform's buffers (16), p,
-!> u, g (24), and the solver's own arrays there (the table's: bccg 29, dr 40 + 8 m, pdr 37 and
-!> 16 + 8 m more when it mixes); plus cuFFT's work area (at most 8, one for both plans,
-!> `cufft_work`). Before anything is built the case's method is checked against the device it
+!> u, g (24), and the solver's own arrays there (the table's: bccg 25, dr 40 + 8 m, pdr 33 and
+!> 24 + 8 m more when it mixes). cuFFT's work area (at most 8 per cell, one for both plans) is
+!> u's memory, lent to the transform, except for pdr, whose row counts it (8 of its mixing's 24;
+!> without mixing pdr takes its own where the device has room for it, `room`, else lends u: the
+!> estimate, which the refusal reads, is what it needs at least). Before anything is built the case's method is checked against the device it
 !> will run on (`size_and_check_memory`, the solver table's refusal).
 module veslide_memory
     use veslide_kinds, only: dp, i8
@@ -38,15 +40,13 @@ module veslide_memory
     use veslide_system, only: available_memory_bytes
     implicit none
     private
-    public :: memory_estimate_bytes, device_estimate_bytes, format_gib, size_and_check_memory, case_memory, &
+    public :: memory_estimate_bytes, device_estimate_bytes, device_bytes_per_cell, format_gib, size_and_check_memory, case_memory, &
               case_on_device
 
     !> Libraries, FFTW plans, HDF5 buffers and the program itself [bytes]
     integer(i8), parameter :: fixed_bytes = 16_i8*1024*1024
     !> On the device: the runtime's own and the row partials [bytes]
     integer(i8), parameter :: device_fixed_bytes = 64_i8*1024*1024
-    !> cuFFT's work area of a D2Z and a Z2D plan sharing it, at most [bytes per cell]
-    real(dp), parameter :: cufft_work = 8.0_dp
 
 contains
 
@@ -85,23 +85,33 @@ contains
     end function memory_estimate_bytes
 
     !> Device memory a solve of the case `spec` (a study of its `speeds`) holds at its peak
-    !> [bytes] (veslide_device: what the heading lists)
-    pure integer(i8) function device_estimate_bytes(spec, speeds) result(bytes)
+    !> [bytes] (veslide_device: what the heading lists): at least (what it needs: pdr in its lean
+    !> layout), or with `room`, where the device has room for all it takes
+    pure integer(i8) function device_estimate_bytes(spec, speeds, room) result(bytes)
         type(case_spec_t), intent(in) :: spec
         real(dp), intent(in), optional :: speeds(:)
-        real(dp) :: n, per_cell
+        logical, intent(in), optional :: room
+        real(dp) :: n
         n = real(spec%nx, dp)*real(spec%ny, dp)
-        per_cell = 8 + 8 + 16 + 24 + solver_bytes(spec, .true., speeds) + cufft_work
-        bytes = device_fixed_bytes + int(per_cell*n, i8)
+        bytes = device_fixed_bytes + int(device_bytes_per_cell(spec, speeds, room)*n, i8)
     end function device_estimate_bytes
+
+    !> The device's bytes per cell of `device_estimate_bytes` (without its fixed allowance)
+    pure real(dp) function device_bytes_per_cell(spec, speeds, room) result(per_cell)
+        type(case_spec_t), intent(in) :: spec
+        real(dp), intent(in), optional :: speeds(:)
+        logical, intent(in), optional :: room
+        per_cell = 8 + 8 + 16 + 24 + solver_bytes(spec, .true., speeds, room)
+    end function device_bytes_per_cell
 
     !> The bytes per cell of the solver the case `spec` runs (the largest of those veslide_solver
     !> may run, `planned_methods`), on the host or the `device`: the solver table's. The kernel is
     !> symmetric for an elastic solid or a solid at rest (every speed of a study 0).
-    pure real(dp) function solver_bytes(spec, device, speeds) result(b)
+    pure real(dp) function solver_bytes(spec, device, speeds, room) result(b)
         type(case_spec_t), intent(in) :: spec
         logical, intent(in) :: device
         real(dp), intent(in), optional :: speeds(:)
+        logical, intent(in), optional :: room
         integer, allocatable :: methods(:)
         logical :: symmetric
         real(dp) :: bound
@@ -122,7 +132,7 @@ contains
                                   spec%law%kind)
         b = 0
         do k = 1, size(methods)
-            b = max(b, solver_bytes_per_cell(methods(k), spec%solver%anderson_memory, device))
+            b = max(b, solver_bytes_per_cell(methods(k), spec%solver%anderson_memory, device, room))
         end do
     end function solver_bytes
 

@@ -12,6 +12,10 @@
 !> between consecutive cases are flagged in /summary (path_step, path_jump) and each path's
 !> pull-off and first jump-in tabulated in /paths. A path is one chain: it stays on one rank.
 !> Each surface is generated once per (seed, eccentricity, angle), each speed's kernel built once.
+!> On the device a chain's fields stay there from speed to speed (solve_contact's `keep`): the next
+!> speed's warm start is formed from the last case's p and g where they are, and the heights
+!> stay; only the next kernel's multiplier goes up (24 bytes per cell of uploads saved per case
+!> after a chain's first; p, u, g still come down for the case's results).
 !> Every finished case is written at once under /cases/NNNNNN with its parameters and appended as
 !> a row of /summary (case, seed, parameters, every scalar of the case; int64 where integer), then
 !> flushed; with several seeds, /ensemble holds n_seeds and the mean and standard error over seeds
@@ -38,6 +42,7 @@ module veslide_study
     use veslide_quantities, only: case_results
     use veslide_case_file, only: write_case_group
     use veslide_case, only: case_t, build_surface, build_kernel, case_grid, solve_prepared
+    use veslide_contact, only: contact_fields_t
     use veslide_case_file, only: write_warnings
     use veslide_validity, only: check_surface_scale
     use veslide_warning, only: warning_t
@@ -238,6 +243,8 @@ contains
         type(fft2d_t) :: fft
         type(h5file_t) :: f
         type(case_t) :: c
+        !> the device's fields of a chain's last case: the next speed starts from its p and g there
+        type(contact_fields_t) :: kept
         type(results_t) :: r
         type(study_progress_t) :: info
         type(study_chain_t) :: ch
@@ -318,7 +325,7 @@ contains
                     if (done(k)) cycle
                     if (present(stop_after)) then
                         if (info%done - info%resumed >= stop_after) then
-                            call f%close(error); return
+                            call kept%finish(); call f%close(error); return
                         end if
                     end if
                     ! the case's speed and load: a speed chain's speed, or a load path's load
@@ -349,12 +356,16 @@ contains
                     if (warm .and. plan%path .and. .not. plan%approach) then
                         if (separated(k - 1)) warm = c%spec%mean_pressure_pa < 0.0_dp
                     end if
+                    ! (on the device the fields stay from case to case of the chain: the warm
+                    ! start is formed there from the last case's p and g, the heights stay)
                     if (warm) then
-                        call solve_prepared(fft, c, error, p_init=p_prev, g_init=g_prev)
+                        call solve_prepared(fft, c, error, p_init=p_prev, g_init=g_prev, keep=kept, same_heights=.true.)
                     else
-                        call solve_prepared(fft, c, error)
+                        call solve_prepared(fft, c, error, keep=kept)
                     end if
-                    if (allocated(error)) return
+                    if (allocated(error)) then
+                        call kept%finish(); return
+                    end if
                     p_prev = c%state%p; g_prev = c%state%g
                     if (.not. c%state%converged) nfail = nfail + 1
                     call case_results(c, r)
@@ -385,6 +396,7 @@ contains
                     end if
                 end do
                 if (allocated(p_prev)) deallocate (p_prev, g_prev)
+                call kept%finish()
             end associate
         end do
         call discard_output(path//'.resume')

@@ -28,6 +28,7 @@ module veslide_arrays
         logical :: device = .false.                           !! held on the device
         real(dp), pointer, contiguous :: h(:, :) => null()    !! host: the array
         type(c_ptr) :: d = c_null_ptr                          !! device: its memory
+        integer(i8) :: bytes = 0                               !! device: the bytes held there
         logical, private :: owned = .false.
     contains
         procedure :: create => r_create
@@ -103,15 +104,19 @@ contains
 
     ! ---- rarray_t ------------------------------------------------------------------------
 
-    !> Storage of its own for (n1, n2), on the device or the host (contents undefined)
-    subroutine r_create(self, n1, n2, device)
+    !> Storage of its own for (n1, n2), on the device or the host (contents undefined); on the
+    !> device at least `at_least` bytes (a scratch area it also serves as: veslide_transform)
+    subroutine r_create(self, n1, n2, device, at_least)
         class(rarray_t), intent(inout) :: self
         integer, intent(in) :: n1, n2
         logical, intent(in) :: device
+        integer(i8), intent(in), optional :: at_least
         call self%destroy()
         self%n1 = n1; self%n2 = n2; self%device = device
         if (device) then
-            call device_alloc(self%d, nbytes(n1, n2, 8))
+            self%bytes = nbytes(n1, n2, 8)
+            if (present(at_least)) self%bytes = max(self%bytes, at_least)
+            call device_alloc(self%d, self%bytes)
         else
             allocate (self%h(n1, n2)); self%owned = .true.
         end if
@@ -131,7 +136,7 @@ contains
         if (self%owned .and. associated(self%h)) deallocate (self%h)
         nullify (self%h); self%owned = .false.
         if (c_associated(self%d)) call device_free(self%d)
-        self%d = c_null_ptr
+        self%d = c_null_ptr; self%bytes = 0
         self%n1 = 0; self%n2 = 0
     end subroutine r_destroy
 

@@ -2,7 +2,9 @@
 !> buffers viewed, not copied), on the device its cuFFT twin (src/grid/veslide_transform.cu),
 !> with the same buffers and the same conventions: `x` the real field (nx, ny), `k` its
 !> half-spectrum (nx/2+1, ny), `forward` x -> k unnormalised (x is not to be read afterwards),
-!> `backward_unscaled` k -> x without 1/(nx ny) (k is destroyed).
+!> `backward_unscaled` k -> x without 1/(nx ny) (k is destroyed). On the device, cuFFT's work area
+!> (scratch while a transform runs) is an array the caller lends (`lend_work`: one that is dead
+!> whenever a transform runs), else the transform's own, allocated at its first use.
 module veslide_transform
     use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_int, c_double, c_associated
     use veslide_kinds, only: dp
@@ -20,11 +22,13 @@ module veslide_transform
         type(rarray_t) :: x                           !! real buffer
         type(carray_t) :: k                           !! half-spectrum buffer
         real(dp) :: work_bytes = 0.0_dp               !! device: cuFFT's work area [bytes]
+        logical :: lent = .false.                     !! device: the work area is the caller's
         type(fft2d_t), pointer, private :: host => null()
         type(c_ptr), private :: plan = c_null_ptr
     contains
         procedure :: on_host => transform_on_host
         procedure :: on_device => transform_on_device
+        procedure :: lend_work => transform_lend_work
         procedure :: forward => transform_forward
         procedure :: backward_unscaled => transform_backward_unscaled
         procedure :: destroy => transform_destroy
@@ -40,6 +44,11 @@ module veslide_transform
             type(c_ptr), value :: x, k
             real(c_double), intent(out) :: work_bytes
         end function c_create
+        integer(c_int) function c_lend(handle, area, bytes) bind(c, name='veslide_transform_lend_work')
+            import :: c_ptr, c_int, c_double
+            type(c_ptr), value :: handle, area
+            real(c_double), value :: bytes
+        end function c_lend
         integer(c_int) function c_forward(handle) bind(c, name='veslide_transform_forward')
             import :: c_ptr, c_int
             type(c_ptr), value :: handle
@@ -97,6 +106,25 @@ contains
 #endif
     end subroutine transform_on_device
 
+    !> On the device: cuFFT's work area in `a`'s memory from now on, which the caller does not
+    !> read across a transform (what a transform leaves there is garbage; the emulated device
+    !> writes NaN there), when `a` is large enough; without `a`, or when it is too small, the
+    !> transform's own (allocated now: `work_bytes` more). `lent` says which. On the host: nothing.
+    subroutine transform_lend_work(self, a)
+        class(transform_t), intent(inout) :: self
+        type(rarray_t), intent(in), optional :: a
+#ifdef VESLIDE_CUDA
+        if (.not. self%device) return
+        if (present(a)) then
+            self%lent = c_lend(self%plan, a%d, real(a%bytes, dp)) /= 0
+        else
+            self%lent = c_lend(self%plan, c_null_ptr, 0.0_dp) /= 0
+        end if
+#else
+        if (present(a)) self%lent = .false.
+#endif
+    end subroutine transform_lend_work
+
     !> x -> k (unnormalised, exp(-i q.x))
     subroutine transform_forward(self)
         class(transform_t), intent(inout) :: self
@@ -132,7 +160,7 @@ contains
         call self%x%destroy()
         call self%k%destroy()
         nullify (self%host)
-        self%device = .false.; self%nx = 0; self%ny = 0; self%work_bytes = 0.0_dp
+        self%device = .false.; self%nx = 0; self%ny = 0; self%work_bytes = 0.0_dp; self%lent = .false.
     end subroutine transform_destroy
 
 end module veslide_transform

@@ -2,8 +2,12 @@
 // Fortran order) into its half-spectrum (nx/2+1) x ny, unnormalised, forward exp(-i q.x), on
 // buffers the caller allocated on the device (veslide_transform.F90). On a GPU: cuFFT's D2Z and
 // Z2D plans (one-dimensional when ny = 1) sharing one work area, allocated and counted by
-// veslide (veslide_device_peak_bytes), kept for as long as the transform lives. On the emulated
-// device: FFTW's 2-D plans on the same buffers (veslide_device.cuh).
+// veslide (veslide_device_peak_bytes). The work area is scratch only while a transform runs: the
+// caller may lend one of its own arrays that is dead whenever a transform runs (lend_work: the
+// contact fields lend u, veslide_contact.f90), else the transform allocates its own at its first
+// use. On the emulated device: FFTW's 2-D plans on the same buffers (veslide_device.cuh), and the
+// work area modelled: nx ny doubles (what cuFFT holds from 4096^2 up), written over with NaN by
+// every transform, so that a lent array that was not dead spoils the result where it is tested.
 #include "../core/veslide_device.cuh"
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,23 +16,10 @@
 #else
 #include <cufft.h>
 #include <cufftXt.h>
-#include <string.h>
 #endif
+#include <string.h>
 
 namespace {
-
-struct plan_t {
-    int nx, ny;
-    double *x;      // real buffer (nx, ny)
-    double2 *k;     // half-spectrum buffer (nx/2+1, ny)
-#ifdef VESLIDE_EMULATE
-    fftw_plan f, b;
-#else
-    cufftHandle f, b;
-    void *work;
-#endif
-    size_t work_bytes;
-};
 
 #ifndef VESLIDE_EMULATE
 const char *cufft_text(cufftResult r) {
@@ -52,13 +43,55 @@ bool ok(cufftResult r, const char *what) {
 }
 #endif
 
+struct plan_t {
+    int nx, ny;
+    double *x;      // real buffer (nx, ny)
+    double2 *k;     // half-spectrum buffer (nx/2+1, ny)
+#ifdef VESLIDE_EMULATE
+    fftw_plan f, b;
+#else
+    cufftHandle f, b;
+#endif
+    size_t work_bytes;   // the work area the plans need
+    void *work;          // where it is now: lent by the caller, or own_work (NULL: not yet given)
+    void *own_work;      // the transform's own, allocated at a first use without a lent one
+};
+
+// the work area given to the plans (a lent one, or the transform's own, allocated now)
+bool bind_work(plan_t *p, void *area) {
+    if (p->work_bytes == 0) return true;
+    if (!area) {
+        if (!p->own_work) p->own_work = vs::alloc(p->work_bytes);
+        if (!p->own_work) return false;
+        area = p->own_work;
+    } else if (p->own_work) {   // lent one now: its own given back
+        vs::release(p->own_work);
+        p->own_work = NULL;
+    }
+    p->work = area;
+#ifndef VESLIDE_EMULATE
+    return ok(cufftSetWorkArea(p->f, area), "cufftSetWorkArea") && ok(cufftSetWorkArea(p->b, area), "cufftSetWorkArea");
+#else
+    return true;
+#endif
+}
+
+// before a transform: a work area bound
+bool work_ready(plan_t *p) { return p->work_bytes == 0 || p->work || bind_work(p, NULL); }
+#ifdef VESLIDE_EMULATE
+// after it (emulated): the work area spoilt, as cuFFT leaves it
+void work_spoilt(plan_t *p) {
+    if (p->work) memset(p->work, 0xff, p->work_bytes);   // all bits set: NaN
+}
+#endif
+
 }  // namespace
 
 extern "C" {
 
 // A transform of nx x ny on the device buffers x (nx ny doubles) and k ((nx/2+1) ny complex);
-// *work_bytes: the work area it holds. policy: 1 cuFFT's smallest work area
-// (CUFFT_WORKAREA_MINIMAL), 0 its default (the fastest plans), -1 as the environment's
+// *work_bytes: the work area it needs (given at its first use, or lent: veslide_transform_lend_work).
+// policy: 1 cuFFT's smallest work area (CUFFT_WORKAREA_MINIMAL), 0 its default (the fastest plans), -1 as the environment's
 // VESLIDE_CUFFT_WORKAREA says ('minimal' or 'performance'; unset: the default)
 int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, int policy, double *work_bytes) {
     *handle = NULL;
@@ -72,6 +105,7 @@ int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, 
     p->k = (double2 *)k;
 #ifdef VESLIDE_EMULATE
     (void)policy;
+    p->work_bytes = (size_t)nx * (size_t)ny * sizeof(double);   // the model: cuFFT's from 4096^2 up
     p->f = fftw_plan_dft_r2c_2d(ny, nx, x, (fftw_complex *)k, FFTW_ESTIMATE);
     p->b = fftw_plan_dft_c2r_2d(ny, nx, (fftw_complex *)k, x, FFTW_ESTIMATE);
     if (!p->f || !p->b) {
@@ -105,19 +139,11 @@ int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, 
                    ok(cufftMakePlan2d(p->b, ny, nx, CUFFT_Z2D, &wb), "cufftMakePlan2d (Z2D)");
         }
     }
-    if (good) {
-        // the two plans never run at once: one work area for both
-        p->work_bytes = wf > wb ? wf : wb;
-        p->work = p->work_bytes > 0 ? vs::alloc(p->work_bytes) : NULL;
-        good = p->work_bytes == 0 || p->work;
-        if (good && p->work)
-            good = ok(cufftSetWorkArea(p->f, p->work), "cufftSetWorkArea") &&
-                   ok(cufftSetWorkArea(p->b, p->work), "cufftSetWorkArea");
-    }
+    // the two plans never run at once: one work area for both, given at the first use
+    if (good) p->work_bytes = wf > wb ? wf : wb;
     if (!good) {
         cufftDestroy(p->f);
         cufftDestroy(p->b);
-        if (p->work) vs::release(p->work);
         free(p);
         return 1;
     }
@@ -127,13 +153,26 @@ int veslide_transform_create(void **handle, int nx, int ny, double *x, void *k, 
     return 0;
 }
 
+// The work area of the transform: `area` (device memory of `bytes` bytes that the caller lends:
+// dead whenever a transform runs, until it lends another or none) when it is at least the plans'
+// need, else the transform's own (allocated now, kept until destroyed). area NULL: its own.
+// Returns 1 when `area` was lent (0: the transform's own, or none needed)
+int veslide_transform_lend_work(void *handle, void *area, double bytes) {
+    plan_t *p = (plan_t *)handle;
+    if (!p || vs::failed()) return 0;
+    bool lent = area && bytes >= (double)p->work_bytes;
+    bind_work(p, lent ? area : NULL);
+    return lent && p->work_bytes > 0 ? 1 : 0;
+}
+
 // k <- transform of x (x is kept)
 int veslide_transform_forward(void *handle) {
     plan_t *p = (plan_t *)handle;
-    if (vs::failed()) return 1;
+    if (vs::failed() || !work_ready(p)) return 1;
     double t0 = vs::profiling() ? vs::now() : 0.0;
 #ifdef VESLIDE_EMULATE
     fftw_execute(p->f);
+    work_spoilt(p);
     int r = 0;
 #else
     int r = ok(cufftExecD2Z(p->f, p->x, (cufftDoubleComplex *)p->k), "cufftExecD2Z") ? 0 : 1;
@@ -145,10 +184,11 @@ int veslide_transform_forward(void *handle) {
 // x <- unnormalised inverse transform of k (k is destroyed)
 int veslide_transform_backward(void *handle) {
     plan_t *p = (plan_t *)handle;
-    if (vs::failed()) return 1;
+    if (vs::failed() || !work_ready(p)) return 1;
     double t0 = vs::profiling() ? vs::now() : 0.0;
 #ifdef VESLIDE_EMULATE
     fftw_execute(p->b);
+    work_spoilt(p);
     int r = 0;
 #else
     int r = ok(cufftExecZ2D(p->b, (cufftDoubleComplex *)p->k, p->x), "cufftExecZ2D") ? 0 : 1;
@@ -166,8 +206,8 @@ int veslide_transform_destroy(void *handle) {
 #else
     cufftDestroy(p->f);
     cufftDestroy(p->b);
-    if (p->work) vs::release(p->work);
 #endif
+    if (p->own_work) vs::release(p->own_work);
     free(p);
     return vs::failed();
 }
