@@ -277,7 +277,8 @@ contains
                     call add_warning(c%warnings, 'adhesive-load-jump', "the law is met but the load is off by "// &
                         sig(c%state%load_error, 2)//" of the pressure scale: the load lies where the load jumps"// &
                         " with the approach (a contact snapping in or out), so the branch followed has no solution"// &
-                        " at it; give the approach instead (&load approach_m) or another load", 'validity', &
+                        " at it; give the approach instead (&load approach_m, or &sweep approaches_m for a path)"// &
+                        " or another load", 'validity', &
                         c%state%load_error, c%spec%solver%tolerance)
             end if
         end associate
