@@ -19,18 +19,25 @@
 !>   r = A (g + h) + sigma(g), the gradient; the free set: open cells (g > 0), and closed cells
 !>       whose gradient less its mean over the open cells is negative (they pull away);
 !>   lambda = mean of r over the free set, r <- r - lambda (so p_mean = -lambda);
-!>   t = r + delta (|r|^2/|r_prev|^2) t on the free set (0 elsewhere), the step
+!>   z = P r on the free set (0 elsewhere; its mean over the set removed), P the preconditioner
+!>   1/(A + k) (k the law's steepest slope) where choose_preconditioner takes it, else z = r;
+!>   t = z + delta (<r, z>/<r_prev, z_prev>) t on the free set (0 elsewhere), the step
 !>   tau = <r, t>/<t, A t> (A's curvature alone, as Polonsky and Keer and Rey et al.: that of V
 !>   is negative and would stall the step where the law is steepest), g <- max(g - tau t, 0)
 !>   with delta = 0 after a step that closed a cell (the conjugacy restarts), and the open
 !>   cells shifted to keep the mean gap d.
 !> Converged when max |r| over the open cells and max(-r) over the closed ones are below the
-!> tolerance (in units of the pressure scale). Two FFT pairs an iteration.
+!> tolerance (in units of the pressure scale). An iteration costs the FFT pair of A t, one more
+!> for P, and one for A (g + h) afresh after a step that clipped or shifted a cell (otherwise
+!> A (g + h) is carried along the step, and formed afresh every 50 iterations and before the
+!> solve ends).
 !> Approach control (problem%approach_control): one inner solve at the given mean gap, the load
 !> its result. Load control (the case's `&load mean_pressure_pa`, which may be tensile): the mean gap is
 !> found by the secant method on p_mean(d), decreasing in d on every branch stable under load
 !> control, each inner solve warm-started from the last; a load beyond the pull-off force has no
-!> solution (the gap opens without bound), reported as not converged.
+!> solution (the gap opens without bound), reported as not converged. (The secant's slope is
+!> updated from points whose loads differ by more than 100 times the inner tolerance while the
+!> load is unbracketed, 10 times once bracketed.)
 !> Where more than one solution exists at one load (JKR: a contact and no contact; a partial and
 !> a full one), the method returns the one its start leads to: a warm start from the last load
 !> of a sweep follows its branch (a start in full contact stays there while the law admits it);
@@ -74,6 +81,9 @@ module veslide_solver_gcg
     real(dp), parameter :: inexact = 1.0e-2_dp
     !> the most solves a tenth tighter when the problem's residual is above the tolerance
     integer, parameter :: max_tighten = 4
+    !> the inner solves are preconditioned when the law's steepest slope is at most this
+    !> fraction of the operator's largest stiffness (docs/adhesion.md: measured crossover)
+    real(dp), parameter :: stiff_law = 0.05_dp
 
 contains
 
@@ -86,7 +96,7 @@ contains
         type(contact_state_t), intent(inout) :: state
         !> gap of the start [m] (a warm start); default: in contact at the highest point
         real(dp), intent(in), optional :: gap0(:, :)
-        real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), at(:, :), ainv(:, :)
+        real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), at(:, :), pz(:, :), ainv(:, :)
         ! the splitting's (a non-symmetric operator): its z and x, the heights, A = 1/K
         real(dp), allocatable :: z(:, :), x(:, :), h0(:, :)
         complex(dp), allocatable :: kinv(:, :)
@@ -96,6 +106,10 @@ contains
         !> the splitting (a non-symmetric operator); the inner solves hold the mean gap (all but
         !> the splitting's under load control, whose metric holds the mean instead)
         logical :: ok, tight, split, hold_mean
+        !> the inner solves' preconditioner 1/(A + law_stiffness) (`preconditioned`: see
+        !> choose_preconditioner)
+        real(dp) :: law_stiffness
+        logical :: preconditioned
         type(progress_ticker_t) :: ticker
 
         nx = f%p%n1; ny = f%p%n2
@@ -109,7 +123,7 @@ contains
         split = .not. problem%kernel%symmetric
         state%method = 'gcg'
         call ticker%start(opts, 'gcg')
-        allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), free(nx, ny), edge(nx, ny))
+        allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), pz(nx, ny), free(nx, ny), edge(nx, ny))
         edge = .false.                       ! (Dugdale's zone edge: kept only for that law)
         hn = (f%h%h - problem%h_mean)/hs
         ! the modulus multiplier A = 1/K (zero where K is: the mean mode), in units p_s/h_s per
@@ -142,6 +156,7 @@ contains
             end if
             ainv = ainv/gamma
         end if
+        call choose_preconditioner()
         if (present(gap0)) then
             g = max(gap0/hs, 0.0_dp)
         else
@@ -180,7 +195,7 @@ contains
             f%g%h = hs*g
             tol = tol/10
         end do
-        deallocate (hn, g, t, r, at, ainv, free, edge)
+        deallocate (hn, g, t, r, at, pz, ainv, free, edge)
 
     contains
 
@@ -236,7 +251,12 @@ contains
                 itol = max(0.1_dp*tol, inexact*abs(p_d - target))
                 call solve_at(d, p_d, ok, itol)
                 if (.not. ok) return
-                if (d /= d_prev .and. abs(p_d - p_prev) > 100*itol) slope = (p_d - p_prev)/(d - d_prev)
+                ! (the slope from points whose loads differ by more than their errors: 100 times
+                ! the inner tolerance while the load is unbracketed, where a slope too shallow
+                ! would step into full contact; 10 times once bracketed, where a slope frozen
+                ! early made the last steps converge linearly, about 6 times a step)
+                if (d /= d_prev .and. abs(p_d - p_prev) > merge(10, 100, have_lo .and. have_hi)*itol) &
+                    slope = (p_d - p_prev)/(d - d_prev)
             end do
         end subroutine carry_load
 
@@ -408,83 +428,123 @@ contains
             real(dp), intent(in) :: itol
             real(dp), intent(out) :: pm
             logical, intent(out) :: ok
+            !> r is carried along a step (r - tau A t) while no cell is clipped or shifted, and
+            !> formed afresh at least this often (and before the solve ends)
+            integer, parameter :: refresh = 50
             real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta
-            logical :: restart
-            integer :: n_inner
+            logical :: restart, fresh, moved, shifted
+            integer :: n_inner, carried
             tight = .false.
             if (hold_mean) call keep_mean(dbar)
             gsq_prev = 1.0_dp; restart = .true.
             t = 0.0_dp
             n_inner = 0
             ok = .false.
+            fresh = .false.
+            carried = 0
             do
-                call apply_a(g + hn, r)
-                state%operator_applications = state%operator_applications + 1
+                if (.not. fresh) then
+                    call apply_a(g + hn, r)
+                    state%operator_applications = state%operator_applications + 1
+                    fresh = .true.; carried = 0
+                end if
                 call gradient(lam, err)
                 pm = -lam
-                if (err <= itol) then
-                    ok = .true.; tight = itol <= tol; exit
+                if (err <= itol .or. n_inner >= opts%max_iterations) then
+                    ! (confirmed on a fresh r when it was carried)
+                    if (carried > 0) then
+                        fresh = .false.; cycle
+                    end if
+                    ok = err <= itol; tight = ok .and. itol <= tol
+                    exit
                 end if
-                if (n_inner >= opts%max_iterations) exit
                 n_inner = n_inner + 1
                 its = its + 1
                 if (.not. split) call ticker%tick(its, err, state%operator_applications)
-                ! the search direction on the free set (0 elsewhere)
+                ! the search direction on the free set (0 elsewhere), from the gradient
+                ! preconditioned by the operator's inverse K (its mean over the free set removed
+                ! where the mean gap is held, so that a step keeps it)
                 where (.not. free) at = 0.0_dp
-                gsq = total(at*at)
+                if (.not. preconditioned) then
+                    pz = at
+                else
+                    call apply_k(at, pz)
+                    state%operator_applications = state%operator_applications + 1
+                    where (.not. free) pz = 0.0_dp
+                    if (hold_mean) then
+                        shift = masked_mean(pz, free)
+                        where (free) pz = pz - shift
+                    end if
+                end if
+                gsq = total(at*pz)
                 beta = 0.0_dp
-                if (.not. restart) beta = gsq/gsq_prev
+                if (.not. restart .and. gsq_prev > 0.0_dp) beta = max(gsq/gsq_prev, 0.0_dp)
                 where (free)
-                    t = at + beta*t
+                    t = pz + beta*t
                 elsewhere
                     t = 0.0_dp
                 end where
                 gsq_prev = gsq
                 ! the step along t with A's curvature (the mean over the free set removed: the
-                ! mean gap is held)
-                r = at                                          ! (r: the gradient, for the step)
-                call apply_a(t, at)
+                ! mean gap is held); pz = A t
+                num = total(at*t)
+                call apply_a(t, pz)
                 state%operator_applications = state%operator_applications + 1
-                if (hold_mean) then
-                    shift = masked_mean(at, free)
-                    where (free) at = at - shift
-                end if
-                num = total(r*t); den = total(merge(at*t, 0.0_dp, free))
+                den = total(merge(pz*t, 0.0_dp, free))
+                if (hold_mean) den = den - masked_mean(pz, free)*total(merge(t, 0.0_dp, free))
                 if (.not. (den > 0.0_dp)) then
-                    call apply_a(g + hn, r); exit
+                    if (carried > 0 .or. .not. fresh) call apply_a(g + hn, r)
+                    exit
                 end if
                 tau = num/den
                 if (kind == LAW_DUGDALE) edge = g < rho          ! (edge: below the zone's edge, before)
                 g = g - tau*t
                 restart = global_any_negative(g)
                 g = max(g, 0.0_dp)
+                moved = restart
                 if (kind == LAW_DUGDALE) then
                     ! a step across the zone's edge stops there (the attraction's jump: a bound
                     ! like the contact's, and the conjugacy restarts)
                     edge = (edge .and. g > rho) .or. (.not. edge .and. g < rho .and. g - (-tau*t) > rho)
                     if (any_cell(edge)) then
                         where (edge) g = rho
-                        restart = .true.
+                        restart = .true.; moved = .true.
                     end if
                 end if
-                if (hold_mean) call keep_mean(dbar)
+                if (hold_mean) then
+                    call keep_mean(dbar, shifted)
+                    moved = moved .or. shifted
+                end if
+                ! r = A (g + h) of the new g: along the step when g moved by -tau t alone
+                if (moved .or. carried >= refresh) then
+                    fresh = .false.
+                else
+                    r = r - tau*pz
+                    fresh = .true.; carried = carried + 1
+                end if
             end do
         end subroutine inner
 
         !> The open cells shifted so that the mean gap is `dbar` (cells a shift closes are closed
         !> and the rest shifted again)
-        subroutine keep_mean(dbar)
+        subroutine keep_mean(dbar, shifted)
             real(dp), intent(in) :: dbar
+            !> some cell was shifted
+            logical, intent(out), optional :: shifted
             real(dp) :: gap_sum, open
             integer :: pass
+            if (present(shifted)) shifted = .false.
             do pass = 1, 50
                 gap_sum = total(g)
                 open = count_all(g > 0.0_dp)
                 if (open <= 0.0_dp) then
-                    g = g + (dbar - gap_sum/cells); exit
+                    g = g + (dbar - gap_sum/cells)
+                    if (present(shifted)) shifted = .true.
+                    exit
                 end if
                 if (abs(dbar*cells - gap_sum) <= 1.0e-15_dp*max(abs(dbar)*cells, 1.0_dp)) exit
                 where (g > 0.0_dp) g = g + (dbar*cells - gap_sum)/open
+                if (present(shifted)) shifted = .true.
                 if (.not. global_any_negative(g)) exit
                 g = max(g, 0.0_dp)
             end do
@@ -514,6 +574,66 @@ contains
             call f%t%backward_unscaled()
             out = f%t%x%h
         end subroutine apply_a
+
+        !> The inner solves' preconditioner: the operator's inverse where the operator is stiffer
+        !> than the law, 1/(A + k) with k the steepest slope of the attraction (s0/rho for the
+        !> exponential law). It costs an FFT pair an iteration and pays where it narrows the
+        !> spectrum, so it is taken when (docs/adhesion.md, measured):
+        !>  - the law's slope is at most `stiff_law` of the operator's stiffness at the grid's
+        !>    scale (the largest A over the modes with |q| above half the largest): a steeper law
+        !>    is the Hessian's other, negative, part, which the preconditioner does not see;
+        !>  - and the operator stiffens toward the grid's scale, at least `stiffening` times its
+        !>    softest long wave (|q| up to twice the smallest): a half-space (A ~ |q|), but not a
+        !>    thin layer (stiffest at its longest waves, or flat), where it cost 1.1 to 3.4 times
+        !>    the FFT pairs.
+        !> Dugdale's law (a jump, no slope) takes none.
+        subroutine choose_preconditioner()
+            real(dp), parameter :: stiffening = 4.0_dp
+            real(dp) :: a_fine, a_low, q_top, q_low, qn
+            integer :: ia, ib, ij(2)
+            q_top = 0.0_dp; q_low = huge(1.0_dp)
+            do ib = 1, size(ainv, 2)
+                do ia = 1, size(ainv, 1)
+                    ij = problem%kernel%grid%spectral_index(ia, ib)
+                    qn = norm2(problem%kernel%grid%wavevector(ij(1), ij(2)))
+                    q_top = max(q_top, qn)
+                    if (qn > 0.0_dp) q_low = min(q_low, qn)
+                end do
+            end do
+            call global_max(problem%kernel%grid, q_top)
+            call global_min(problem%kernel%grid, q_low)
+            a_fine = 0.0_dp; a_low = huge(1.0_dp)
+            do ib = 1, size(ainv, 2)
+                do ia = 1, size(ainv, 1)
+                    ij = problem%kernel%grid%spectral_index(ia, ib)
+                    qn = norm2(problem%kernel%grid%wavevector(ij(1), ij(2)))
+                    if (qn >= 0.5_dp*q_top) a_fine = max(a_fine, ainv(ia, ib))
+                    if (qn > 0.0_dp .and. qn <= 2.0_dp*q_low .and. ainv(ia, ib) > 0.0_dp) a_low = min(a_low, ainv(ia, ib))
+                end do
+            end do
+            call global_max(problem%kernel%grid, a_fine)
+            call global_min(problem%kernel%grid, a_low)
+            law_stiffness = huge(1.0_dp)
+            if (kind == LAW_EXPONENTIAL) law_stiffness = s0/rho
+            preconditioned = a_fine > 0.0_dp .and. law_stiffness <= stiff_law*a_fine*cells .and. &
+                             a_fine >= stiffening*a_low
+        end subroutine choose_preconditioner
+
+        !> out = K a (zero mean where the mean gap is held): the inverse of the inner
+        !> operator's multiplier (A, or M/gamma in the splitting), one FFT pair
+        subroutine apply_k(a, out)
+            real(dp), intent(in) :: a(:, :)
+            real(dp), intent(out) :: out(:, :)
+            f%t%x%h = a
+            call f%t%forward()
+            where (ainv /= 0.0_dp)
+                f%t%k%h = f%t%k%h/((ainv*cells + law_stiffness)*cells)
+            elsewhere
+                f%t%k%h = (0.0_dp, 0.0_dp)
+            end where
+            call f%t%backward_unscaled()
+            out = f%t%x%h
+        end subroutine apply_k
 
         !> sum over the whole grid, row by row and then over the rows in order
         real(dp) function total(a) result(s)
