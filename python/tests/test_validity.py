@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import veslide
-from conftest import FAST
+from conftest import FAST, params
 from test_measured import holes, two_waves, write_x3p
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -194,3 +194,28 @@ def test_the_paper_scenes_warn_of_nothing(exe, tmp_path, path):
     assert r.converged and r.warnings == []
     if r.summary is not None:
         assert (r.summary["warnings"] == 0).all() and len(r.summary) >= 1
+
+
+def jkr_wave(n):
+    """Johnson's wave (alpha = 0.2) with the exponential law of range h/64 on n cells at p = 0"""
+    lam, amp, e = 1.0e-4, 1.0e-6, 1.0e7
+    w = 0.2**2*np.pi**2*e*amp**2/(2.0*lam)
+    return params(grid={"nx": n, "ny": 1, "lx_m": lam, "ly_m": lam/n},
+                  surface={"kind": "cosine", "amplitude_m": amp, "wavelength_m": lam},
+                  material={"young_pa": e, "poisson": 0.0}, load={"mean_pressure_pa": 0.0},
+                  adhesion={"law": "exponential", "energy_j_m2": w, "range_m": amp/64}), \
+        np.pi*e*(amp/64)**2/(4.0*w)/(lam/n)
+
+
+def test_an_adhesive_zone_below_a_cell_warns(exe, tmp_path):
+    """The cohesive zone pi E0* w/(4 sigma0^2) over the cell: half a cell on 512 cells warns
+    (docs/validity.md: the contact at a load then depends on the path by 12 %), four cells on
+    4096 do not, and the measure is the formula's"""
+    p, zone = jkr_wave(512)
+    w = warned(exe, tmp_path, p, "adhesion-zone-unresolved")
+    assert w.value == pytest.approx(zone, rel=1e-12) and 0.4 < zone < 0.6 and w.threshold == 1.0
+    assert "range_m" in w.text and "refine" in w.text
+    p, zone = jkr_wave(4096)
+    r = veslide.run(p, output=tmp_path/"fine.h5", exe=exe, progress=None)
+    assert r.converged and r.validity["adhesion_zone_cells"] == pytest.approx(zone, rel=1e-12) and zone > 3.9
+    assert "adhesion-zone-unresolved" not in [x.code for x in r.warnings]

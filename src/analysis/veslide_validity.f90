@@ -16,7 +16,8 @@
 !>   `band_slope_variance_removed`, `edge_jump_x`, `edge_jump_y`;
 !> - whether a modelled ingredient matters: `loss_tan_delta_max` (a viscoelastic solid in motion:
 !>   the largest loss tangent over the frequencies the surface excites), `layer_effect` (a layer:
-!>   1 - S(q d) at the surface's longest wave, the largest change it makes to a mode's compliance).
+!>   1 - S(q d) at the surface's longest wave, the largest change it makes to a mode's compliance);
+!> - an adhesive law's resolution: `adhesion_zone_cells`, its cohesive zone in cells.
 module veslide_validity
     use veslide_kinds, only: dp, i8, pi
     use veslide_error, only: error_t, fatal_error
@@ -26,7 +27,7 @@ module veslide_validity
     use veslide_collective, only: halo_rows, ordered_sum, global_max
     use veslide_fields, only: field_max
     use veslide_material, only: material_t, layer_factor
-    use veslide_contact_law, only: contact_law_t
+    use veslide_contact_law, only: contact_law_t, ADH_ENERGY, ADH_STRESS
     use veslide_warning, only: warning_t, measure_t, add_warning, add_measure, WARNS_NEVER, WARNS_ABOVE, &
                                WARNS_BELOW
     use veslide_case_data, only: case_t, case_spec_t
@@ -34,7 +35,7 @@ module veslide_validity
     private
     public :: case_validity, check_surface_scale, surface_rms_slope, surface_band, edge_jumps
     public :: slope_warn, slope_refuse, max_slope_warn, contact_cells_min, patch_cells_min, strain_warn, &
-              filled_warn, band_removed_warn, edge_jump_limit, loss_warn
+              filled_warn, band_removed_warn, edge_jump_limit, loss_warn, zone_cells_min
 
     !> An rms slope above 0.3: the half-space model takes the surface as flat to first order; the
     !> normal traction it neglects the tilt of grows as slope^2/2 (4.5 % at 0.3; 0.3 is where
@@ -64,6 +65,11 @@ module veslide_validity
     !> A viscoelastic solid in motion whose loss tangent stays below 1e-3 (the loss of metals)
     !> at every frequency the surface excites responds elastically: the model changes nothing
     real(dp), parameter :: loss_warn = 1.0e-3_dp
+    !> An adhesive law whose cohesive zone is below a cell: the discrete problem has several
+    !> solutions at one load, its edges trapped between cells. The JKR wave's contact at one load,
+    !> reached from a cold start, from above and from below, spread by 0 cells with a zone of 4
+    !> cells, 2 at 1 and 2, 14 at 1/2 (12 %) and 22 to 322 at 1/4 (35 to 40 %) (docs/validity.md)
+    real(dp), parameter :: zone_cells_min = 1.0_dp
 
 contains
 
@@ -267,6 +273,9 @@ contains
                     sig(c%spec%solver%tolerance, 2)//"): a half-space (thickness_m = 0) gives the same result")
             end if
 
+            ! an adhesive law: is its cohesive zone resolved by the grid?
+            if (c%spec%law%adhesive()) call zone_measure()
+
             ! an adhesive law under load control: a load the branch followed cannot carry although
             ! the law is met (to a tenth of the load's error, as the secant's inner solves are) at
             ! every mean gap tried (the load jumps where a contact snaps in or out; docs/adhesion.md)
@@ -326,6 +335,26 @@ contains
                 " cells and "//sig(patch_cells_min)//" across to quote the area and the friction): "// &
                 "the result is the grid's as much as the scene's; "//next, 'validity', value, threshold)
         end subroutine resolution_warning
+
+        !> The adhesive law's cohesive zone in cells: l = pi E0* w/(4 sigma0^2), the length over
+        !> which the attraction acts beside a contact edge (Maugis's and Dugdale's zone in the JKR
+        !> limit, with sigma0 = w/rho for the exponential law), on the relaxed contact modulus E0* =
+        !> E0/(1 - nu^2) (the softest: the shortest zone), over the larger side of a cell
+        subroutine zone_measure()
+            real(dp) :: zone, cell, d(2)
+            d = c%grid%spacing()
+            cell = d(1)
+            if (c%grid%ny > 1) cell = max(d(1), d(2))
+            associate (w => c%spec%law%param(ADH_ENERGY), s0 => c%spec%law%param(ADH_STRESS))
+                zone = pi*e0s*w/(4.0_dp*s0**2)
+                call measure('adhesion_zone_cells', zone/cell, '-', WARNS_BELOW, zone_cells_min, &
+                    'adhesion-zone-unresolved', "the adhesive law's cohesive zone, pi E0* w/(4 sigma0^2) = "// &
+                    sig(zone)//" m, is "//sig(zone/cell, 2)//" of a cell (below "//sig(zone_cells_min)// &
+                    "): the contact's edges are trapped between cells, and the contact at a load depends on"// &
+                    " the path to it (the JKR wave's by 12 % at half a cell, by 35 to 100 % at a quarter and"// &
+                    " below; docs/validity.md); refine the grid, or widen the range (&adhesion range_m)")
+            end associate
+        end subroutine zone_measure
 
         !> The largest loss tangent over the frequencies |q| v the surface excites (q in its band)
         subroutine loss_measure()
