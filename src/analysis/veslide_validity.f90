@@ -339,7 +339,8 @@ contains
         !> The adhesive law's cohesive zone in cells: l = pi E0* w/(4 sigma0^2), the length over
         !> which the attraction acts beside a contact edge (Maugis's and Dugdale's zone in the JKR
         !> limit, with sigma0 = w/rho for the exponential law), on the relaxed contact modulus E0* =
-        !> E0/(1 - nu^2) (the softest: the shortest zone), over the larger side of a cell
+        !> E0/(1 - nu^2) (the softest: the shortest zone), over the larger side of a cell; a
+        !> half-space's zone (a layer thinner than the zone stiffens it and shortens it)
         subroutine zone_measure()
             real(dp) :: zone, cell, d(2)
             d = c%grid%spacing()
@@ -351,7 +352,7 @@ contains
                     'adhesion-zone-unresolved', "the adhesive law's cohesive zone, pi E0* w/(4 sigma0^2) = "// &
                     sig(zone)//" m, is "//sig(zone/cell, 2)//" of a cell (below "//sig(zone_cells_min)// &
                     "): the contact's edges are trapped between cells, and the contact at a load depends on"// &
-                    " the path to it (the JKR wave's by 12 % at half a cell, by 35 to 100 % at a quarter and"// &
+                    " the path to it (the JKR wave's by 12 % at half a cell, by 35 to 130 % at a quarter and"// &
                     " below; docs/validity.md); refine the grid, or widen the range (&adhesion range_m)")
             end associate
         end subroutine zone_measure

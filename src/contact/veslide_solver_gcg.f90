@@ -19,18 +19,20 @@
 !>   r = A (g + h) + sigma(g), the gradient; the free set: open cells (g > 0), and closed cells
 !>       whose gradient less its mean over the open cells is negative (they pull away);
 !>   lambda = mean of r over the free set, r <- r - lambda (so p_mean = -lambda);
-!>   z = P r on the free set (0 elsewhere; its mean over the set removed), P the preconditioner
-!>   1/(A + k) (k the law's steepest slope) where choose_preconditioner takes it, else z = r;
+!>   z = P r on the free set (0 elsewhere; its mean over the set removed where the mean gap is
+!>   held), P the preconditioner 1/(A + k) (k the law's steepest slope) where
+!>   choose_preconditioner takes it, else z = r;
 !>   t = z + delta (<r, z>/<r_prev, z_prev>) t on the free set (0 elsewhere), the step
 !>   tau = <r, t>/<t, A t> (A's curvature alone, as Polonsky and Keer and Rey et al.: that of V
 !>   is negative and would stall the step where the law is steepest), g <- max(g - tau t, 0)
-!>   with delta = 0 after a step that closed a cell (the conjugacy restarts), and the open
+!>   with delta = 0 after a step that closed a cell (the conjugacy restarts; also where
+!>   <r, z> <= 0, which a preconditioned direction never gives in exact arithmetic), and the open
 !>   cells shifted to keep the mean gap d.
 !> Converged when max |r| over the open cells and max(-r) over the closed ones are below the
 !> tolerance (in units of the pressure scale). An iteration costs the FFT pair of A t, one more
-!> for P, and one for A (g + h) afresh after a step that clipped or shifted a cell (otherwise
-!> A (g + h) is carried along the step, and formed afresh every 50 iterations and before the
-!> solve ends).
+!> for P where it is taken, and one for A (g + h) afresh after a step that clipped or shifted a
+!> cell (otherwise A (g + h) is carried along the step, and formed afresh every 50 iterations
+!> and before the solve ends).
 !> Approach control (problem%approach_control): one inner solve at the given mean gap, the load
 !> its result. Load control (the case's `&load mean_pressure_pa`, which may be tensile): the mean gap is
 !> found by the secant method on p_mean(d), decreasing in d on every branch stable under load
@@ -461,9 +463,10 @@ contains
                 n_inner = n_inner + 1
                 its = its + 1
                 if (.not. split) call ticker%tick(its, err, state%operator_applications)
-                ! the search direction on the free set (0 elsewhere), from the gradient
-                ! preconditioned by the operator's inverse K (its mean over the free set removed
-                ! where the mean gap is held, so that a step keeps it)
+                ! the search direction on the free set (0 elsewhere), from the gradient (zero
+                ! mean over the free set where the mean gap is held: gradient's lambda), or from
+                ! it preconditioned (its mean over the free set removed again where the mean gap
+                ! is held, so that a step keeps it)
                 where (.not. free) at = 0.0_dp
                 if (.not. preconditioned) then
                     pz = at
@@ -493,7 +496,10 @@ contains
                 den = total(merge(pz*t, 0.0_dp, free))
                 if (hold_mean) den = den - masked_mean(pz, free)*total(merge(t, 0.0_dp, free))
                 if (.not. (den > 0.0_dp)) then
-                    if (carried > 0 .or. .not. fresh) call apply_a(g + hn, r)
+                    if (carried > 0 .or. .not. fresh) then
+                        call apply_a(g + hn, r)
+                        state%operator_applications = state%operator_applications + 1
+                    end if
                     exit
                 end if
                 tau = num/den
@@ -544,7 +550,11 @@ contains
                 end if
                 if (abs(dbar*cells - gap_sum) <= 1.0e-15_dp*max(abs(dbar)*cells, 1.0_dp)) exit
                 where (g > 0.0_dp) g = g + (dbar*cells - gap_sum)/open
-                if (present(shifted)) shifted = .true.
+                ! (a shift of the summed gap's round-off, after a step that keeps the mean, is not
+                ! one: A (g + h) carried along such a step errs by round-off, and is formed afresh
+                ! every 50 steps)
+                if (present(shifted)) shifted = shifted .or. &
+                    abs(dbar*cells - gap_sum) > 1.0e-12_dp*max(abs(dbar)*cells, 1.0_dp)
                 if (.not. global_any_negative(g)) exit
                 g = max(g, 0.0_dp)
             end do
@@ -602,6 +612,10 @@ contains
             end do
             call global_max(problem%kernel%grid, q_top)
             call global_min(problem%kernel%grid, q_low)
+            preconditioned = .false.
+            law_stiffness = huge(1.0_dp)
+            if (kind == LAW_EXPONENTIAL) law_stiffness = s0/rho
+            if (q_low == huge(1.0_dp)) return                 ! (a single cell: no mode but the mean)
             a_fine = 0.0_dp; a_low = huge(1.0_dp)
             do ib = 1, size(ainv, 2)
                 do ia = 1, size(ainv, 1)
@@ -613,8 +627,6 @@ contains
             end do
             call global_max(problem%kernel%grid, a_fine)
             call global_min(problem%kernel%grid, a_low)
-            law_stiffness = huge(1.0_dp)
-            if (kind == LAW_EXPONENTIAL) law_stiffness = s0/rho
             preconditioned = a_fine > 0.0_dp .and. law_stiffness <= stiff_law*a_fine*cells .and. &
                              a_fine >= stiffening*a_low
         end subroutine choose_preconditioner
