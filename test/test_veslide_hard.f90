@@ -277,13 +277,7 @@ contains
                 call layer_case(k - profile_case_count(), 'auto', cfg, name, error)
             end if
             if (allocated(error)) return
-            cfg%adhesion%law = 'exponential'
-            cfg%adhesion%range_m = 1.0e-6_dp
-            cfg%adhesion%stress_pa = ratio*cfg%load%mean_pressure_pa
-            cfg%adhesion%energy_j_m2 = cfg%adhesion%stress_pa*cfg%adhesion%range_m
-            cfg%solver%method = 'gcg'
-            call complete_config(cfg, error)
-            name = 'adhesive '//name
+            call with_adhesion(cfg, ratio, name, error)
         end subroutine scene
     end subroutine run_adhesive
 
@@ -354,15 +348,25 @@ contains
             integer, intent(in) :: k
             real(dp), intent(in) :: ratio
             call hard_case(k, n, cfg, name, error); if (allocated(error)) return
-            cfg%adhesion%law = 'exponential'
-            cfg%adhesion%range_m = 1.0e-6_dp
-            cfg%adhesion%stress_pa = ratio*cfg%load%mean_pressure_pa
-            cfg%adhesion%energy_j_m2 = cfg%adhesion%stress_pa*cfg%adhesion%range_m
-            cfg%solver%method = 'gcg'
-            call complete_config(cfg, error)
-            name = 'adhesive '//name
+            call with_adhesion(cfg, ratio, name, error)
         end subroutine adhesive_scene
     end subroutine test_scenes_adhesive
+
+    !> The hard groups' adhesive law on the case `cfg`: exponential, range 1 um, largest
+    !> attraction `ratio` times the load, solved by gcg; its name marked 'adhesive'
+    subroutine with_adhesion(cfg, ratio, name, error)
+        type(config_t), intent(inout) :: cfg
+        real(dp), intent(in) :: ratio
+        character(len=:), allocatable, intent(inout) :: name
+        type(error_t), allocatable, intent(out) :: error
+        cfg%adhesion%law = 'exponential'
+        cfg%adhesion%range_m = 1.0e-6_dp
+        cfg%adhesion%stress_pa = ratio*cfg%load%mean_pressure_pa
+        cfg%adhesion%energy_j_m2 = cfg%adhesion%stress_pa*cfg%adhesion%range_m
+        cfg%solver%method = 'gcg'
+        call complete_config(cfg, error)
+        name = 'adhesive '//name
+    end subroutine with_adhesion
 
     !> Does the case carry a warning of code `code`?
     logical function has_warning(c, code) result(yes)
