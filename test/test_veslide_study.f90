@@ -179,11 +179,7 @@ contains
     subroutine test_merge(error)
         type(error_t), allocatable, intent(out) :: error
         type(config_t) :: cfg
-        type(h5file_t) :: f
         character(len=:), allocatable :: serial, part0, part1, merged
-        character(len=64), allocatable :: ca(:), cb(:)
-        logical, allocatable :: ia(:), ib(:)
-        integer(i8), allocatable :: ra(:, :), rb(:, :)
         integer :: nfail, j, ndiff
         character(len=*), parameter :: study = base//" &sweep speeds_m_s = 0.01, 0.1, alphas_deg = 0, 45, n_seeds = 3 /"// &
             " &output fields = .false. /"
@@ -199,15 +195,8 @@ contains
         call merge_study_parts(cfg, merged, [character(len=len(part0)) :: part0, part1], error)
         if (allocated(error)) return
         do j = 1, 2
-            call f%open(serial, 'r', error); if (allocated(error)) return
-            call f%read_table(trim(merge('/summary ', '/ensemble', j == 1)), ca, ia, ra, error); if (allocated(error)) return
-            call f%close()
-            call f%open(merged, 'r', error); if (allocated(error)) return
-            call f%read_table(trim(merge('/summary ', '/ensemble', j == 1)), cb, ib, rb, error); if (allocated(error)) return
-            call f%close()
-            call check(error, all(ca == cb) .and. all(ia .eqv. ib) .and. all(shape(ra) == shape(rb)), "columns")
+            call table_differences(serial, merged, trim(merge('/summary ', '/ensemble', j == 1)), ndiff, error)
             if (allocated(error)) return
-            ndiff = count_differences(ca, ia, ra, rb)
             call check(error, ndiff, 0, "cells differ from the serial study"); if (allocated(error)) return
         end do
         call remove(serial); call remove(part0); call remove(part1); call remove(merged)
@@ -501,13 +490,9 @@ contains
     subroutine test_path_resume_merge(error)
         type(error_t), allocatable, intent(out) :: error
         type(config_t) :: cfg
-        type(h5file_t) :: f
         character(len=:), allocatable :: whole, resumed, part0, part1, merged, study, other
-        character(len=64), allocatable :: ca(:), cb(:)
-        logical, allocatable :: ia(:), ib(:)
-        integer(i8), allocatable :: ra(:, :), rb(:, :)
         real(dp), allocatable :: x(:)
-        integer :: nfail, j, m
+        integer :: nfail, j, m, ndiff
         study = "&grid nx = 1024, ny = 1, lx_m = 1.0e-4, ly_m = 9.765625e-8 /"// &
             " &surface kind = 'cosine', amplitude_m = 1.0e-6, wavelength_m = 1.0e-4 /"// &
             " &material model = 'elastic', young_pa = 1.0e7, poisson = 0.0 /"// &
@@ -532,15 +517,9 @@ contains
         do m = 1, 2
             other = merge(resumed, merged, m == 1)
             do j = 1, 2
-                call f%open(whole, 'r', error); if (allocated(error)) return
-                call f%read_table(trim(merge('/summary', '/paths  ', j == 1)), ca, ia, ra, error); if (allocated(error)) return
-                call f%close()
-                call f%open(other, 'r', error); if (allocated(error)) return
-                call f%read_table(trim(merge('/summary', '/paths  ', j == 1)), cb, ib, rb, error); if (allocated(error)) return
-                call f%close()
-                call check(error, all(ca == cb) .and. all(shape(ra) == shape(rb)), "columns and rows")
+                call table_differences(whole, other, trim(merge('/summary', '/paths  ', j == 1)), ndiff, error)
                 if (allocated(error)) return
-                call check(error, count_differences(ca, ia, ra, rb), 0, trim(merge('resumed', 'joined ', m == 1))// &
+                call check(error, ndiff, 0, trim(merge('resumed', 'joined ', m == 1))// &
                            " study differs from the uninterrupted one"); if (allocated(error)) return
             end do
         end do
@@ -620,6 +599,29 @@ contains
 
     !> Cells that differ: integers exactly (work counts aside), reals beyond 1e-9 relative (timings
     !> aside). OpenMP sums combine in any order, so two solves of one case agree to round-off.
+    !> The cells in which the table `path` of `file_b` differs from that of `file_a`
+    !> (count_differences); an error unless both have the same columns, column kinds and rows
+    subroutine table_differences(file_a, file_b, path, ndiff, error)
+        character(len=*), intent(in) :: file_a, file_b, path
+        integer, intent(out) :: ndiff
+        type(error_t), allocatable, intent(out) :: error
+        type(h5file_t) :: f
+        character(len=64), allocatable :: ca(:), cb(:)
+        logical, allocatable :: ia(:), ib(:)
+        integer(i8), allocatable :: ra(:, :), rb(:, :)
+        ndiff = -1
+        call f%open(file_a, 'r', error); if (allocated(error)) return
+        call f%read_table(path, ca, ia, ra, error); if (allocated(error)) return
+        call f%close()
+        call f%open(file_b, 'r', error); if (allocated(error)) return
+        call f%read_table(path, cb, ib, rb, error); if (allocated(error)) return
+        call f%close()
+        call check(error, size(ca) == size(cb), path//": the same columns"); if (allocated(error)) return
+        call check(error, all(ca == cb) .and. all(ia .eqv. ib) .and. all(shape(ra) == shape(rb)), &
+                   path//": the same columns and rows"); if (allocated(error)) return
+        ndiff = count_differences(ca, ia, ra, rb)
+    end subroutine table_differences
+
     integer function count_differences(columns, is_int, a, b) result(n)
         character(len=*), intent(in) :: columns(:)
         logical, intent(in) :: is_int(:)
