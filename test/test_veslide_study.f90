@@ -284,23 +284,8 @@ contains
                    "the hard wall's loads stay chains of speeds")
     end subroutine test_path_plan
 
-    !> The values of column `name` of a study's /summary (rows in case order)
-    subroutine summary_column(path, name, x, error)
-        character(len=*), intent(in) :: path, name
-        real(dp), allocatable, intent(out) :: x(:)
-        type(error_t), allocatable, intent(out) :: error
-        call table_column(path, '/summary', name, x, error)
-    end subroutine summary_column
-
-    !> The values of column `name` of /paths
-    subroutine paths_column(path, name, x, error)
-        character(len=*), intent(in) :: path, name
-        real(dp), allocatable, intent(out) :: x(:)
-        type(error_t), allocatable, intent(out) :: error
-        call table_column(path, '/paths', name, x, error)
-    end subroutine paths_column
-
-    !> The values of column `name` of the table `table` of a study's file
+    !> The values of column `name` of the table `table` (/summary: rows in case order, /paths) of a
+    !> study's file
     subroutine table_column(path, table, name, x, error)
         character(len=*), intent(in) :: path, table, name
         real(dp), allocatable, intent(out) :: x(:)
@@ -403,13 +388,13 @@ contains
         if (allocated(error)) return
         call run_study(cfg, cold, nfail, error); if (allocated(error)) return
         call check(error, nfail, 0, "cold path: cases not converged"); if (allocated(error)) return
-        call summary_column(warm, 'contact_area_fraction_cells', a, error); if (allocated(error)) return
-        call summary_column(cold, 'contact_area_fraction_cells', ac, error); if (allocated(error)) return
-        call summary_column(warm, 'adhesive_pressure_pa', q, error); if (allocated(error)) return
-        call summary_column(cold, 'adhesive_pressure_pa', qc, error); if (allocated(error)) return
-        call summary_column(warm, 'path_jump', jump, error); if (allocated(error)) return
-        call summary_column(warm, 'operator_applications', ops, error); if (allocated(error)) return
-        call summary_column(cold, 'operator_applications', opsc, error); if (allocated(error)) return
+        call table_column(warm, '/summary', 'contact_area_fraction_cells', a, error); if (allocated(error)) return
+        call table_column(cold, '/summary', 'contact_area_fraction_cells', ac, error); if (allocated(error)) return
+        call table_column(warm, '/summary', 'adhesive_pressure_pa', q, error); if (allocated(error)) return
+        call table_column(cold, '/summary', 'adhesive_pressure_pa', qc, error); if (allocated(error)) return
+        call table_column(warm, '/summary', 'path_jump', jump, error); if (allocated(error)) return
+        call table_column(warm, '/summary', 'operator_applications', ops, error); if (allocated(error)) return
+        call table_column(cold, '/summary', 'operator_applications', opsc, error); if (allocated(error)) return
         call report("FFT pairs of the path, warm-started", sum(ops))
         call report("FFT pairs of its last 5 loads, warm-started", sum(ops(5:9)))
         call report("FFT pairs of the same 5 loads, cold-started", sum(opsc))
@@ -427,11 +412,11 @@ contains
                    "outside the band: the same full contact"); if (allocated(error)) return
         call check(error, ac(5) == a(5) .and. ac(5) /= a(9) .and. abs(qc(5) - q(5)) <= 1.0e-6_dp*pstar, &
                    "inside the band: the partial branch from a cold start, full contact warm"); if (allocated(error)) return
-        call paths_column(warm, 'n_jump_in', x, error); if (allocated(error)) return
+        call table_column(warm, '/paths', 'n_jump_in', x, error); if (allocated(error)) return
         call check(error, size(x) == 1 .and. x(1) == 1.0_dp, "/paths n_jump_in"); if (allocated(error)) return
-        call paths_column(warm, 'jump_in_case', x, error); if (allocated(error)) return
+        call table_column(warm, '/paths', 'jump_in_case', x, error); if (allocated(error)) return
         call check(error, x(1) == 6.0_dp, "/paths jump_in_case"); if (allocated(error)) return
-        call paths_column(warm, 'pull_off_pa', x, error); if (allocated(error)) return
+        call table_column(warm, '/paths', 'pull_off_pa', x, error); if (allocated(error)) return
         call check(error, x(1) /= x(1), "no pull-off on a path that keeps the contact"); if (allocated(error)) return
         call remove(warm); call remove(cold)
     end subroutine test_path_hysteresis
@@ -461,21 +446,21 @@ contains
         call read_text('pull-off', jkr_wave//text//" /", cfg, error); if (allocated(error)) return
         call run_study(cfg, out, nfail, error); if (allocated(error)) return
         call check(error, nfail, 0, "approach path: cases not converged"); if (allocated(error)) return
-        call paths_column(out, 'pull_off_pa', x, error); if (allocated(error)) return
+        call table_column(out, '/paths', 'pull_off_pa', x, error); if (allocated(error)) return
         call report("pull-off under approach control - closed form [p*]", x(1)/pstar - pmin)
         call check(error, abs(x(1)/pstar - pmin) <= 5.0e-3_dp, "pull-off under approach control"); if (allocated(error)) return
-        call paths_column(out, 'pull_off_case', x, error); if (allocated(error)) return
+        call table_column(out, '/paths', 'pull_off_case', x, error); if (allocated(error)) return
         call check(error, x(1) > 1.0_dp .and. x(1) < 13.0_dp, "a minimum inside the path"); if (allocated(error)) return
         call remove(out)
         call read_text('pull-off-load', jkr_wave//loads_of([0.0_dp, -0.05_dp, -0.054_dp, -0.058_dp])//" /", cfg, error)
         if (allocated(error)) return
         call run_study(cfg, out, nfail, error); if (allocated(error)) return
-        call summary_column(out, 'mean_pressure_pa', load, error); if (allocated(error)) return
-        call summary_column(out, 'converged', conv, error); if (allocated(error)) return
-        call summary_column(out, 'path_jump', jump, error); if (allocated(error)) return
+        call table_column(out, '/summary', 'mean_pressure_pa', load, error); if (allocated(error)) return
+        call table_column(out, '/summary', 'converged', conv, error); if (allocated(error)) return
+        call table_column(out, '/summary', 'path_jump', jump, error); if (allocated(error)) return
         call check(error, all(conv == [1, 1, 1, 0]) .and. all(nint(jump) == [0, 0, 0, JUMP_OUT]) .and. nfail == 1, &
                    "the contact lost at -0.058 p*"); if (allocated(error)) return
-        call paths_column(out, 'pull_off_pa', x, error); if (allocated(error)) return
+        call table_column(out, '/paths', 'pull_off_pa', x, error); if (allocated(error)) return
         call report("pull-off under load control, last load carried [p*]", x(1)/pstar)
         call check(error, x(1) == load(3) .and. load(4) < pmin*pstar .and. pmin*pstar <= load(3), &
                    "the closed form's pull-off between the last load carried and the first lost")
@@ -503,10 +488,10 @@ contains
         part0 = unique_name('path-part0.h5'); part1 = unique_name('path-part1.h5'); merged = unique_name('path-merged.h5')
         call read_text('path-rm', study, cfg, error); if (allocated(error)) return
         call run_study(cfg, whole, nfail, error); if (allocated(error)) return
-        call summary_column(whole, 'path_jump', x, error); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_jump', x, error); if (allocated(error)) return
         call check(error, all(nint(x) == [0, 0, 0, 0, JUMP_OUT, 0, JUMP_IN, 0, 0, 0, 0, 0, JUMP_OUT, 0, JUMP_IN, 0]) &
                    .and. nfail == 4, "each path separates at -0.045 p* and comes back at 0"); if (allocated(error)) return
-        call paths_column(whole, 'pull_off_case', x, error); if (allocated(error)) return
+        call table_column(whole, '/paths', 'pull_off_case', x, error); if (allocated(error)) return
         call check(error, all(x == [4.0_dp, 12.0_dp]), "/paths: a pull-off per path"); if (allocated(error)) return
         call run_study(cfg, resumed, nfail, error, stop_after=5); if (allocated(error)) return
         call run_study(cfg, resumed, nfail, error); if (allocated(error)) return
