@@ -98,7 +98,9 @@ contains
         type(contact_state_t), intent(inout) :: state
         !> gap of the start [m] (a warm start); default: in contact at the highest point
         real(dp), intent(in), optional :: gap0(:, :)
-        real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), at(:, :), pz(:, :), ainv(:, :)
+        real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), ainv(:, :)
+        !> the gradient, and its preconditioned form (then A t)
+        real(dp), allocatable, target :: at(:, :), pz(:, :)
         ! the splitting's (a non-symmetric operator): its z and x, the heights, A = 1/K
         real(dp), allocatable :: z(:, :), x(:, :), h0(:, :)
         complex(dp), allocatable :: kinv(:, :)
@@ -434,6 +436,8 @@ contains
             !> formed afresh at least this often (and before the solve ends)
             integer, parameter :: refresh = 50
             real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta
+            !> the direction's new part: the gradient (at) or its preconditioned form (pz)
+            real(dp), pointer :: z(:, :)
             logical :: restart, fresh, moved, shifted
             integer :: n_inner, carried
             tight = .false.
@@ -468,9 +472,8 @@ contains
                 ! it preconditioned (its mean over the free set removed again where the mean gap
                 ! is held, so that a step keeps it)
                 where (.not. free) at = 0.0_dp
-                if (.not. preconditioned) then
-                    pz = at
-                else
+                z => at
+                if (preconditioned) then
                     call apply_k(at, pz)
                     state%operator_applications = state%operator_applications + 1
                     where (.not. free) pz = 0.0_dp
@@ -478,12 +481,13 @@ contains
                         shift = masked_mean(pz, free)
                         where (free) pz = pz - shift
                     end if
+                    z => pz
                 end if
-                gsq = total(at*pz)
+                gsq = total(at*z)
                 beta = 0.0_dp
                 if (.not. restart .and. gsq_prev > 0.0_dp) beta = max(gsq/gsq_prev, 0.0_dp)
                 where (free)
-                    t = pz + beta*t
+                    t = z + beta*t
                 elsewhere
                     t = 0.0_dp
                 end where
