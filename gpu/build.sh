@@ -34,7 +34,7 @@ source scripts/env.sh     # .venv/bin on PATH, the HDF5 that setup.sh found (ser
 sources=(src/core/veslide_device.cu src/grid/veslide_transform.cu src/grid/veslide_passes.cu
          src/physics/veslide_kernel_passes.cu src/contact/veslide_contact_passes.cu
          src/contact/veslide_bccg_passes.cu src/contact/veslide_pdr_passes.cu src/contact/veslide_dr_passes.cu
-         src/contact/veslide_anderson_passes.cu)
+         src/contact/veslide_anderson_passes.cu src/contact/veslide_gcg_passes.cu)
 
 if [ "$emulate" = 1 ]; then
     mode=emulate

@@ -6,8 +6,9 @@
 Runs both programs on a set of small inputs (written into WORKDIR, default a temporary
 directory) that cover the four methods (bccg, pk, pdr, dr) and 'auto', elastic and viscoelastic
 solids at rest and in motion, anisotropic surfaces and directions, a layer, a one-row profile,
-kernel variants, Anderson memories, the analyses (anisotropy, patches, Persson) and a study
-with fields, and compares every dataset and every attribute of the two output files: floats by
+kernel variants, Anderson memories, the analyses (anisotropy, patches, Persson), a study
+with fields and the adhesive laws' solver (gcg: at rest, in motion, tensile, under approach
+control, along a load path), and compares every dataset and every attribute of the two output files: floats by
 their bytes (NaN equal to NaN), strings (variable length too) by value. What a run measures of
 itself is left out: the wall-clock times (*_seconds, datasets and attributes), the measured memory peak (also as columns
 of a study's tables), and the provenance (the root's creation time, compiler options, git revision). Prints one line per
@@ -31,11 +32,12 @@ SELF_AFFINE = "&surface kind = 'self_affine', seed = 3, hurst = 0.8, k_cut = {k_
 VISCO = "&material model = 'one_term', einf_pa = 1.0e8, ratio = 11.0, tau_s = 0.01, poisson = 0.5 {extra}/"
 ELASTIC = "&material model = 'elastic', young_pa = 3.0e6, poisson = 0.5 {extra}/"
 HARD = "&material model = 'one_term', einf_pa = 1.0e8, ratio = 100.0, tau_s = 0.01, poisson = 0.5 /"
+ADHESION = "&adhesion law = '{law}', energy_j_m2 = 0.05, range_m = 2.0e-5 /"
 ANALYSES = "&analysis anisotropy = .true., patches = .true., persson = .true. /"
 
 
 def case(n, material, method, speed=0.13, surface='', solver='', grid='', motion='', study='', analysis=ANALYSES,
-         load="&load mean_pressure_pa = 32.0e3 /"):
+         load="&load mean_pressure_pa = 32.0e3 /", adhesion=''):
     """A namelist: n x n cells (or `grid`), the self-affine surface, `material`, `method`"""
     lines = [grid or f"&grid nx = {n}, ny = {n}, lx_m = 0.01 /",
              (surface or SELF_AFFINE).format(extra='', k_cut=min(16.0, n/4)),
@@ -43,6 +45,8 @@ def case(n, material, method, speed=0.13, surface='', solver='', grid='', motion
              f"&motion speed_m_s = {speed} {motion}/",
              f"&solver method = '{method}' {solver}/",
              analysis]
+    if adhesion:
+        lines.append(ADHESION.format(law=adhesion))
     if study:
         lines.append(study)
     return "\n".join(lines) + "\n"
@@ -107,6 +111,17 @@ INPUTS = {
                          study="&sweep speeds_m_s = 0.0, 0.01, 0.13, 1.0, n_seeds = 2 /\n&output fields = .true. /"),
     'study_pdr': case(32, VISCO.format(extra=''), 'pdr', analysis="&analysis /",
                       study="&sweep speeds_m_s = 0.05, 0.5, pressures_pa = 2.0e4, 4.0e4 /"),
+    # adhesive laws ('gcg'): at rest and in motion (its splitting), Dugdale's zone, a tensile load,
+    # approach control, a load path warm-started both ways
+    'adhesive_elastic': case(64, ELASTIC.format(extra=''), 'gcg', adhesion='exponential'),
+    'adhesive_visco': case(64, VISCO.format(extra=''), 'gcg', adhesion='exponential'),
+    'adhesive_rest_dugdale': case(64, VISCO.format(extra=''), 'gcg', speed=0.0, adhesion='dugdale'),
+    'adhesive_tensile': case(64, ELASTIC.format(extra=''), 'gcg', adhesion='exponential',
+                             load="&load mean_pressure_pa = -1.0e3 /"),
+    'adhesive_approach': case(64, VISCO.format(extra=''), 'gcg', adhesion='exponential',
+                              load="&load approach_m = 1.0e-5 /"),
+    'adhesive_load_path': case(32, VISCO.format(extra=''), 'gcg', adhesion='exponential', analysis="&analysis /",
+                               study="&sweep pressures_pa = 3.0e4, 1.0e4, 0.0, 1.0e4 /"),
 }
 
 

@@ -5,16 +5,18 @@
 !>    against its CPU twin on random data (1e-13 relative), the cuFFT twin against FFTW, dense
 !>    references and hard cases solved on the device, the device against the CPU on the same
 !>    cases (pressure, area, friction, lateral force to 1e-10; FFT pairs within 2 %), a solve
-!>    repeated bit for bit, the refusals of what the device does not run, and its memory count.
+!>    repeated bit for bit, the refusals of what the device does not run, and its memory count;
+!>    the adhesive laws' solver (gcg) pass by pass and against the CPU on the hard scenes.
 module test_veslide_device
     use, intrinsic :: iso_fortran_env, only: int8, real32
+    use, intrinsic :: iso_c_binding, only: c_int
     use veslide_kinds, only: dp, i8
     use veslide_error, only: fatal_error
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_device, only: device_enabled, device_count, device_emulated, device_info_t, device_info, &
                               device_peak_bytes, device_reset_peak, device_bytes_in_use, device_check, &
-                              device_moved_bytes, device_has_room
+                              device_moved_bytes, device_has_room, device_download
     use veslide_arrays, only: rarray_t, carray_t, iarray_t, sarray_t
     use veslide_transform, only: transform_t
     use veslide_passes, only: fill, scale, divide, subtract, scaled_copy, divided_copy, centre_scale, centre_divide, &
@@ -30,6 +32,11 @@ module test_veslide_device
                                   add_scaled, full_contact, gap_to_z, sum_of, one_plus, difference_from
     use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap, dr_load_sums, dr_shift
     use veslide_anderson_passes, only: anderson_columns, anderson_update
+    use veslide_gcg_passes, only: gcg_attract, gcg_free_set, gcg_centre, gcg_spectral, gcg_mask, gcg_dot, &
+                                  gcg_shift_dot, gcg_direction, gcg_curvature, gcg_step, gcg_gap_sums, gcg_shift_open, &
+                                  gcg_combine, gcg_extremes, SPECTRAL_A, SPECTRAL_K, SPECTRAL_OPERATOR, &
+                                  SPECTRAL_RESOLVENT, SPECTRAL_START, COMBINE_SUM, COMBINE_AXPY
+    use veslide_contact_law, only: LAW_EXPONENTIAL, LAW_DUGDALE
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL
     use veslide_contact, only: contact_problem_t, contact_state_t, new_contact_problem
@@ -40,7 +47,7 @@ module test_veslide_device
     use veslide_memory, only: device_bytes_per_cell
     use veslide_study, only: run_study
     use veslide_scenes, only: hard_case_count, hard_case
-    use test_veslide_hard, only: check_friction_sign
+    use test_veslide_hard, only: check_friction_sign, with_adhesion
     use veslide_analysis, only: contact_area_fraction
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     use test_support, only: solve_case, unique_name, remove
@@ -78,6 +85,7 @@ contains
             new_unittest("passes-bccg", test_passes_bccg), &
             new_unittest("passes-pdr", test_passes_pdr), &
             new_unittest("passes-dr-and-anderson", test_passes_dr), &
+            new_unittest("passes-gcg", test_passes_gcg), &
             new_unittest("transform-against-fftw", test_transform), &
             new_unittest("dense-elastic-bccg", test_dense_bccg), &
             new_unittest("dense-visco-pdr", test_dense_pdr), &
@@ -85,6 +93,7 @@ contains
             new_unittest("profile-one-row", test_profile), &
             new_unittest("hard-cases-on-the-device", test_hard), &
             new_unittest("device-against-cpu", test_against_cpu), &
+            new_unittest("adhesive-scenes-against-cpu", test_adhesive_against_cpu), &
             new_unittest("repeats-bit-for-bit", test_repeat), &
             new_unittest("refusals", test_refusals), &
             new_unittest("memory-counted-and-returned", test_memory), &
@@ -637,6 +646,194 @@ contains
         end do
     end subroutine test_against_cpu
 
+    !> The passes of the adhesive laws' solver (gcg) against their CPU twins on random data: a gap
+    !> with closed cells and cells at Dugdale's zone edge, both laws, every spectral multiplier and
+    !> combination; the int8 sets they make equal
+    subroutine test_passes_gcg(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: na = nx/2 + 1
+        integer, parameter :: laws(2) = [LAW_EXPONENTIAL, LAW_DUGDALE]
+        real(dp), parameter :: s0 = 0.7_dp, rho = 0.25_dp, lam = 0.05_dp
+        real(dp), allocatable, target :: g(:, :), r(:, :), at(:, :), pz(:, :), t(:, :), ai(:, :), w(:, :)
+        complex(dp), allocatable, target :: k(:, :), ki(:, :)
+        type(rarray_t) :: gh, gd, rh, rd, ath, atd, pzh, pzd, th, tdv, aih, aid, wh, wd
+        type(carray_t) :: kh, kdv, kih, kid
+        type(iarray_t) :: fh, fd, eh, ed
+        real(dp) :: r4h(4, ny), r4d(4, ny), e(4)
+        integer :: il, mode
+        integer(c_int) :: m
+        call twin_real(nx, ny, r, rh, rd)
+        call twin_real(nx, ny, at, ath, atd)
+        call fh%create(nx, ny, .false.); call fd%create(nx, ny, .true.)
+        call eh%create(nx, ny, .false.); call ed%create(nx, ny, .true.)
+        do il = 1, size(laws)
+            call gap_twin()
+            call gcg_attract(laws(il), s0, rho, gh, rh, ath, eh, r4h(1:3, :))
+            call gcg_attract(laws(il), s0, rho, gd, rd, atd, ed, r4d(1:3, :))
+            call same_real(error, ath, atd, "attract"); call same_sums(r4h(1:3, :), r4d(1:3, :), "attract sums")
+            call same_set(eh, ed, "Dugdale's edge")
+            call gcg_free_set(gh, rh, ath, fh, eh, lam, s0, il == 2, r4h(1:2, :))
+            call gcg_free_set(gd, rd, atd, fd, ed, lam, s0, il == 2, r4d(1:2, :))
+            call same_real(error, ath, atd, "free set: at"); call same_sums(r4h(1:2, :), r4d(1:2, :), "free set sums")
+            call same_set(fh, fd, "free set")
+            call gcg_centre(gh, ath, fh, eh, lam, e(1)); call gcg_centre(gd, atd, fd, ed, lam, e(2))
+            call same_real(error, ath, atd, "centre")
+            ! (to round-off: the exponential law's exp is glibc's vector one on the CPU, as before)
+            if (.not. allocated(error)) call check(error, abs(e(1) - e(2)) <= pass_tol*e(1) .and. e(1) > 0.0_dp, &
+                                                   "centre: violation "// &
+                                                   real_text(e(1))//" on the CPU, "//real_text(e(2))//" on the device")
+            if (allocated(error)) return
+        end do
+        ! the directions' passes
+        call twin_real(nx, ny, pz, pzh, pzd); call twin_real(nx, ny, t, th, tdv)
+        call gcg_mask(pzh, fh, r4h(1:2, :)); call gcg_mask(pzd, fd, r4d(1:2, :))
+        call same_real(error, pzh, pzd, "mask"); call same_sums(r4h(1:2, :), r4d(1:2, :), "mask sums")
+        call gcg_shift_dot(pzh, ath, fh, 0.03_dp, r4h(1:1, :)); call gcg_shift_dot(pzd, atd, fd, 0.03_dp, r4d(1:1, :))
+        call same_real(error, pzh, pzd, "shift_dot"); call same_sums(r4h(1:1, :), r4d(1:1, :), "shift_dot sums")
+        call gcg_dot(ath, pzh, r4h(1:1, :)); call gcg_dot(atd, pzd, r4d(1:1, :))
+        call same_sums(r4h(1:1, :), r4d(1:1, :), "dot")
+        call gcg_direction(pzh, ath, th, fh, 0.6_dp, r4h(1:1, :))
+        call gcg_direction(pzd, atd, tdv, fd, 0.6_dp, r4d(1:1, :))
+        call same_real(error, th, tdv, "direction"); call same_sums(r4h(1:1, :), r4d(1:1, :), "direction sums")
+        call gcg_curvature(pzh, th, fh, r4h); call gcg_curvature(pzd, tdv, fd, r4d)
+        call same_sums(r4h, r4d, "curvature")
+        ! steps: Dugdale's stop at the zone's edge, and the smooth law's
+        do il = 1, size(laws)
+            call gap_twin()
+            call twin_real(nx, ny, t, th, tdv)
+            call gcg_step(laws(il), rho, gh, th, 0.4_dp, eh, r4h(1:1, :), e(1))
+            call gcg_step(laws(il), rho, gd, tdv, 0.4_dp, ed, r4d(1:1, :), e(2))
+            call same_real(error, gh, gd, "step"); call same_sums(r4h(1:1, :), r4d(1:1, :), "step: cells stopped")
+            if (il == 2) call same_set(eh, ed, "step: the cells stopped")
+            if (.not. allocated(error)) call check(error, e(1) == e(2) .and. e(1) < 0.0_dp .and. &
+                                                   (il == 1 .or. sum(r4h(1, :)) > 0.0_dp), "step: least gap, stops")
+            if (allocated(error)) return
+        end do
+        call gcg_shift_open(gh, -0.1_dp, e(1)); call gcg_shift_open(gd, -0.1_dp, e(2))
+        call same_real(error, gh, gd, "shift_open")
+        if (.not. allocated(error)) call check(error, e(1) == e(2) .and. e(1) < 0.0_dp, "shift_open: least gap")
+        if (allocated(error)) return
+        call gcg_gap_sums(gh, .false., r4h(1:2, :)); call gcg_gap_sums(gd, .false., r4d(1:2, :))
+        call same_sums(r4h(1:2, :), r4d(1:2, :), "gap sums")
+        call gcg_gap_sums(gh, .true., r4h(1:2, :)); call gcg_gap_sums(gd, .true., r4d(1:2, :))
+        call same_real(error, gh, gd, "clip"); call same_sums(r4h(1:2, :), r4d(1:2, :), "gap sums, clipped")
+        call gcg_extremes(rh, e(1), e(2)); call gcg_extremes(rd, e(3), e(4))
+        if (.not. allocated(error)) call check(error, all(e(1:2) == e(3:4)) .and. e(1) < e(2), "extremes")
+        if (allocated(error)) return
+        ! the combinations
+        call twin_real(nx, ny, w, wh, wd)
+        do mode = 0, 7
+            m = int(mode, c_int)
+            call gcg_combine(m, wh, rh, th, 0.3_dp, 1.7_dp, -0.2_dp)
+            call gcg_combine(m, wd, rd, tdv, 0.3_dp, 1.7_dp, -0.2_dp)
+            call same_real(error, wh, wd, "combine "//str_int(mode))
+        end do
+        ! the spectral multipliers (some modes zero, as the mean mode is)
+        call twin_real(na, ny, ai, aih, aid, lo=0.1_dp, hi=2.0_dp)
+        ai(1, 1) = 0.0_dp; ai(3, 2) = 0.0_dp; call aid%upload(ai)
+        call twin_complex(na, ny, ki, kih, kid)
+        ki(1, 1) = (0.0_dp, 0.0_dp); ki(4, 3) = (0.0_dp, 0.0_dp); call kid%upload(ki)
+        do mode = 0, 4
+            m = int(mode, c_int)
+            call twin_complex(na, ny, k, kh, kdv)
+            call gcg_spectral(m, kh, aih, kih, 0.8_dp, real(nx*ny, dp))
+            call gcg_spectral(m, kdv, aid, kid, 0.8_dp, real(nx*ny, dp))
+            call same_complex(error, kh, kdv, "spectral "//str_int(mode))
+            call kdv%destroy()
+        end do
+        call device_errors(error, "gcg passes")
+        call gd%destroy(); call rd%destroy(); call atd%destroy(); call pzd%destroy(); call tdv%destroy()
+        call aid%destroy(); call kid%destroy(); call wd%destroy(); call fd%destroy(); call ed%destroy()
+    contains
+        !> g >= 0 with closed cells (about a third) and cells at rho (every seventh)
+        subroutine gap_twin()
+            integer :: i
+            call twin_real(nx, ny, g, gh, gd)
+            g = max(g, 0.0_dp)
+            do i = 1, nx*ny, 7
+                g(mod(i - 1, nx) + 1, (i - 1)/nx + 1) = rho
+            end do
+            call gd%upload(g)
+        end subroutine gap_twin
+        subroutine same_sums(a, b, what)
+            real(dp), intent(in) :: a(:, :), b(:, :)
+            character(len=*), intent(in) :: what
+            call same_values(error, reshape(b, [size(b)]), reshape(a, [size(a)]), what)
+        end subroutine same_sums
+        !> the same set on both (with cells in and out of it; the exponential law's edge empty)
+        subroutine same_set(h, d, what)
+            type(iarray_t), intent(in) :: h, d
+            character(len=*), intent(in) :: what
+            integer(int8) :: b(nx, ny)
+            logical :: empty
+            if (allocated(error)) return
+            call device_download(b, d%d, int(nx*ny, i8))
+            empty = what == "Dugdale's edge" .and. il == 1
+            call check(error, all(b == h%h) .and. (any(b == 1) .neqv. empty) .and. any(b == 0), &
+                       what//": device and CPU sets differ (or one is empty or full)")
+        end subroutine same_set
+        function str_int(i) result(t)
+            integer, intent(in) :: i
+            character(len=:), allocatable :: t
+            character(len=12) :: b
+            write (b, '(i0)') i
+            t = trim(b)
+        end function str_int
+    end subroutine test_passes_gcg
+
+    !> The adhesive laws' solver on the device against the CPU: the hard scenes with the hard
+    !> groups' exponential law (largest attraction twice the load; test_veslide_hard) at rest
+    !> (the conjugate gradients) and in motion (their splitting), with Dugdale's law, under
+    !> approach control: converged on both, the same closed cells, FFT pairs within 2 %, the
+    !> pressure and the forces to 1e-10
+    subroutine test_adhesive_against_cpu(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: cases(5) = [1, 4, 27, 1, 4]
+        character(len=11), parameter :: laws(5) = [character(len=11) :: 'exponential', 'exponential', 'exponential', &
+                                                   'dugdale', 'exponential']
+        type(config_t) :: cfg
+        type(case_t) :: cc, cg
+        character(len=:), allocatable :: name
+        real(dp) :: dpres, df(2)
+        integer :: i, n
+        n = merge(32, 64, device_emulated())
+        do i = 1, size(cases)
+            call hard_case(cases(i), n, cfg, name, error); if (allocated(error)) return
+            call with_adhesion(cfg, 2.0_dp, name, error); if (allocated(error)) return
+            cfg%adhesion%law = laws(i)
+            if (i == 5) then
+                cfg%load%approach_m = 2.0e-6_dp
+                name = name//", approach control"
+            end if
+            name = name//" ("//trim(laws(i))//")"
+            cfg%solver%device = 'cpu'
+            call run_case(cfg, cc, error); if (allocated(error)) return
+            cfg%solver%device = 'gpu'
+            call run_case(cfg, cg, error); if (allocated(error)) return
+            ! (the law's contact is the closed cells, compared below; p > 0 is not: on open cells
+            ! far from contact p = -sigma(g) is 0 to round-off)
+            dpres = maxval(abs(cg%state%p - cc%state%p))/maxval(abs(cc%state%p))
+            df = abs(cg%force_pa - cc%force_pa)/max(norm2(cc%force_pa), tiny(1.0_dp))
+            call report(name//": |dp|/max |p|", dpres)
+            call report(name//": FFT pairs (CPU)", real(cc%state%operator_applications, dp))
+            call check(error, cg%state%device == 'gpu' .and. cc%state%device == 'cpu', name//": where solved")
+            if (allocated(error)) return
+            call check(error, cc%state%converged .and. cg%state%converged, name//": not converged")
+            if (allocated(error)) return
+            call report(name//": iterations, device - CPU", real(cg%state%iterations - cc%state%iterations, dp))
+            call report(name//": closed cells that differ", real(count((cg%state%g <= 0.0_dp) .neqv. &
+                                                                         (cc%state%g <= 0.0_dp)), dp))
+            call check(error, abs(cg%state%operator_applications - cc%state%operator_applications) <= &
+                       max(2, nint(0.02_dp*cc%state%operator_applications)), name//": FFT pairs differ")
+            if (allocated(error)) return
+            call check(error, all((cg%state%g <= 0.0_dp) .eqv. (cc%state%g <= 0.0_dp)), name//": other closed cells")
+            if (allocated(error)) return
+            call check(error, dpres <= 1.0e-10_dp .and. all(df <= 1.0e-10_dp), &
+                       name//": pressures or forces differ by "//real_text(dpres)//", "//real_text(maxval(df)))
+            if (allocated(error)) return
+        end do
+    end subroutine test_adhesive_against_cpu
+
     !> Two solves of the same case on the device give the same bits
     subroutine test_repeat(error)
         type(error_t), allocatable, intent(out) :: error
@@ -760,7 +957,8 @@ contains
     !> what the estimate leaves out as small: the half-spectra's row beyond nx/2 (at most 6 of
     !> them, 16 ny bytes each: the estimate counts 8 per cell), bccg's few clipped points
     !> transformed directly (at most 8, 16 (nx/2 + 1 + ny) bytes each) and the Hermitian weights
-    !> (8 (nx/2 + 1)): 2.3 bytes per cell at 128^2, less than any array of the grid but act's
+    !> (8 (nx/2 + 1)): 2.3 bytes per cell at 128^2, less than any array of the grid but act's;
+    !> and gcg in motion (the adhesive laws' splitting, the most that solver holds)
     subroutine test_memory_estimate(error)
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 128
@@ -829,6 +1027,19 @@ contains
         ! (both within the tolerance 1e-6 of the solution)
         call check(error, dpres <= 1.0e-5_dp, name//": the pressures differ by "//real_text(dpres))
         call fft%destroy()
+        if (allocated(error)) return
+        ! the adhesive laws' solver in motion (its splitting: the most it holds)
+        call hard_case(4, n, cfg, name, error); if (allocated(error)) return
+        call with_adhesion(cfg, 2.0_dp, name, error); if (allocated(error)) return
+        cfg%solver%device = 'gpu'; cfg%solver%tolerance = 1.0e-6_dp
+        name = "gcg"
+        before = device_bytes_in_use()
+        call device_reset_peak()
+        call run_case(cfg, c, error); if (allocated(error)) return
+        measured = (device_peak_bytes() - before)/cells
+        estimate = device_bytes_per_cell(c%spec)
+        call check(error, c%state%device == 'gpu', name//": not on the device"); if (allocated(error)) return
+        call check_estimate(name)
 
     contains
 

@@ -65,11 +65,11 @@ contains
         if (allocated(error)) return
         call check(error, .not. runs_on_device(SOLVER_PK) .and. runs_on_device(SOLVER_AUTO), "device column")
         if (allocated(error)) return
-        ! gcg: the adhesive laws alone, on any operator (its splitting), on the host
+        ! gcg: the adhesive laws alone, on any operator (its splitting), on the host and the device
         r(1) = solver_info(SOLVER_GCG)
-        call check(error, r(1)%method == SOLVER_GCG .and. .not. r(1)%symmetric_only .and. .not. r(1)%device .and. &
+        call check(error, r(1)%method == SOLVER_GCG .and. .not. r(1)%symmetric_only .and. r(1)%device .and. &
                    r(1)%laws(LAW_EXPONENTIAL) .and. r(1)%laws(LAW_DUGDALE) .and. .not. r(1)%laws(LAW_HARD_WALL), &
-                   "gcg: the adhesive laws, any operator, host only")
+                   "gcg: the adhesive laws, any operator, host and device")
     end subroutine test_rows
 
     !> The bytes the memory estimate took per solver before the table held them

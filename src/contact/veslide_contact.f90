@@ -27,7 +27,7 @@ module veslide_contact
     use veslide_arrays, only: rarray_t, carray_t
     use veslide_transform, only: transform_t
     use veslide_passes, only: multiply_spectrum
-    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures, project_and_sum
+    use veslide_contact_passes, only: gap_and_contact_sums, gap_measures, project_and_sum, adhesive_measures
     use veslide_passes, only: fill, scale
     use veslide_contact_law, only: contact_law_t, ADH_STRESS
     use veslide_device, only: device_check
@@ -279,7 +279,9 @@ contains
                 call f%h%upload(self%h)
             end if
             call self%kernel%multiplier_array(f%kd, .true.)
-            if (kept_start > 0.0_dp) then
+            if (self%law%adhesive()) then
+                ! (an adhesive law's solver starts from the gap alone: p is not read)
+            else if (kept_start > 0.0_dp) then
                 allocate (rows(ny))
                 call project_and_sum(self%law, f%p, rows)
                 call scale(f%p, kept_start)
@@ -415,7 +417,7 @@ contains
         end associate
     end subroutine problem_residuals_on
 
-    !> Residuals of a candidate of an adhesive law on the host fields `f`: p with u = K p fresh,
+    !> Residuals of a candidate of an adhesive law on the fields `f`: p with u = K p fresh,
     !> the solver's gap g_s in f%g (its closed cells exactly 0) and approach in state%approach_m.
     !> The gap g = u - h + d is formed afresh; the law's measures take the repulsive pressure
     !> p_rep = p + sigma(g_s) (at the solver's gap: a law with a jump, Dugdale's, would flip at
@@ -427,29 +429,17 @@ contains
         class(contact_problem_t), intent(in) :: self
         type(contact_fields_t), intent(inout) :: f
         type(contact_state_t), intent(inout) :: state
-        real(dp), allocatable :: g(:, :), prep(:, :)
         real(dp) :: rows(1, f%g%n2), sum_p(1), ext(2), c
-        integer :: j
-        g = f%u%h - (f%h%h - self%h_mean) + state%approach_m
-        prep = self%law%repulsive(f%p%h, f%g%h)
-        do j = 1, size(g, 2)
-            rows(1, j) = sum(f%p%h(:, j))
-        end do
-        ext = [min(minval(g), -maxval(abs(g - f%g%h))), minval(prep)]
+        call adhesive_measures(self%law, f%u, f%h, self%h_mean, f%p, f%g, state%approach_m, self%p_scale_pa, &
+                               self%height_scale_m, rows(1, :), ext, c)
         call ordered_sum(self%kernel%grid, rows, sum_p)
         call global_min(self%kernel%grid, ext)
         ! the complementarity cell by cell (contact_law_t%measures; no sum of |p_rep| is needed)
-        c = maxval(min(abs(prep)/self%p_scale_pa, max(g, 0.0_dp)/self%height_scale_m))
         call global_max(self%kernel%grid, c)
         ! (under approach control the load is the result: no load error)
         call residual_measures(self%law, state, ext(1), c, 0.0_dp, ext(2), sum_p(1), self%kernel%grid%cells(), &
                                merge(sum_p(1)/self%kernel%grid%cells(), self%p_mean_pa, self%approach_control), &
                                self%height_scale_m, self%p_scale_pa)
-        where (f%g%h <= 0.0_dp)
-            f%g%h = 0.0_dp
-        elsewhere
-            f%g%h = max(g, 0.0_dp)
-        end where
     end subroutine adhesive_residuals
 
 end module veslide_contact

@@ -9,7 +9,7 @@
 namespace vs {
 
 // veslide_contact_law's LAW_* ids
-enum law_kind { law_hard_wall = 1 };
+enum law_kind { law_hard_wall = 1, law_exponential = 2, law_dugdale = 3 };
 
 // The hard wall (Signorini): p >= 0, g >= 0, p g = 0; contact where p > 0
 struct hard_wall {
@@ -32,6 +32,30 @@ struct hard_wall {
         m[1] = fmin(m[1], p);
     }
 };
+
+// The adhesive laws' attractions sigma(g) (their Fortran twins: the maps *_attraction), with
+// sigma0 and the range rho in the units of the caller (SI, or a solve's)
+struct exponential {
+    double s0, rho;
+    static constexpr bool dugdale = false;
+    VS_HD double attraction(double g) const { return s0 * exp(-fmax(g, 0.0) / rho); }
+};
+struct dugdale_zone {
+    double s0, rho;
+    static constexpr bool dugdale = true;
+    VS_HD double attraction(double g) const { return g < rho ? s0 : 0.0; }
+};
+
+// f(law) with the adhesive law of id `kind` (sigma0 `s0`, range `rho`); another id is noted as
+// the pass's error
+template <class F>
+void with_adhesive_law(int kind, double s0, double rho, const char *pass, F &&f) {
+    switch (kind) {
+    case law_exponential: f(exponential{s0, rho}); break;
+    case law_dugdale: f(dugdale_zone{s0, rho}); break;
+    default: note_error(pass, "not an adhesive law");
+    }
+}
 
 // f(law) with the law of id `kind` and parameters `param` (the law's own order; the hard wall
 // has none); an id no case names is noted as the pass's error (device_check reports it)

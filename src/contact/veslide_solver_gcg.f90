@@ -64,14 +64,26 @@
 !> the load is T's constant part (T(g) = A (g + h) + p_mean): one loop, no secant, the inner
 !> solves free of the mean gap; under approach control they hold it. The start
 !> z = y + gamma M^-1 A (y + h) is the fixed point's z where y is the solution (a warm start).
-!> Sums row by row and then over the rows in order (veslide_collective): the same path for any
-!> number of threads or processes. Host only (veslide_solver_table).
+!> Every pass over the grid is a named procedure with a CPU twin and a CUDA twin
+!> (veslide_gcg_passes), so the solve runs where its fields are: on the host, or on the device
+!> (veslide_solver_table), the control flow here either way. Sums row by row and then over the
+!> rows in order (veslide_collective): the same path for any number of threads or processes.
 module veslide_solver_gcg
+    use, intrinsic :: iso_c_binding, only: c_int
     use veslide_kinds, only: dp, i8
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_contact_law, only: ADH_STRESS, ADH_RANGE, LAW_EXPONENTIAL, LAW_DUGDALE
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
     use veslide_collective, only: ordered_sum, global_max, global_min
+    use veslide_arrays, only: rarray_t, carray_t, iarray_t
+    use veslide_device, only: device_failed
+    use veslide_passes, only: fill, subtract, scaled_copy, centre_divide, row_sums
+    use veslide_gcg_passes, only: gcg_attract, gcg_free_set, gcg_centre, gcg_spectral, gcg_mask, gcg_dot, &
+                                  gcg_shift_dot, gcg_direction, gcg_curvature, gcg_step, gcg_gap_sums, gcg_shift_open, &
+                                  gcg_combine, gcg_extremes, SPECTRAL_A, SPECTRAL_K, SPECTRAL_OPERATOR, &
+                                  SPECTRAL_RESOLVENT, SPECTRAL_START, COMBINE_SUM, COMBINE_DIFFERENCE, &
+                                  COMBINE_REFLECT, COMBINE_ACCUMULATE, COMBINE_PRESSURE, COMBINE_DISPLACEMENT, &
+                                  COMBINE_FROM, COMBINE_AXPY
     implicit none
     private
     public :: gap_conjugate_gradients
@@ -89,8 +101,9 @@ module veslide_solver_gcg
 
 contains
 
-    !> The adhesive problem on the host fields `f` (solution: p in f%p, the gap in f%g with its
-    !> closed cells exactly 0, u = K p in f%u, the approach in state%approach_m)
+    !> The adhesive problem on the fields `f`, on the host or on the device (solution: p in f%p,
+    !> the gap in f%g with its closed cells exactly 0, u = K p in f%u, the approach in
+    !> state%approach_m)
     subroutine gap_conjugate_gradients(problem, f, opts, state, gap0)
         type(contact_problem_t), intent(in) :: problem
         type(contact_fields_t), intent(inout) :: f
@@ -98,18 +111,30 @@ contains
         type(contact_state_t), intent(inout) :: state
         !> gap of the start [m] (a warm start); default: in contact at the highest point
         real(dp), intent(in), optional :: gap0(:, :)
-        real(dp), allocatable :: hn(:, :), g(:, :), t(:, :), r(:, :), ainv(:, :)
+        !> the heights (the inner solves' in the splitting), the gap, the search direction, A (g + h)
+        type(rarray_t) :: hn, g, t, r
         !> the gradient, and its preconditioned form (then A t)
-        real(dp), allocatable, target :: at(:, :), pz(:, :)
-        ! the splitting's (a non-symmetric operator): its z and x, the heights, A = 1/K
-        real(dp), allocatable :: z(:, :), x(:, :), h0(:, :)
-        complex(dp), allocatable :: kinv(:, :)
-        logical, allocatable :: free(:, :), edge(:, :)
-        real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol, gamma, softest, mean_metric
+        type(rarray_t), target :: at, pz
+        !> the free set, and the cells at Dugdale's zone edge (int8 sets)
+        type(iarray_t) :: free, edge
+        ! the splitting's (a non-symmetric operator): its z and x, the heights
+        type(rarray_t) :: z, x, h0
+        !> the modulus multiplier A = 1/K (real; with the splitting |1/K|/gamma) and, with the
+        !> splitting, 1/K itself, on the half-spectrum where the solve runs; `ainv` and `kinv` their
+        !> host copies, from which the preconditioner is chosen
+        type(rarray_t) :: a_s
+        type(carray_t) :: k_s
+        real(dp), allocatable, target :: ainv(:, :)
+        complex(dp), allocatable, target :: kinv(:, :)
+        !> the kernel's multiplier K_d on the host (a copy of the device's where the solve runs there)
+        complex(dp), allocatable, target :: kd_copy(:, :)
+        complex(dp), pointer, contiguous :: kd(:, :)
+        real(dp), allocatable :: gstart(:, :)
+        real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol, gamma, softest, mean_metric, least, most
         integer :: nx, ny, its, kind, attempt
         !> the splitting (a non-symmetric operator); the inner solves hold the mean gap (all but
         !> the splitting's under load control, whose metric holds the mean instead)
-        logical :: ok, tight, split, hold_mean
+        logical :: ok, tight, split, hold_mean, dev
         !> the inner solves' preconditioner 1/(A + law_stiffness) (`preconditioned`: see
         !> choose_preconditioner)
         real(dp) :: law_stiffness
@@ -117,6 +142,7 @@ contains
         type(progress_ticker_t) :: ticker
 
         nx = f%p%n1; ny = f%p%n2
+        dev = f%device
         hs = problem%height_scale_m
         ps = problem%p_scale_pa
         cells = problem%kernel%grid%cells()
@@ -127,27 +153,38 @@ contains
         split = .not. problem%kernel%symmetric
         state%method = 'gcg'
         call ticker%start(opts, 'gcg')
-        allocate (hn(nx, ny), g(nx, ny), t(nx, ny), r(nx, ny), at(nx, ny), pz(nx, ny), free(nx, ny), edge(nx, ny))
-        edge = .false.                       ! (Dugdale's zone edge: kept only for that law)
-        hn = (f%h%h - problem%h_mean)/hs
+        call hn%create(nx, ny, dev); call g%create(nx, ny, dev); call t%create(nx, ny, dev)
+        call r%create(nx, ny, dev); call at%create(nx, ny, dev); call pz%create(nx, ny, dev)
+        call free%create(nx, ny, dev); call edge%create(nx, ny, dev)
+        call centre_divide(hn, f%h, problem%h_mean, hs)
         ! the modulus multiplier A = 1/K (zero where K is: the mean mode), in units p_s/h_s per
-        ! cell count (FFTW's unscaled pair); with the splitting the inner solves' M/gamma
+        ! cell count (FFTW's unscaled pair); with the splitting the inner solves' M/gamma (formed
+        ! on the host, from the kernel's multiplier)
+        if (dev) then
+            allocate (kd_copy(f%kd%n1, f%kd%n2))
+            call f%kd%download(kd_copy)
+            kd => kd_copy
+        else
+            kd => f%kd%h
+        end if
         if (split) then
-            kinv = f%kd%h
+            kinv = kd
             where (kinv /= (0.0_dp, 0.0_dp))
                 kinv = hs/(ps*kinv*cells)
             end where
             ainv = abs(kinv)
             gamma = opts%step
             if (.not. (gamma > 0.0_dp)) gamma = 1.0_dp
-            allocate (z(nx, ny), x(nx, ny))
-            h0 = hn
+            call z%create(nx, ny, dev); call x%create(nx, ny, dev); call h0%create(nx, ny, dev)
+            call h0%assign(hn)
         else
-            ainv = real(f%kd%h, dp)
+            ainv = real(kd, dp)
             where (ainv /= 0.0_dp)
                 ainv = hs/(ps*ainv*cells)
             end where
         end if
+        if (allocated(kd_copy)) deallocate (kd_copy)
+        nullify (kd)
         softest = lowest_compliance()
         hold_mean = .true.
         if (split) then
@@ -161,11 +198,30 @@ contains
             ainv = ainv/gamma
         end if
         call choose_preconditioner()
-        if (present(gap0)) then
-            g = max(gap0/hs, 0.0_dp)
+        ! the multipliers where the solve runs (on the host views of these)
+        if (dev) then
+            call a_s%create(size(ainv, 1), size(ainv, 2), .true.); call a_s%upload(ainv)
+            deallocate (ainv)
+            if (split) then
+                call k_s%create(size(kinv, 1), size(kinv, 2), .true.); call k_s%upload(kinv)
+                deallocate (kinv)
+            end if
         else
-            d = maxval(hn); call global_max(problem%kernel%grid, d)
-            g = d - hn
+            call a_s%view(ainv)
+            if (split) call k_s%view(kinv)
+        end if
+        if (present(gap0)) then
+            gstart = max(gap0/hs, 0.0_dp)
+            if (dev) then
+                call g%upload(gstart)
+            else
+                g%h = gstart
+            end if
+            deallocate (gstart)
+        else
+            call gcg_extremes(hn, least, most)
+            d = most; call global_max(problem%kernel%grid, d)
+            call gcg_combine(COMBINE_FROM, g, hn, hn, d)
         end if
         its = 0
         slope = 0.0_dp
@@ -185,10 +241,10 @@ contains
                 call carry_load()
             end if
             ! the solution in SI: p = p_mean + A (g + h) (in r), the gap, u = g + h - d
-            if (split) hn = h0
-            f%p%h = ps*p_d + ps*(r - sum_mean_removed())
-            f%g%h = hs*g
-            f%u%h = hs*(g + hn - d)
+            if (split) call hn%assign(h0)
+            call gcg_combine(COMBINE_PRESSURE, f%p, r, r, ps*p_d, ps, sum_mean_removed())
+            call scaled_copy(f%g, g, hs)
+            call gcg_combine(COMBINE_DISPLACEMENT, f%u, g, hn, d, hs)
             state%approach_m = hs*d
             state%iterations = its
             if (.not. (ok .and. tight .and. abs(p_d - target) <= tol)) then
@@ -196,10 +252,15 @@ contains
             end if
             call problem%confirm(f, state, opts%tolerance)
             if (state%converged) exit
-            f%g%h = hs*g
+            if (dev .and. device_failed()) exit
+            call scaled_copy(f%g, g, hs)
             tol = tol/10
         end do
-        deallocate (hn, g, t, r, at, pz, ainv, free, edge)
+        call hn%destroy(); call g%destroy(); call t%destroy(); call r%destroy(); call at%destroy(); call pz%destroy()
+        call free%destroy(); call edge%destroy(); call a_s%destroy(); call k_s%destroy()
+        if (split) then
+            call z%destroy(); call x%destroy(); call h0%destroy()
+        end if
 
     contains
 
@@ -267,18 +328,19 @@ contains
         !> The solution in full contact at the target load, when the law admits it (the repulsive
         !> pressure p_mean + A h + sigma(0) nowhere negative): then g = 0, d = 0 and r = A h
         logical function full_contact() result(yes)
-            real(dp) :: least
-            t = g                                    ! (t: free between inner solves)
-            g = 0.0_dp
+            real(dp) :: rmin, rmax
+            call t%assign(g)                          ! (t: free between inner solves)
+            call fill(g, 0.0_dp)
             call apply_operator(g, r)
             state%operator_applications = state%operator_applications + 1
-            least = minval(r - sum_mean_removed()) + target + s0
-            call global_min(problem%kernel%grid, least)
-            yes = least >= 0.0_dp
+            ! (min(r - m) is min(r) - m: rounding is monotone)
+            call gcg_extremes(r, rmin, rmax)
+            call global_min(problem%kernel%grid, rmin)
+            yes = (rmin - sum_mean_removed()) + target + s0 >= 0.0_dp
             if (yes) then
                 d = 0.0_dp; p_d = target; ok = .true.; tight = .true.
             else
-                g = t
+                call g%assign(t)
             end if
         end function full_contact
 
@@ -301,15 +363,11 @@ contains
         !> z = y + gamma M^-1 A (y + h), the splitting's fixed point were y (= g) the solution
         !> (one FFT pair)
         subroutine start_splitting()
-            f%t%x%h = g + h0
+            call gcg_combine(COMBINE_SUM, f%t%x, g, h0)
             call f%t%forward()
-            where (kinv /= (0.0_dp, 0.0_dp))
-                f%t%k%h = f%t%k%h*(gamma*kinv/abs(kinv))/cells
-            elsewhere
-                f%t%k%h = (0.0_dp, 0.0_dp)
-            end where
+            call gcg_spectral(SPECTRAL_START, f%t%k, a_s, k_s, gamma, cells)
             call f%t%backward_unscaled()
-            z = g + f%t%x%h
+            call gcg_combine(COMBINE_SUM, z, g, f%t%x)
             state%operator_applications = state%operator_applications + 1
         end subroutine start_splitting
 
@@ -326,7 +384,7 @@ contains
             ok = .false.; tight = .false.
             if (hold_mean) then
                 ! the mean gap moves with z's
-                z = z + (dbar - total(z)/cells)
+                call subtract(z, -(dbar - total(z)/cells))
                 call keep_mean(dbar)
             end if
             do
@@ -344,84 +402,73 @@ contains
                 if (err <= itol) then
                     ok = .true.; tight = itol <= tol; exit
                 end if
-                if (its >= opts%max_iterations) exit
+                if (its >= opts%max_iterations .or. dev .and. device_failed()) exit
                 call ticker%tick(its, err, state%operator_applications)
                 ! x = the resolvent of z (in x), v = 2x - z as the inner heights' negative
-                f%t%x%h = z + h0
+                call gcg_combine(COMBINE_SUM, f%t%x, z, h0)
                 call f%t%forward()
-                where (kinv /= (0.0_dp, 0.0_dp))
-                    f%t%k%h = f%t%k%h/((1.0_dp + gamma*kinv/abs(kinv))*cells)
-                elsewhere
-                    f%t%k%h = f%t%k%h/cells
-                end where
+                call gcg_spectral(SPECTRAL_RESOLVENT, f%t%k, a_s, k_s, gamma, cells)
                 call f%t%backward_unscaled()
                 state%operator_applications = state%operator_applications + 1
-                x = f%t%x%h - h0
                 ! (the load's constant part of the operator, on the mean mode of the metric)
-                if (.not. hold_mean) x = x - gamma*target/mean_metric
-                hn = z - 2.0_dp*x
+                call gcg_combine(COMBINE_DIFFERENCE, x, f%t%x, h0, merge(0.0_dp, gamma*target/mean_metric, hold_mean))
+                call gcg_combine(COMBINE_REFLECT, hn, z, x)
                 ! y: the symmetric problem with M/gamma, warm-started from the last y
                 call inner(dbar, ptmp, iok, max(0.01_dp*itol, inner_fraction*err))
-                hn = h0
-                z = z + (g - x)
+                call hn%assign(h0)
+                call gcg_combine(COMBINE_ACCUMULATE, z, g, x)
             end do
         end subroutine splitting
 
         !> out = A a (zero mean) with A the operator itself (with the splitting, not the inner
         !> solves' M/gamma), one FFT pair
         subroutine apply_operator(a, out)
-            real(dp), intent(in) :: a(:, :)
-            real(dp), intent(out) :: out(:, :)
+            type(rarray_t), intent(in) :: a
+            type(rarray_t), intent(inout) :: out
             if (.not. split) then
-                call apply_a(a + hn, out); return
+                call gcg_combine(COMBINE_SUM, f%t%x, a, hn)
+                call apply_a_buffer(out); return
             end if
-            f%t%x%h = a + h0
+            call gcg_combine(COMBINE_SUM, f%t%x, a, h0)
             call f%t%forward()
-            f%t%k%h = f%t%k%h*kinv
+            call gcg_spectral(SPECTRAL_OPERATOR, f%t%k, a_s, k_s, 0.0_dp, cells)
             call f%t%backward_unscaled()
-            out = f%t%x%h
+            call out%assign(f%t%x)
         end subroutine apply_operator
 
-        !> From r = A (g + h): the gradient in `at` (less its mean over the free set, `lam`), the
-        !> free set, and `err` (max |gradient| over the open cells, max(-gradient) over the closed)
+        !> From r = A (g + h): the gradient in `at` (less its mean over the free set, `lam`; zero
+        !> off the free set), the free set, and `err` (max |gradient| over the open cells,
+        !> max(-gradient) over the closed)
         subroutine gradient(lam, err, fixed)
             real(dp), intent(out) :: lam, err
             !> lambda given (the load), not the mean over the free set; 0 for an inner solve
             !> that does not hold the mean gap
             real(dp), intent(in), optional :: fixed
+            real(dp) :: rows(3, ny), sums(3)
             logical :: held
             ! gradient and the free set: lambda from the open cells, then the closed cells
-            ! that pull away join
-            at = r + attraction(g)                          ! (at: the gradient, for now)
-            held = .false.
-            if (kind == LAW_DUGDALE) then
-                edge = g == rho
-                held = any_cell(edge)
-            end if
+            ! that pull away join; a cell held at the Dugdale zone's edge (g = rho, attraction
+            ! anywhere in [0, sigma0]: the law's graph there) stays while some attraction
+            ! balances it, else leaves inward (sigma0) or outward (0)
+            call gcg_attract(kind, s0, rho, g, r, at, edge, rows)
+            call ordered_sum(problem%kernel%grid, rows, sums)
+            held = sums(3) > 0.0_dp
             if (present(fixed)) then
                 lam = fixed
             else if (.not. hold_mean) then
                 lam = 0.0_dp
             else
-                lam = masked_mean(at, g > 0.0_dp .and. .not. edge)
+                lam = 0.0_dp
+                if (sums(2) > 0.0_dp) lam = sums(1)/sums(2)
             end if
-            free = (g > 0.0_dp .and. .not. edge) .or. (g <= 0.0_dp .and. at - lam < 0.0_dp)
-            if (held) then
-                ! a cell held at the Dugdale zone's edge (g = rho, attraction anywhere in
-                ! [0, sigma0]: the law's graph there) stays while some attraction balances
-                ! it, else leaves inward (sigma0) or outward (0)
-                where (edge)
-                    free = r - lam > 0.0_dp .or. r - lam < -s0
-                    at = r + merge(s0, merge(0.0_dp, lam - r, r - lam < -s0), r - lam > 0.0_dp)
-                end where
-            end if
-            if (hold_mean .and. .not. present(fixed)) lam = masked_mean(at, free)
-            at = at - lam
-            if (held) then
-                where (edge .and. .not. free) at = 0.0_dp
+            call gcg_free_set(g, r, at, free, edge, lam, s0, held, rows(1:2, :))
+            if (hold_mean .and. .not. present(fixed)) then
+                call ordered_sum(problem%kernel%grid, rows(1:2, :), sums(1:2))
+                lam = 0.0_dp
+                if (sums(2) > 0.0_dp) lam = sums(1)/sums(2)
             end if
             ! converged: no gradient on the open cells, none pulling a closed one away
-            err = maxval(merge(abs(at), max(-at, 0.0_dp), g > 0.0_dp))
+            call gcg_centre(g, at, free, edge, lam, err)
             call global_max(problem%kernel%grid, err)
         end subroutine gradient
 
@@ -435,30 +482,31 @@ contains
             !> r is carried along a step (r - tau A t) while no cell is clipped or shifted, and
             !> formed afresh at least this often (and before the solve ends)
             integer, parameter :: refresh = 50
-            real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta
+            real(dp) :: lam, err, gsq, gsq_prev, tau, num, den, shift, beta, gmin, rows(4, ny), sums(4)
             !> the direction's new part: the gradient (at) or its preconditioned form (pz)
-            real(dp), pointer :: z(:, :)
+            type(rarray_t), pointer :: zd
             logical :: restart, fresh, moved, shifted
             integer :: n_inner, carried
             tight = .false.
             if (hold_mean) call keep_mean(dbar)
             gsq_prev = 1.0_dp; restart = .true.
-            t = 0.0_dp
+            call fill(t, 0.0_dp)
             n_inner = 0
             ok = .false.
             fresh = .false.
             carried = 0
             do
                 if (.not. fresh) then
-                    call apply_a(g + hn, r)
+                    call gcg_combine(COMBINE_SUM, f%t%x, g, hn)
+                    call apply_a_buffer(r)
                     state%operator_applications = state%operator_applications + 1
                     fresh = .true.; carried = 0
                 end if
                 call gradient(lam, err)
                 pm = -lam
-                if (err <= itol .or. n_inner >= opts%max_iterations) then
+                if (err <= itol .or. n_inner >= opts%max_iterations .or. dev .and. device_failed()) then
                     ! (confirmed on a fresh r when it was carried)
-                    if (carried > 0) then
+                    if (carried > 0 .and. .not. (dev .and. device_failed())) then
                         fresh = .false.; cycle
                     end if
                     ok = err <= itol; tight = ok .and. itol <= tol
@@ -467,57 +515,65 @@ contains
                 n_inner = n_inner + 1
                 its = its + 1
                 if (.not. split) call ticker%tick(its, err, state%operator_applications)
-                ! the search direction on the free set (0 elsewhere), from the gradient (zero
-                ! mean over the free set where the mean gap is held: gradient's lambda), or from
-                ! it preconditioned (its mean over the free set removed again where the mean gap
-                ! is held, so that a step keeps it)
-                where (.not. free) at = 0.0_dp
-                z => at
+                ! the search direction on the free set (0 elsewhere: the gradient is), from the
+                ! gradient (zero mean over the free set where the mean gap is held: gradient's
+                ! lambda), or from it preconditioned (its mean over the free set removed again
+                ! where the mean gap is held, so that a step keeps it)
+                zd => at
                 if (preconditioned) then
                     call apply_k(at, pz)
                     state%operator_applications = state%operator_applications + 1
-                    where (.not. free) pz = 0.0_dp
+                    call gcg_mask(pz, free, rows(1:2, :))
+                    shift = 0.0_dp
                     if (hold_mean) then
-                        shift = masked_mean(pz, free)
-                        where (free) pz = pz - shift
+                        call ordered_sum(problem%kernel%grid, rows(1:2, :), sums(1:2))
+                        if (sums(2) > 0.0_dp) shift = sums(1)/sums(2)
                     end if
-                    z => pz
+                    call gcg_shift_dot(pz, at, free, shift, rows(1:1, :))
+                    zd => pz
+                else
+                    call gcg_dot(at, at, rows(1:1, :))
                 end if
-                gsq = total(at*z)
+                call ordered_sum(problem%kernel%grid, rows(1:1, :), sums(1:1))
+                gsq = sums(1)
                 beta = 0.0_dp
                 if (.not. restart .and. gsq_prev > 0.0_dp) beta = max(gsq/gsq_prev, 0.0_dp)
-                where (free)
-                    t = z + beta*t
-                elsewhere
-                    t = 0.0_dp
-                end where
+                call gcg_direction(zd, at, t, free, beta, rows(1:1, :))
+                call ordered_sum(problem%kernel%grid, rows(1:1, :), sums(1:1))
+                num = sums(1)
                 gsq_prev = gsq
                 ! the step along t with A's curvature (the mean over the free set removed: the
                 ! mean gap is held); pz = A t
-                num = total(at*t)
-                call apply_a(t, pz)
+                call apply_a_of(t, pz)
                 state%operator_applications = state%operator_applications + 1
-                den = total(merge(pz*t, 0.0_dp, free))
-                if (hold_mean) den = den - masked_mean(pz, free)*total(merge(t, 0.0_dp, free))
+                call gcg_curvature(pz, t, free, rows)
+                call ordered_sum(problem%kernel%grid, rows, sums)
+                den = sums(1)
+                if (hold_mean) then
+                    if (sums(3) > 0.0_dp) then
+                        den = den - (sums(2)/sums(3))*sums(4)
+                    else
+                        den = den - 0.0_dp*sums(4)
+                    end if
+                end if
                 if (.not. (den > 0.0_dp)) then
                     if (carried > 0 .or. .not. fresh) then
-                        call apply_a(g + hn, r)
+                        call gcg_combine(COMBINE_SUM, f%t%x, g, hn)
+                        call apply_a_buffer(r)
                         state%operator_applications = state%operator_applications + 1
                     end if
                     exit
                 end if
                 tau = num/den
-                if (kind == LAW_DUGDALE) edge = g < rho          ! (edge: below the zone's edge, before)
-                g = g - tau*t
-                restart = global_any_negative(g)
-                g = max(g, 0.0_dp)
+                call gcg_step(kind, rho, g, t, tau, edge, rows(1:1, :), gmin)
+                call global_min(problem%kernel%grid, gmin)
+                restart = gmin < 0.0_dp
                 moved = restart
                 if (kind == LAW_DUGDALE) then
                     ! a step across the zone's edge stops there (the attraction's jump: a bound
                     ! like the contact's, and the conjugacy restarts)
-                    edge = (edge .and. g > rho) .or. (.not. edge .and. g < rho .and. g - (-tau*t) > rho)
-                    if (any_cell(edge)) then
-                        where (edge) g = rho
+                    call ordered_sum(problem%kernel%grid, rows(1:1, :), sums(1:1))
+                    if (sums(1) > 0.0_dp) then
                         restart = .true.; moved = .true.
                     end if
                 end if
@@ -529,7 +585,7 @@ contains
                 if (moved .or. carried >= refresh) then
                     fresh = .false.
                 else
-                    r = r - tau*pz
+                    call gcg_combine(COMBINE_AXPY, r, pz, pz, tau)
                     fresh = .true.; carried = carried + 1
                 end if
             end do
@@ -541,53 +597,52 @@ contains
             real(dp), intent(in) :: dbar
             !> some cell was shifted
             logical, intent(out), optional :: shifted
-            real(dp) :: gap_sum, open
+            real(dp) :: gap_sum, open, rows(2, ny), sums(2), gmin
             integer :: pass
+            !> a shift left negative gaps, to be clipped (as the next pass's sums are taken)
+            logical :: clip
             if (present(shifted)) shifted = .false.
+            clip = .false.
             do pass = 1, 50
-                gap_sum = total(g)
-                open = count_all(g > 0.0_dp)
+                call gcg_gap_sums(g, clip, rows)
+                clip = .false.
+                call ordered_sum(problem%kernel%grid, rows, sums)
+                gap_sum = sums(1); open = sums(2)
                 if (open <= 0.0_dp) then
-                    g = g + (dbar - gap_sum/cells)
+                    call subtract(g, -(dbar - gap_sum/cells))
                     if (present(shifted)) shifted = .true.
                     exit
                 end if
                 if (abs(dbar*cells - gap_sum) <= 1.0e-15_dp*max(abs(dbar)*cells, 1.0_dp)) exit
-                where (g > 0.0_dp) g = g + (dbar*cells - gap_sum)/open
+                call gcg_shift_open(g, (dbar*cells - gap_sum)/open, gmin)
                 ! (a shift of the summed gap's round-off, after a step that keeps the mean, is not
                 ! one: A (g + h) carried along such a step errs by round-off, and is formed afresh
                 ! every 50 steps)
                 if (present(shifted)) shifted = shifted .or. &
                     abs(dbar*cells - gap_sum) > 1.0e-12_dp*max(abs(dbar)*cells, 1.0_dp)
-                if (.not. global_any_negative(g)) exit
-                g = max(g, 0.0_dp)
+                call global_min(problem%kernel%grid, gmin)
+                if (.not. gmin < 0.0_dp) exit
+                clip = .true.
             end do
+            if (clip) call gcg_gap_sums(g, .true., rows)
         end subroutine keep_mean
 
-        !> sigma(g) in units of the pressure scale, g in h_s
-        pure function attraction(gn) result(s)
-            real(dp), intent(in) :: gn(:, :)
-            real(dp) :: s(size(gn, 1), size(gn, 2))
-            select case (kind)
-            case (LAW_EXPONENTIAL)
-                s = s0*exp(-gn/rho)
-            case (LAW_DUGDALE)
-                s = merge(s0, 0.0_dp, gn < rho)
-            case default
-                s = 0.0_dp
-            end select
-        end function attraction
+        !> out = A (the FFT buffer's field) (zero mean), one FFT pair
+        subroutine apply_a_buffer(out)
+            type(rarray_t), intent(inout) :: out
+            call f%t%forward()
+            call gcg_spectral(SPECTRAL_A, f%t%k, a_s, k_s, 0.0_dp, cells)
+            call f%t%backward_unscaled()
+            call out%assign(f%t%x)
+        end subroutine apply_a_buffer
 
         !> out = A a (zero mean), one FFT pair
-        subroutine apply_a(a, out)
-            real(dp), intent(in) :: a(:, :)
-            real(dp), intent(out) :: out(:, :)
-            f%t%x%h = a
-            call f%t%forward()
-            f%t%k%h = f%t%k%h*ainv
-            call f%t%backward_unscaled()
-            out = f%t%x%h
-        end subroutine apply_a
+        subroutine apply_a_of(a, out)
+            type(rarray_t), intent(in) :: a
+            type(rarray_t), intent(inout) :: out
+            call f%t%x%assign(a)
+            call apply_a_buffer(out)
+        end subroutine apply_a_of
 
         !> The inner solves' preconditioner: the operator's inverse where the operator is stiffer
         !> than the law, 1/(A + k) with k the steepest slope of the attraction (s0/rho for the
@@ -638,60 +693,23 @@ contains
         !> out = K a (zero mean where the mean gap is held): the inverse of the inner
         !> operator's multiplier (A, or M/gamma in the splitting), one FFT pair
         subroutine apply_k(a, out)
-            real(dp), intent(in) :: a(:, :)
-            real(dp), intent(out) :: out(:, :)
-            f%t%x%h = a
+            type(rarray_t), intent(in) :: a
+            type(rarray_t), intent(inout) :: out
+            call f%t%x%assign(a)
             call f%t%forward()
-            where (ainv /= 0.0_dp)
-                f%t%k%h = f%t%k%h/((ainv*cells + law_stiffness)*cells)
-            elsewhere
-                f%t%k%h = (0.0_dp, 0.0_dp)
-            end where
+            call gcg_spectral(SPECTRAL_K, f%t%k, a_s, k_s, law_stiffness, cells)
             call f%t%backward_unscaled()
-            out = f%t%x%h
+            call out%assign(f%t%x)
         end subroutine apply_k
 
         !> sum over the whole grid, row by row and then over the rows in order
         real(dp) function total(a) result(s)
-            real(dp), intent(in) :: a(:, :)
-            real(dp) :: rows(1, size(a, 2)), t1(1)
-            integer :: j
-            do j = 1, size(a, 2)
-                rows(1, j) = sum(a(:, j))
-            end do
+            type(rarray_t), intent(in) :: a
+            real(dp) :: rows(1, ny), t1(1)
+            call row_sums(a, rows(1, :))
             call ordered_sum(problem%kernel%grid, rows, t1)
             s = t1(1)
         end function total
-
-        !> the number of cells where `mask` holds, over the whole grid
-        real(dp) function count_all(mask) result(n)
-            logical, intent(in) :: mask(:, :)
-            n = total(merge(1.0_dp, 0.0_dp, mask))
-        end function count_all
-
-        !> the mean of `a` over the cells of `mask` (0 when there are none)
-        real(dp) function masked_mean(a, mask) result(m)
-            real(dp), intent(in) :: a(:, :)
-            logical, intent(in) :: mask(:, :)
-            real(dp) :: n
-            n = count_all(mask)
-            m = 0.0_dp
-            if (n > 0.0_dp) m = total(merge(a, 0.0_dp, mask))/n
-        end function masked_mean
-
-        !> Does `mask` hold on some cell of the whole grid?
-        logical function any_cell(mask) result(yes)
-            logical, intent(in) :: mask(:, :)
-            yes = count_all(mask) > 0.0_dp
-        end function any_cell
-
-        logical function global_any_negative(a) result(yes)
-            real(dp), intent(in) :: a(:, :)
-            real(dp) :: m
-            m = minval(a)
-            call global_min(problem%kernel%grid, m)
-            yes = m < 0.0_dp
-        end function global_any_negative
 
         !> the mean of r, which is zero but for round-off (A kills the mean mode)
         real(dp) function sum_mean_removed() result(m)

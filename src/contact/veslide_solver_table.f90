@@ -10,7 +10,7 @@
 !> | bccg   | symmetric only | hard wall    | yes    | 36                   | 25                    |
 !> | dr     | any            | hard wall    | yes    | 40 + 8 m             | 40 + 8 m              |
 !> | pdr    | any            | hard wall    | yes    | 41 (+ 16 + 8 m)      | 33 or 41 (+ 24 + 8 m) |
-!> | gcg    | any            | adhesive     | no     | 72 (40 symmetric)    | -                     |
+!> | gcg    | any            | adhesive     | yes    | 86 (54 symmetric)    | 86 (54 symmetric)     |
 !>
 !> The operator is symmetric for an elastic solid or a solid at rest (`operator_symmetric`); a
 !> viscoelastic solid in motion gives a non-symmetric one, which Polonsky-Keer and BCCG (conjugate
@@ -92,10 +92,12 @@ contains
                                 host_bytes=41.0_dp, device_bytes=33.0_dp, mixing_bytes=16.0_dp, &
                                 device_mixing_bytes=24.0_dp, device_room_bytes=8.0_dp)
         case (SOLVER_GCG)
-            ! g, its search direction, the gradient, its preconditioned form and the transform of
-            ! the direction; on a non-symmetric operator the splitting's z, x, heights and A = 1/K,
-            ! 32 more (veslide_solver_gcg)
-            row = solver_info_t(method=SOLVER_GCG, laws=adhesive, device=.false., host_bytes=72.0_dp)
+            ! the heights, the gap, its search direction, A (g + h), the gradient and its
+            ! preconditioned form (48), the free set and Dugdale's edge (2), the multiplier A on the
+            ! half-spectrum (4); on a non-symmetric operator the splitting's z, x and heights and
+            ! 1/K on the half-spectrum, 32 more: the estimate takes the larger (veslide_solver_gcg)
+            row = solver_info_t(method=SOLVER_GCG, laws=adhesive, device=.true., host_bytes=86.0_dp, &
+                                device_bytes=86.0_dp)
         case default
             row = solver_info_t()
         end select
