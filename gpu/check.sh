@@ -20,14 +20,14 @@ fi
 suites=(device rng grid fftw threads material kernel surface contact anderson solver-pk solver-dr solver-bccg
         solver-pdr analysis anisotropy persson quantities hdf5 config config-grid config-surface config-material
         config-load config-motion config-solver config-analysis config-sweep config-output topography output case
-        study hard)
+        study hard solver-gcg)
 passed=0; failed=0; failures=()
 for s in "${suites[@]}"; do
     if "$tests" "$s"; then passed=$((passed + 1)); else failed=$((failed + 1)); failures+=("$s"); fi
 done
 if command -v compute-sanitizer >/dev/null 2>&1; then
-    for t in passes-shared passes-kernel-and-contact passes-bccg passes-pdr passes-dr-and-anderson transform-against-fftw \
-             work-area-lent dense-visco-pdr; do
+    for t in passes-shared passes-kernel-and-contact passes-bccg passes-pdr passes-dr-and-anderson passes-gcg \
+             transform-against-fftw work-area-lent dense-visco-pdr adhesive-scenes-against-cpu; do
         if compute-sanitizer --tool memcheck --error-exitcode 3 "$tests" device "$t" > /tmp/memcheck.log 2>&1; then
             passed=$((passed + 1)); echo "memcheck $t: clean"
         else

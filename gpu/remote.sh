@@ -6,7 +6,8 @@
 # at 4096^2, 8192^2, 16384^2 with the CPU path at 4096^2 in the same run; at 32768^2; the other
 # suites and compute-sanitizer's memcheck (gpu/check.sh); pdr's lean layout at 4096^2 and 8192^2
 # (VESLIDE_DEVICE_LEAN=1: cuFFT's work area in u, the device memory veslide --memory's refusal
-# counts on); the per-pass profile at 4096^2, 8192^2. Logs and the benchmark's CSV go to $OUT
+# counts on); the per-pass profile at 4096^2, 8192^2; the adhesive solver (gcg) on the example
+# input's scene at 1024^2, on the device and on the CPU. Logs and the benchmark's CSV go to $OUT
 # (default gpu-out/), at most 8 files: summary.txt, device.log, bench.log (with big.log and
 # lean.log appended to bench-gpu.csv), profile.log, suites.log.
 set -uo pipefail
@@ -58,10 +59,17 @@ VESLIDE_DEVICE_LEAN=1 VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/lean.csv \
     stage "pdr's lean layout at 4096, 8192 (VESLIDE_DEVICE_LEAN=1)" 60 "$out/bench.log" "$bin/veslide-bench" gpu 4096 8192
 VESLIDE_DEVICE_PROFILE=1 VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/profile.csv \
     stage "profile at 4096, 8192" 60 "$out/profile.log" "$bin/veslide-bench" gpu 4096 8192
+# the adhesive solver (gcg): the example input's scene at 1024^2 on the device and on the CPU
+sed -e 's/nx = 256, ny = 256/nx = 1024, ny = 1024/' -e "s|file = .*|file = '/tmp/adh.h5', fields = .false.|" \
+    inputs/adhesion/sliding.nml > /tmp/adh1024.nml
+for d in gpu cpu; do
+    echo "## gcg, inputs/adhesion/sliding.nml at 1024^2, --device $d" >> "$out/bench.log"
+    stage "gcg at 1024^2 on the $d" 90 "$out/bench.log" "$bin/veslide" --overwrite --device "$d" /tmp/adh1024.nml
+done
 tail -n +2 /tmp/big.csv >> "$out/bench-gpu.csv" 2>/dev/null
 { echo "# lean layout (VESLIDE_DEVICE_LEAN=1)"; tail -n +2 /tmp/lean.csv; } >> "$out/bench-gpu.csv" 2>/dev/null
 echo "total: $(($(date +%s) - start)) s" >> "$summary"
 cat "$summary"
 grep -E "passed|failed|FAIL" "$out/device.log" | tail -5
 tail -5 "$out/suites.log"
-grep -E "^\||^device:|lean" "$out/bench.log" 2>/dev/null | cut -c1-240
+grep -E "^\||^device:|lean|^## gcg|solver gcg|friction coef|time: " "$out/bench.log" 2>/dev/null | cut -c1-240
