@@ -15,7 +15,7 @@ module test_veslide_hard
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     implicit none
     private
-    public :: collect_hard, check_friction_sign, with_adhesion
+    public :: collect_hard, check_friction_sign, with_adhesion, has_warning
 
     integer, parameter :: n = 64
 
