@@ -11,6 +11,7 @@ module test_veslide_device
     use, intrinsic :: iso_fortran_env, only: int8, real32
     use, intrinsic :: iso_c_binding, only: c_int
     use veslide_kinds, only: dp, i8
+    use veslide_strings, only: str
     use veslide_error, only: fatal_error
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
@@ -727,7 +728,7 @@ contains
             m = int(mode, c_int)
             call gcg_combine(m, wh, rh, th, 0.3_dp, 1.7_dp, -0.2_dp)
             call gcg_combine(m, wd, rd, tdv, 0.3_dp, 1.7_dp, -0.2_dp)
-            call same_real(error, wh, wd, "combine "//str_int(mode))
+            call same_real(error, wh, wd, "combine "//str(mode))
         end do
         ! the spectral multipliers (some modes zero, as the mean mode is)
         call twin_real(na, ny, ai, aih, aid, lo=0.1_dp, hi=2.0_dp)
@@ -739,7 +740,7 @@ contains
             call twin_complex(na, ny, k, kh, kdv)
             call gcg_spectral(m, kh, aih, kih, 0.8_dp, real(nx*ny, dp))
             call gcg_spectral(m, kdv, aid, kid, 0.8_dp, real(nx*ny, dp))
-            call same_complex(error, kh, kdv, "spectral "//str_int(mode))
+            call same_complex(error, kh, kdv, "spectral "//str(mode))
             call kdv%destroy()
         end do
         call device_errors(error, "gcg passes")
@@ -773,13 +774,6 @@ contains
             call check(error, all(b == h%h) .and. (any(b == 1) .neqv. empty) .and. any(b == 0), &
                        what//": device and CPU sets differ (or one is empty or full)")
         end subroutine same_set
-        function str_int(i) result(t)
-            integer, intent(in) :: i
-            character(len=:), allocatable :: t
-            character(len=12) :: b
-            write (b, '(i0)') i
-            t = trim(b)
-        end function str_int
     end subroutine test_passes_gcg
 
     !> The adhesive laws' solver on the device against the CPU: the hard scenes with the hard
