@@ -105,7 +105,7 @@ contains
     !> the gap in f%g with its closed cells exactly 0, u = K p in f%u, the approach in
     !> state%approach_m)
     subroutine gap_conjugate_gradients(problem, f, opts, state, gap0)
-        type(contact_problem_t), intent(in) :: problem
+        type(contact_problem_t), intent(in), target :: problem
         type(contact_fields_t), intent(inout) :: f
         type(solver_options_t), intent(in) :: opts
         type(contact_state_t), intent(inout) :: state
@@ -126,9 +126,8 @@ contains
         type(carray_t) :: k_s
         real(dp), allocatable, target :: ainv(:, :)
         complex(dp), allocatable, target :: kinv(:, :)
-        !> the kernel's multiplier K_d on the host (a copy of the device's where the solve runs there)
-        complex(dp), allocatable, target :: kd_copy(:, :)
-        complex(dp), pointer, contiguous :: kd(:, :)
+        !> the kernel's multiplier K_d on the host (the kernel's own, where the solve runs)
+        type(carray_t) :: kd
         real(dp), allocatable :: gstart(:, :)
         real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol, gamma, softest, mean_metric, least, most
         integer :: nx, ny, its, kind, attempt
@@ -159,16 +158,10 @@ contains
         call centre_divide(hn, f%h, problem%h_mean, hs)
         ! the modulus multiplier A = 1/K (zero where K is: the mean mode), in units p_s/h_s per
         ! cell count (FFTW's unscaled pair); with the splitting the inner solves' M/gamma (formed
-        ! on the host, from the kernel's multiplier)
-        if (dev) then
-            allocate (kd_copy(f%kd%n1, f%kd%n2))
-            call f%kd%download(kd_copy)
-            kd => kd_copy
-        else
-            kd => f%kd%h
-        end if
+        ! on the host, from the kernel's multiplier there: a view, not a copy)
+        call problem%kernel%multiplier_array(kd, .false.)
         if (split) then
-            kinv = kd
+            kinv = kd%h
             where (kinv /= (0.0_dp, 0.0_dp))
                 kinv = hs/(ps*kinv*cells)
             end where
@@ -178,13 +171,12 @@ contains
             call z%create(nx, ny, dev); call x%create(nx, ny, dev); call h0%create(nx, ny, dev)
             call h0%assign(hn)
         else
-            ainv = real(kd, dp)
+            ainv = real(kd%h, dp)
             where (ainv /= 0.0_dp)
                 ainv = hs/(ps*ainv*cells)
             end where
         end if
-        if (allocated(kd_copy)) deallocate (kd_copy)
-        nullify (kd)
+        call kd%destroy()
         softest = lowest_compliance()
         hold_mean = .true.
         if (split) then
