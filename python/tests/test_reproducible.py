@@ -11,9 +11,11 @@ CASE = """&grid nx = 192, ny = 160 / &surface k_cut = 24, eccentricity = 0.7, al
 &material model = '{model}' / &motion speed_m_s = 0.05, direction_deg = 30 /
 &solver fft_planner = 'measure', tolerance = 1e-10, method = '{method}' /
 &analysis anisotropy = .true., patches = .true. / &output file = '{out}' /
-"""
-# every solver: the splitting, the metric splitting with its inner CG, and the CG of the elastic case
-SOLVERS = [("one_term", "dr"), ("one_term", "pdr"), ("elastic", "bccg")]
+{extra}"""
+# every solver: the splitting, the metric splitting with its inner CG, the CG of the elastic case,
+# and the adhesive laws' conjugate gradients inside their splitting (passes on all the threads)
+SOLVERS = [("one_term", "dr"), ("one_term", "pdr"), ("elastic", "bccg"), ("one_term", "gcg")]
+ADHESION = "&adhesion law = 'exponential', energy_j_m2 = 0.05, range_m = 2.0e-5 /\n"
 TIMING = ("seconds", "memory_peak")
 
 
@@ -21,7 +23,7 @@ def solve(exe, tmp_path, name, threads, wisdom, model, method):
     """The same input file and output name every time (both are recorded in the file)"""
     out = tmp_path / "out.h5"
     nml = tmp_path / "case.nml"
-    nml.write_text(CASE.format(out=out, model=model, method=method))
+    nml.write_text(CASE.format(out=out, model=model, method=method, extra=ADHESION if method == "gcg" else ""))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), VESLIDE_FFTW_WISDOM=str(wisdom))
     r = subprocess.run([exe, str(nml), "--quiet"], capture_output=True, text=True, env=env, timeout=600)
     assert r.returncode == 0, r.stderr
