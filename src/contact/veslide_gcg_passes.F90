@@ -50,6 +50,11 @@ module veslide_gcg_passes
     integer(c_int), parameter :: COMBINE_SUM = 0, COMBINE_DIFFERENCE = 1, COMBINE_REFLECT = 2, COMBINE_ACCUMULATE = 3, &
                                  COMBINE_PRESSURE = 4, COMBINE_DISPLACEMENT = 5, COMBINE_FROM = 6, COMBINE_AXPY = 7
 
+    !> The CPU twins run on one thread below this many cells: there a parallel region costs more
+    !> than the pass, and gcg runs thousands of iterations of about fifteen passes on grids down
+    !> to 32^2 (docs/adhesion.md, On the device: measured)
+    integer, parameter :: parallel_cells = 131072
+
     !> veslide_gcg_rows's passes (their ids in veslide_gcg_passes.cu)
     integer(c_int), parameter :: ROWS_ATTRACT = 0, ROWS_FREE_SET = 1, ROWS_CENTRE = 2, ROWS_MASK = 3, ROWS_DOT = 4, &
                                  ROWS_SHIFT_DOT = 5, ROWS_DIRECTION = 6, ROWS_CURVATURE = 7, ROWS_STEP = 8, &
@@ -361,7 +366,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(2)
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s)
         do j = 1, size(g, 2)
             ! (a column at once: gfortran takes glibc's vector exp, as the array form before did;
             ! g >= 0 in the solve, so this is the law's map exponential_attraction)
@@ -385,7 +390,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(3)
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -412,7 +417,7 @@ contains
         integer :: i, j
         real(dp) :: s(2)
         logical :: f
-        !$omp parallel do schedule(static) private(i, s, f)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s, f)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -439,7 +444,7 @@ contains
         integer :: i, j
         real(dp) :: a
         err = 0.0_dp
-        !$omp parallel do schedule(static) private(i, a) reduction(max:err)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, a) reduction(max:err)
         do j = 1, size(g, 2)
             do i = 1, size(g, 1)
                 a = at(i, j) - lam
@@ -456,7 +461,7 @@ contains
         complex(dp), intent(inout) :: k(:, :)
         real(dp), intent(in) :: ainv(:, :), c1, cells
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (2*size(k) >= parallel_cells)
         do j = 1, size(k, 2)
             if (mode == SPECTRAL_A) then
                 k(:, j) = k(:, j)*ainv(:, j)
@@ -477,7 +482,7 @@ contains
         complex(dp), intent(in) :: kinv(:, :)
         real(dp), intent(in) :: c1, cells
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (2*size(k) >= parallel_cells)
         do j = 1, size(k, 2)
             select case (mode)
             case (SPECTRAL_OPERATOR)
@@ -505,7 +510,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(2)
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(a) >= parallel_cells) private(i, s)
         do j = 1, size(a, 2)
             s = 0.0_dp
             do i = 1, size(a, 1)
@@ -525,7 +530,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(a) >= parallel_cells) private(i, s)
         do j = 1, size(a, 2)
             s = 0.0_dp
             do i = 1, size(a, 1)
@@ -543,7 +548,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(a) >= parallel_cells) private(i, s)
         do j = 1, size(a, 2)
             s = 0.0_dp
             do i = 1, size(a, 1)
@@ -562,7 +567,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(t) >= parallel_cells) private(i, s)
         do j = 1, size(t, 2)
             s = 0.0_dp
             do i = 1, size(t, 1)
@@ -584,7 +589,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(4)
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(t) >= parallel_cells) private(i, s)
         do j = 1, size(t, 2)
             s = 0.0_dp
             do i = 1, size(t, 1)
@@ -607,7 +612,7 @@ contains
         integer :: i, j
         real(dp) :: v
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) private(i, v) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, v) reduction(min:gmin)
         do j = 1, size(g, 2)
             do i = 1, size(g, 1)
                 v = g(i, j) - tau*t(i, j)
@@ -627,7 +632,7 @@ contains
         real(dp) :: v, s
         logical :: below, stop_here
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) private(i, v, s, below, stop_here) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, v, s, below, stop_here) reduction(min:gmin)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -654,7 +659,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(2)
-        !$omp parallel do schedule(static) private(i, s)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -673,7 +678,7 @@ contains
         real(dp), intent(out) :: gmin
         integer :: i, j
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) private(i) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i) reduction(min:gmin)
         do j = 1, size(g, 2)
             do i = 1, size(g, 1)
                 if (g(i, j) > 0.0_dp) g(i, j) = g(i, j) + c
@@ -688,7 +693,7 @@ contains
         real(dp), intent(inout) :: d(:, :)
         real(dp), intent(in) :: a(:, :), b(:, :), k(3)
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (size(d) >= parallel_cells)
         do j = 1, size(d, 2)
             select case (mode)
             case (COMBINE_SUM)
