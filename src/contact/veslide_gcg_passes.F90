@@ -50,9 +50,10 @@ module veslide_gcg_passes
     integer(c_int), parameter :: COMBINE_SUM = 0, COMBINE_DIFFERENCE = 1, COMBINE_REFLECT = 2, COMBINE_ACCUMULATE = 3, &
                                  COMBINE_PRESSURE = 4, COMBINE_DISPLACEMENT = 5, COMBINE_FROM = 6, COMBINE_AXPY = 7
 
-    !> The CPU twins run on one thread below this many cells: there a parallel region costs more
-    !> than the pass, and gcg runs thousands of iterations of about fifteen passes on grids down
-    !> to 32^2 (docs/adhesion.md, On the device: measured)
+    !> The CPU twins run on one thread below this many cells, or on a field of one row (whose
+    !> rows are the work the threads share): there a parallel region costs more than the pass,
+    !> and gcg runs thousands of iterations of about fifteen passes on grids down to 32^2
+    !> (docs/adhesion.md, On the device: measured)
     integer, parameter :: parallel_cells = 131072
 
     !> veslide_gcg_rows's passes (their ids in veslide_gcg_passes.cu)
@@ -359,6 +360,12 @@ contains
 
     ! ---- CPU twins ------------------------------------------------------------------------
 
+    !> Does a pass over `cells` cells in `rows` rows run on all the threads (parallel_cells)?
+    pure logical function threaded(cells, rows)
+        integer, intent(in) :: cells, rows
+        threaded = cells >= parallel_cells .and. rows > 1
+    end function threaded
+
     subroutine attract_exponential(s0, rho, g, r, at, edge, rows)
         real(dp), intent(in) :: s0, rho, g(:, :), r(:, :)
         real(dp), intent(out) :: at(:, :)
@@ -366,7 +373,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(2)
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, s)
         do j = 1, size(g, 2)
             ! (a column at once: gfortran takes glibc's vector exp, as the array form before did;
             ! g >= 0 in the solve, so this is the law's map exponential_attraction)
@@ -390,7 +397,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(3)
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, s)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -417,7 +424,7 @@ contains
         integer :: i, j
         real(dp) :: s(2)
         logical :: f
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s, f)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, s, f)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -444,7 +451,7 @@ contains
         integer :: i, j
         real(dp) :: a
         err = 0.0_dp
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, a) reduction(max:err)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, a) reduction(max:err)
         do j = 1, size(g, 2)
             do i = 1, size(g, 1)
                 a = at(i, j) - lam
@@ -461,7 +468,7 @@ contains
         complex(dp), intent(inout) :: k(:, :)
         real(dp), intent(in) :: ainv(:, :), c1, cells
         integer :: j
-        !$omp parallel do schedule(static) if (2*size(k) >= parallel_cells)
+        !$omp parallel do schedule(static) if (threaded(2*size(k), size(k, 2)))
         do j = 1, size(k, 2)
             if (mode == SPECTRAL_A) then
                 k(:, j) = k(:, j)*ainv(:, j)
@@ -482,7 +489,7 @@ contains
         complex(dp), intent(in) :: kinv(:, :)
         real(dp), intent(in) :: c1, cells
         integer :: j
-        !$omp parallel do schedule(static) if (2*size(k) >= parallel_cells)
+        !$omp parallel do schedule(static) if (threaded(2*size(k), size(k, 2)))
         do j = 1, size(k, 2)
             select case (mode)
             case (SPECTRAL_OPERATOR)
@@ -510,7 +517,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(2)
-        !$omp parallel do schedule(static) if (size(a) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(a), size(a, 2))) private(i, s)
         do j = 1, size(a, 2)
             s = 0.0_dp
             do i = 1, size(a, 1)
@@ -530,7 +537,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s
-        !$omp parallel do schedule(static) if (size(a) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(a), size(a, 2))) private(i, s)
         do j = 1, size(a, 2)
             s = 0.0_dp
             do i = 1, size(a, 1)
@@ -548,7 +555,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s
-        !$omp parallel do schedule(static) if (size(a) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(a), size(a, 2))) private(i, s)
         do j = 1, size(a, 2)
             s = 0.0_dp
             do i = 1, size(a, 1)
@@ -567,7 +574,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s
-        !$omp parallel do schedule(static) if (size(t) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(t), size(t, 2))) private(i, s)
         do j = 1, size(t, 2)
             s = 0.0_dp
             do i = 1, size(t, 1)
@@ -589,7 +596,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(4)
-        !$omp parallel do schedule(static) if (size(t) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(t), size(t, 2))) private(i, s)
         do j = 1, size(t, 2)
             s = 0.0_dp
             do i = 1, size(t, 1)
@@ -612,7 +619,7 @@ contains
         integer :: i, j
         real(dp) :: v
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, v) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, v) reduction(min:gmin)
         do j = 1, size(g, 2)
             do i = 1, size(g, 1)
                 v = g(i, j) - tau*t(i, j)
@@ -632,7 +639,7 @@ contains
         real(dp) :: v, s
         logical :: below, stop_here
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, v, s, below, stop_here) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, v, s, below, stop_here) reduction(min:gmin)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -659,7 +666,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         integer :: i, j
         real(dp) :: s(2)
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i, s)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, s)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -678,7 +685,7 @@ contains
         real(dp), intent(out) :: gmin
         integer :: i, j
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) if (size(g) >= parallel_cells) private(i) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i) reduction(min:gmin)
         do j = 1, size(g, 2)
             do i = 1, size(g, 1)
                 if (g(i, j) > 0.0_dp) g(i, j) = g(i, j) + c
@@ -693,7 +700,7 @@ contains
         real(dp), intent(inout) :: d(:, :)
         real(dp), intent(in) :: a(:, :), b(:, :), k(3)
         integer :: j
-        !$omp parallel do schedule(static) if (size(d) >= parallel_cells)
+        !$omp parallel do schedule(static) if (threaded(size(d), size(d, 2)))
         do j = 1, size(d, 2)
             select case (mode)
             case (COMBINE_SUM)
