@@ -19,6 +19,7 @@ module veslide_anderson_passes
     use veslide_kinds, only: dp
     use veslide_arrays, only: rarray_t, sarray_t, elements
     use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: anderson_columns, anderson_update, device_max_memory
@@ -131,7 +132,8 @@ contains
         real(dp) :: xv, zv, yv, fv, dfv, part(1 + 2*max(mk, 1))
         integer :: i, j, k
         rp = 0.0_dp; rg = 0.0_dp
-        !$omp parallel do schedule(guided) private(i, xv, zv, yv, fv, dfv, k, part) reduction(max:rp, rg)
+        !$omp parallel do schedule(guided) if (threaded(nx*ny, ny)) &
+        !$omp& private(i, xv, zv, yv, fv, dfv, k, part) reduction(max:rp, rg)
         do j = 1, ny
             part(1:1 + 2*mk) = 0.0_dp
             do i = (j - 1)*nx + 1, j*nx
@@ -173,7 +175,7 @@ contains
         logical, intent(in) :: reflect
         real(dp) :: xv, zv, fv, zn
         integer :: i, k
-        !$omp parallel do schedule(guided) private(xv, zv, fv, zn, k)
+        !$omp parallel do schedule(guided) if (threaded(int(n), 2)) private(xv, zv, fv, zn, k)
         do i = 1, int(n)
             zv = z(i)
             if (reflect) then

@@ -27,6 +27,7 @@ module veslide_bccg_passes
     use veslide_grid, only: grid_t
     use veslide_arrays, only: rarray_t, carray_t, iarray_t, elements
     use veslide_device, only: device_alloc, device_free, device_upload, device_download
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: metric_t, metric, metric_values, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
@@ -433,7 +434,8 @@ contains
         real(dp) :: g, r3(3)
         integer :: i, j
         nact = 0; gmin = huge(1.0_dp)
-        !$omp parallel do schedule(guided) private(i, g, r3) reduction(+:nact) reduction(min:gmin)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) &
+        !$omp& private(i, g, r3) reduction(+:nact) reduction(min:gmin)
         do j = 1, size(x, 2)
             r3 = 0.0_dp
             do i = 1, size(x, 1)
@@ -458,7 +460,7 @@ contains
         real(dp), intent(out) :: rows(:, :)
         real(dp) :: g, w(4)
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i, g, w)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) private(i, g, w)
         do j = 1, size(x, 2)
             w = 0.0_dp
             do i = 1, size(x, 1)
@@ -485,7 +487,7 @@ contains
         real(dp), intent(out) :: rows(:)
         real(dp) :: w
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i, w)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) private(i, w)
         do j = 1, size(x, 2)
             w = 0.0_dp
             do i = 1, size(x, 1)
@@ -502,7 +504,7 @@ contains
         real(dp), intent(out) :: cols(:)
         real(dp) :: w, z
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i, w, z)
+        !$omp parallel do schedule(guided) if (threaded(2*size(k), size(k, 2))) private(i, w, z)
         do j = 1, size(k, 2)
             z = 0.0_dp
             do i = 1, size(k, 1)
@@ -522,7 +524,7 @@ contains
         real(dp), intent(in) :: beta, shift
         real(dp) :: z
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i, z)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) private(i, z)
         do j = 1, size(x, 2)
             do i = 1, size(x, 1)
                 if (act(i, j) /= 0) then
@@ -543,7 +545,7 @@ contains
         real(dp), intent(out) :: cols(:)
         real(dp) :: z
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i, z)
+        !$omp parallel do schedule(guided) if (threaded(2*size(k), size(k, 2))) private(i, z)
         do j = 1, size(k, 2)
             z = 0.0_dp
             do i = 1, size(k, 1)
@@ -563,7 +565,7 @@ contains
         real(dp) :: pt, w
         integer :: i, j
         nclip = 0
-        !$omp parallel do schedule(guided) private(i, pt, w) reduction(+:nclip)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) private(i, pt, w) reduction(+:nclip)
         do j = 1, size(x, 2)
             w = 0.0_dp
             do i = 1, size(x, 1)
@@ -601,7 +603,7 @@ contains
         complex(dp), intent(in) :: hk(:, :)
         real(dp), intent(in) :: a, alpha, a_new
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i)
+        !$omp parallel do schedule(guided) if (threaded(2*size(pk), size(pk, 2))) private(i)
         do j = 1, size(pk, 2)
             do i = 1, size(pk, 1)
                 pk(i, j) = a*pk(i, j) + alpha*k(i, j)
@@ -616,7 +618,7 @@ contains
         complex(dp), intent(in) :: pk(:, :), hk(:, :)
         real(dp), intent(in) :: ks(:, :), a
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i)
+        !$omp parallel do schedule(guided) if (threaded(2*size(k), size(k, 2))) private(i)
         do j = 1, size(k, 2)
             do i = 1, size(k, 1)
                 k(i, j) = pk(i, j)*(a*ks(i, j)) - hk(i, j)
@@ -631,7 +633,7 @@ contains
         type(grid_t), intent(in) :: grid
         complex(dp) :: s
         integer :: a, b, k, ij(2)
-        !$omp parallel do schedule(guided) private(a, k, s, ij)
+        !$omp parallel do schedule(guided) if (threaded(2*size(pk), size(pk, 2))) private(a, k, s, ij)
         do b = 1, size(pk, 2)
             do a = 1, size(pk, 1)
                 ij = grid%spectral_index(a, b)

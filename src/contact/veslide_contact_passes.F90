@@ -17,6 +17,7 @@ module veslide_contact_passes
     use veslide_kinds, only: dp, i8
     use veslide_arrays, only: rarray_t
     use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL, LAW_EXPONENTIAL, LAW_DUGDALE
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: gap_and_contact_sums, gap_measures, project_and_sum, adhesive_measures
@@ -182,7 +183,8 @@ contains
         real(dp) :: gf(size(g, 1)), prep(size(g, 1), 1), e1, e2, e3, cm
         integer :: j
         e1 = huge(1.0_dp); e2 = huge(1.0_dp); e3 = huge(1.0_dp); cm = -huge(1.0_dp)
-        !$omp parallel do schedule(static) private(gf, prep) reduction(min:e1, e2, e3) reduction(max:cm)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) &
+        !$omp& private(gf, prep) reduction(min:e1, e2, e3) reduction(max:cm)
         do j = 1, size(g, 2)
             gf = u(:, j) - (h(:, j) - h_mean) + approach
             prep = law%repulsive(p(:, j:j), g(:, j:j))
@@ -210,7 +212,7 @@ contains
         integer :: i, j
         real(dp) :: s
         nc = 0; gmax = -huge(1.0_dp)
-        !$omp parallel do schedule(guided) private(i, s) reduction(+:nc) reduction(max:gmax)
+        !$omp parallel do schedule(guided) if (threaded(size(g), size(g, 2))) private(i, s) reduction(+:nc) reduction(max:gmax)
         do j = 1, size(g, 2)
             s = 0.0_dp
             do i = 1, size(g, 1)
@@ -233,7 +235,7 @@ contains
         integer :: i, j
         real(dp) :: t(3)
         gmin = huge(1.0_dp); pmin = huge(1.0_dp)
-        !$omp parallel do schedule(guided) private(i, t) reduction(min:gmin, pmin)
+        !$omp parallel do schedule(guided) if (threaded(size(g), size(g, 2))) private(i, t) reduction(min:gmin, pmin)
         do j = 1, size(g, 2)
             t = 0.0_dp
             do i = 1, size(g, 1)
@@ -252,12 +254,12 @@ contains
         real(dp), intent(inout) :: a(:, :)
         real(dp), intent(out) :: rows(:)
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(size(a), size(a, 2)))
         do j = 1, size(a, 2)
             a(:, j) = hard_wall_project(a(:, j))
         end do
         !$omp end parallel do
-        !$omp parallel do schedule(guided)
+        !$omp parallel do schedule(guided) if (threaded(size(a), size(a, 2)))
         do j = 1, size(a, 2)
             rows(j) = sum(a(:, j))
         end do

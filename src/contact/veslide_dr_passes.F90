@@ -17,6 +17,7 @@ module veslide_dr_passes
     use veslide_kinds, only: dp
     use veslide_arrays, only: rarray_t, elements
     use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: dr_rebalance, dr_project, dr_restore, dr_add_gap, dr_load_sums, dr_shift
@@ -166,7 +167,7 @@ contains
         real(dp), intent(in) :: s
         real(dp) :: yv
         integer :: i
-        !$omp parallel do schedule(guided) private(yv)
+        !$omp parallel do schedule(guided) if (threaded(int(n), 2)) private(yv)
         do i = 1, int(n)
             yv = hard_wall_project(2.0_dp*xb(i) - z(i))
             z(i) = yv + s*(z(i) - yv)
@@ -190,7 +191,7 @@ contains
         real(dp) :: v, t(2)
         integer :: i, j
         vmax = -huge(1.0_dp)
-        !$omp parallel do schedule(guided) private(i, v, t) reduction(max:vmax)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) private(i, v, t) reduction(max:vmax)
         do j = 1, size(x, 2)
             t = 0.0_dp
             do i = 1, size(x, 1)

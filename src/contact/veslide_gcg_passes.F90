@@ -29,6 +29,7 @@ module veslide_gcg_passes
     use veslide_kinds, only: dp
     use veslide_arrays, only: rarray_t, carray_t, iarray_t, elements
     use veslide_contact_law, only: LAW_EXPONENTIAL, LAW_DUGDALE
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: gcg_attract, gcg_free_set, gcg_centre, gcg_spectral, gcg_mask, gcg_dot, gcg_shift_dot, gcg_direction, &
@@ -49,12 +50,6 @@ module veslide_gcg_passes
     !>  AXPY: d - c1 a
     integer(c_int), parameter :: COMBINE_SUM = 0, COMBINE_DIFFERENCE = 1, COMBINE_REFLECT = 2, COMBINE_ACCUMULATE = 3, &
                                  COMBINE_PRESSURE = 4, COMBINE_DISPLACEMENT = 5, COMBINE_FROM = 6, COMBINE_AXPY = 7
-
-    !> The CPU twins run on one thread below this many cells, or on a field of one row (whose
-    !> rows are the work the threads share): there a parallel region costs more than the pass,
-    !> and gcg runs thousands of iterations of about fifteen passes on grids down to 32^2
-    !> (docs/adhesion.md, On the device: measured)
-    integer, parameter :: parallel_cells = 131072
 
     !> veslide_gcg_rows's passes (their ids in veslide_gcg_passes.cu)
     integer(c_int), parameter :: ROWS_ATTRACT = 0, ROWS_FREE_SET = 1, ROWS_CENTRE = 2, ROWS_MASK = 3, ROWS_DOT = 4, &
@@ -360,11 +355,6 @@ contains
 
     ! ---- CPU twins ------------------------------------------------------------------------
 
-    !> Does a pass over `cells` cells in `rows` rows run on all the threads (parallel_cells)?
-    pure logical function threaded(cells, rows)
-        integer, intent(in) :: cells, rows
-        threaded = cells >= parallel_cells .and. rows > 1
-    end function threaded
 
     subroutine attract_exponential(s0, rho, g, r, at, edge, rows)
         real(dp), intent(in) :: s0, rho, g(:, :), r(:, :)

@@ -20,6 +20,7 @@ module veslide_pdr_passes
     use veslide_kinds, only: dp, i8
     use veslide_arrays, only: rarray_t, carray_t, elements
     use veslide_bccg_passes, only: metric_t
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, add_scaled, &
@@ -280,7 +281,7 @@ contains
         complex(dp), intent(in) :: kd(:, :), cm(:, :)
         real(dp), intent(in) :: gs, n
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i)
+        !$omp parallel do schedule(guided) if (threaded(2*size(k), size(k, 2))) private(i)
         do j = 1, size(k, 2)
             do i = 1, size(k, 1)
                 hk(i, j) = k(i, j)
@@ -330,7 +331,7 @@ contains
         real(dp) :: g
         integer :: i, j
         nc = 0
-        !$omp parallel do schedule(guided) private(i, g) reduction(+:nc)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) private(i, g) reduction(+:nc)
         do j = 1, size(x, 2)
             g = 0.0_dp
             do i = 1, size(x, 1)
@@ -349,7 +350,7 @@ contains
         real(dp) :: g, t2(2)
         integer :: i, j
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(guided) private(i, g, t2) reduction(min:gmin)
+        !$omp parallel do schedule(guided) if (threaded(size(x), size(x, 2))) private(i, g, t2) reduction(min:gmin)
         do j = 1, size(x, 2)
             t2 = 0.0_dp
             do i = 1, size(x, 1)
@@ -367,7 +368,7 @@ contains
         real(dp), intent(inout) :: z(:, :)
         real(dp), intent(in) :: y(:, :), x(:, :), lambda
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i)
+        !$omp parallel do schedule(guided) if (threaded(size(z), size(z, 2))) private(i)
         do j = 1, size(z, 2)
             do i = 1, size(z, 1)
                 z(i, j) = z(i, j) + lambda*(y(i, j) - x(i, j))
@@ -380,7 +381,7 @@ contains
         real(dp), intent(inout) :: a(:, :)
         real(dp), intent(in) :: b(:, :), s
         integer :: i, j
-        !$omp parallel do schedule(guided) private(i)
+        !$omp parallel do schedule(guided) if (threaded(size(a), size(a, 2))) private(i)
         do j = 1, size(a, 2)
             do i = 1, size(a, 1)
                 a(i, j) = a(i, j) + s*b(i, j)
@@ -394,7 +395,7 @@ contains
         real(dp), intent(in) :: b(:, :), c(:, :)
         integer(c_int), intent(in) :: mode
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(size(a), size(a, 2)))
         do j = 1, size(a, 2)
             select case (mode)
             case (COMBINE_SUM); a(:, j) = b(:, j) + c(:, j)

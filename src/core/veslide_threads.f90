@@ -16,7 +16,15 @@ module veslide_threads
     use veslide_clock, only: wall_seconds
     implicit none
     private
-    public :: thread_governor_t, restore_threads
+    public :: thread_governor_t, restore_threads, threaded, parallel_cells
+
+    !> A pass over the grid runs on all the threads from this many cells up (this process's), and
+    !> on one below, or on a field of one row (the rows are the work the threads share): a
+    !> parallel region costs more than a pass of fewer cells with the passive wait, measured on
+    !> 2 cores (docs/solver-scaling.md, Small grids and one-row profiles: pdr 1.4 times slower
+    !> on two threads than on one at 128^2, 1.1 at 256^2, 5 to 6 on a one-row profile of 8192
+    !> cells; faster from 512^2). The results are the same bits either way
+    integer, parameter :: parallel_cells = 131072
 
     integer, parameter :: RUN_ALL = 1, PROBE_ONE = 2, HOLD = 3
     integer, parameter :: window = 3                  !! iterations per measurement
@@ -52,6 +60,12 @@ module veslide_threads
     end interface
 
 contains
+
+    !> Does a pass over `cells` cells in `rows` rows run on all the threads (parallel_cells)?
+    pure logical function threaded(cells, rows)
+        integer, intent(in) :: cells, rows
+        threaded = cells >= parallel_cells .and. rows > 1
+    end function threaded
 
     !> The run's threads back, if a governor lowered them (at the end of a solve)
     subroutine restore_threads()

@@ -29,6 +29,7 @@ module veslide_fftw
 #ifdef VESLIDE_MPI
     use mpi_f08, only: MPI_Comm, MPI_Comm_rank, MPI_Comm_size, MPI_Allgather, MPI_INTEGER
 #endif
+    use veslide_threads, only: threaded
     implicit none
     private
 #ifdef VESLIDE_MPI
@@ -406,7 +407,7 @@ contains
         class(fft2d_t), intent(inout) :: self
         logical, intent(in) :: forward
         integer :: b, j0, m
-        !$omp parallel do schedule(dynamic) private(j0, m)
+        !$omp parallel do schedule(dynamic) if (threaded(self%nx*self%ny, self%ny)) private(j0, m)
         do b = 1, (self%ny + block - 1)/block
             j0 = (b - 1)*block + 1
             m = plan_kind(j0, self%ny)
@@ -428,7 +429,7 @@ contains
         integer :: b, i0, nq
         if (self%ny == 1) return
         nq = self%nx/2 + 1
-        !$omp parallel do schedule(dynamic) private(i0, kc)
+        !$omp parallel do schedule(dynamic) if (threaded(self%nx*self%ny, self%ny)) private(i0, kc)
         do b = 1, (nq + block - 1)/block
             i0 = (b - 1)*block + 1
             kc => spectrum_from(self, i0)

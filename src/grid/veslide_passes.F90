@@ -11,6 +11,7 @@ module veslide_passes
     use veslide_kinds, only: dp
     use veslide_arrays, only: rarray_t, carray_t, elements
     use veslide_device, only: device_zero
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: fill, scale, divide, subtract, scaled_copy, divided_copy, centre_scale, centre_divide
@@ -262,7 +263,7 @@ contains
         real(dp), intent(out) :: a(:, :)
         real(dp), intent(in) :: v
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(size(a), size(a, 2)))
         do j = 1, size(a, 2)
             a(:, j) = v
         end do
@@ -274,7 +275,7 @@ contains
         real(dp), intent(in) :: s
         integer(c_int), intent(in) :: mode
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(size(a), size(a, 2)))
         do j = 1, size(a, 2)
             select case (mode)
             case (SCALE_MUL); a(:, j) = s*a(:, j)
@@ -291,7 +292,7 @@ contains
         real(dp), intent(in) :: c, s
         integer(c_int), intent(in) :: mode
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(size(dst), size(dst, 2)))
         do j = 1, size(dst, 2)
             select case (mode)
             case (COPY_MUL); dst(:, j) = s*src(:, j)
@@ -307,7 +308,7 @@ contains
         real(dp), intent(in) :: a(:, :)
         real(dp), intent(out) :: rows(:)
         integer :: j
-        !$omp parallel do schedule(guided)
+        !$omp parallel do schedule(guided) if (threaded(size(a), size(a, 2)))
         do j = 1, size(a, 2)
             rows(j) = sum(a(:, j))
         end do
@@ -318,7 +319,7 @@ contains
         complex(dp), intent(inout) :: c(:, :)
         real(dp), intent(in) :: s
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(2*size(c), size(c, 2)))
         do j = 1, size(c, 2)
             c(:, j) = s*c(:, j)
         end do
@@ -329,7 +330,7 @@ contains
         complex(dp), intent(inout) :: c(:, :)
         real(dp), intent(in) :: s
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(2*size(c), size(c, 2)))
         do j = 1, size(c, 2)
             c(:, j) = c(:, j)/s
         end do
@@ -340,7 +341,7 @@ contains
         complex(dp), intent(inout) :: c(:, :)
         complex(dp), intent(in) :: d(:, :)
         integer :: j
-        !$omp parallel do schedule(static)
+        !$omp parallel do schedule(static) if (threaded(2*size(c), size(c, 2)))
         do j = 1, size(c, 2)
             c(:, j) = c(:, j) + d(:, j)
         end do
