@@ -35,8 +35,7 @@ module test_veslide_device
     use veslide_anderson_passes, only: anderson_columns, anderson_update
     use veslide_gcg_passes, only: gcg_attract, gcg_free_set, gcg_centre, gcg_spectral, gcg_mask, gcg_dot, &
                                   gcg_shift_dot, gcg_direction, gcg_curvature, gcg_step, gcg_gap_sums, gcg_shift_open, &
-                                  gcg_combine, gcg_extremes, SPECTRAL_A, SPECTRAL_K, SPECTRAL_OPERATOR, &
-                                  SPECTRAL_RESOLVENT, SPECTRAL_START, COMBINE_SUM, COMBINE_AXPY
+                                  gcg_combine, gcg_extremes
     use veslide_contact_law, only: LAW_EXPONENTIAL, LAW_DUGDALE
     use veslide_material, only: material_t, new_elastic
     use veslide_kernel, only: kernel_t, new_kernel, KERNEL_SPECTRAL

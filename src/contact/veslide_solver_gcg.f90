@@ -69,8 +69,7 @@
 !> (veslide_solver_table), the control flow here either way. Sums row by row and then over the
 !> rows in order (veslide_collective): the same path for any number of threads or processes.
 module veslide_solver_gcg
-    use, intrinsic :: iso_c_binding, only: c_int
-    use veslide_kinds, only: dp, i8
+    use veslide_kinds, only: dp
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_contact_law, only: ADH_STRESS, ADH_RANGE, LAW_EXPONENTIAL, LAW_DUGDALE
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
