@@ -12,6 +12,7 @@ module veslide_solver_pk
     use veslide_contact, only: contact_problem_t, contact_state_t, residual_measures
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
     use veslide_collective, only: ordered_sum, global_min
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: polonsky_keer
@@ -70,7 +71,8 @@ contains
         do
             ! pass A: residuals and contact-set statistics of g = a U - h, shifted by gp
             ext = huge(1.0_dp)
-            !$omp parallel do schedule(guided) private(i, pv, g, r1, r2, r3, r4, r5, e1, e2) reduction(min:ext)
+            !$omp parallel do schedule(guided) if (threaded(nx*ny, ny)) &
+            !$omp& private(i, pv, g, r1, r2, r3, r4, r5, e1, e2) reduction(min:ext)
             do j = 1, ny
                 r1 = 0.0_dp; r2 = 0.0_dp; r3 = 0.0_dp; r4 = 0.0_dp; r5 = 0.0_dp
                 e1 = huge(1.0_dp); e2 = huge(1.0_dp)
@@ -111,7 +113,7 @@ contains
             ! pass C: conjugate direction on the contact set, straight into the FFT buffer
             beta = delta*gg/gg_old
             gg_old = gg
-            !$omp parallel do schedule(guided) private(i, g, r1, r2)
+            !$omp parallel do schedule(guided) if (threaded(nx*ny, ny)) private(i, g, r1, r2)
             do j = 1, ny
                 r1 = 0.0_dp; r2 = 0.0_dp
                 do i = 1, nx
@@ -134,7 +136,7 @@ contains
             state%operator_applications = state%operator_applications + 1
 
             ! pass D: step length, with r centred on the contact set
-            !$omp parallel do schedule(guided) private(i, r1, r2)
+            !$omp parallel do schedule(guided) if (threaded(nx*ny, ny)) private(i, r1, r2)
             do j = 1, ny
                 r1 = 0.0_dp; r2 = 0.0_dp
                 do i = 1, nx
@@ -160,7 +162,7 @@ contains
             ! r is not needed after its use here, so the buffer takes the correction c (what
             ! projection and re-admission add to the linear step).
             ic = 0; jc = 0
-            !$omp parallel do schedule(guided) private(i, pn, g, uo, c, r1, r2, r3) reduction(max:ic, jc)
+            !$omp parallel do schedule(guided) if (threaded(nx*ny, ny)) private(i, pn, g, uo, c, r1, r2, r3) reduction(max:ic, jc)
             do j = 1, ny
                 r1 = 0.0_dp; r2 = 0.0_dp; r3 = 0.0_dp
                 do i = 1, nx

@@ -8,6 +8,7 @@ module veslide_fields
     use veslide_kinds, only: dp, i8
     use veslide_grid, only: grid_t
     use veslide_collective, only: ordered_sum, global_min, global_max, global_count
+    use veslide_threads, only: threaded
     implicit none
     private
     public :: field_sum, field_mean, field_rms, field_dot, field_max, field_min, field_count, field_sums
@@ -20,7 +21,7 @@ contains
         real(dp), intent(in) :: f(:, :)
         real(dp) :: rows(1, size(f, 2)), t(1)
         integer :: j
-        !$omp parallel do schedule(guided)
+        !$omp parallel do schedule(guided) if (threaded(size(f), size(f, 2)))
         do j = 1, size(f, 2)
             rows(1, j) = sum(f(:, j))
         end do
@@ -36,7 +37,7 @@ contains
         real(dp), intent(out) :: totals(:)
         real(dp) :: rows(size(f, 3), size(f, 2))
         integer :: j, k
-        !$omp parallel do schedule(guided) private(k)
+        !$omp parallel do schedule(guided) if (threaded(size(f), size(f, 2))) private(k)
         do j = 1, size(f, 2)
             do k = 1, size(f, 3)
                 rows(k, j) = sum(f(:, j, k))
@@ -60,7 +61,7 @@ contains
         real(dp) :: rows(1, size(f, 2)), t(1), m
         integer :: j
         m = field_mean(grid, f)
-        !$omp parallel do schedule(guided)
+        !$omp parallel do schedule(guided) if (threaded(size(f), size(f, 2)))
         do j = 1, size(f, 2)
             rows(1, j) = sum((f(:, j) - m)**2)
         end do
@@ -75,7 +76,7 @@ contains
         real(dp), intent(in) :: f(:, :), g(:, :)
         real(dp) :: rows(1, size(f, 2)), t(1)
         integer :: j
-        !$omp parallel do schedule(guided)
+        !$omp parallel do schedule(guided) if (threaded(size(f), size(f, 2)))
         do j = 1, size(f, 2)
             rows(1, j) = sum(f(:, j)*g(:, j))
         end do
