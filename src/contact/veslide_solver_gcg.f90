@@ -69,6 +69,7 @@
 !> (veslide_solver_table), the control flow here either way. Sums row by row and then over the
 !> rows in order (veslide_collective): the same path for any number of threads or processes.
 module veslide_solver_gcg
+    use, intrinsic :: iso_c_binding, only: c_int
     use veslide_kinds, only: dp
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_contact_law, only: ADH_STRESS, ADH_RANGE, LAW_EXPONENTIAL, LAW_DUGDALE
@@ -355,9 +356,7 @@ contains
         !> (one FFT pair)
         subroutine start_splitting()
             call gcg_combine(COMBINE_SUM, f%t%x, g, h0)
-            call f%t%forward()
-            call gcg_spectral(SPECTRAL_START, f%t%k, a_s, k_s, gamma, cells)
-            call f%t%backward_unscaled()
+            call multiply_buffer(SPECTRAL_START, gamma)
             call gcg_combine(COMBINE_SUM, z, g, f%t%x)
             state%operator_applications = state%operator_applications + 1
         end subroutine start_splitting
@@ -397,9 +396,7 @@ contains
                 call ticker%tick(its, err, state%operator_applications)
                 ! x = the resolvent of z (in x), v = 2x - z as the inner heights' negative
                 call gcg_combine(COMBINE_SUM, f%t%x, z, h0)
-                call f%t%forward()
-                call gcg_spectral(SPECTRAL_RESOLVENT, f%t%k, a_s, k_s, gamma, cells)
-                call f%t%backward_unscaled()
+                call multiply_buffer(SPECTRAL_RESOLVENT, gamma)
                 state%operator_applications = state%operator_applications + 1
                 ! (the load's constant part of the operator, on the mean mode of the metric)
                 call gcg_combine(COMBINE_DIFFERENCE, x, f%t%x, h0, merge(0.0_dp, gamma*target/mean_metric, hold_mean))
@@ -418,13 +415,10 @@ contains
             type(rarray_t), intent(inout) :: out
             if (.not. split) then
                 call gcg_combine(COMBINE_SUM, f%t%x, a, hn)
-                call apply_a_buffer(out); return
+                call multiply_buffer(SPECTRAL_A, 0.0_dp, out); return
             end if
             call gcg_combine(COMBINE_SUM, f%t%x, a, h0)
-            call f%t%forward()
-            call gcg_spectral(SPECTRAL_OPERATOR, f%t%k, a_s, k_s, 0.0_dp, cells)
-            call f%t%backward_unscaled()
-            call out%assign(f%t%x)
+            call multiply_buffer(SPECTRAL_OPERATOR, 0.0_dp, out)
         end subroutine apply_operator
 
         !> From r = A (g + h): the gradient in `at` (less its mean over the free set, `lam`; zero
@@ -489,7 +483,7 @@ contains
             do
                 if (.not. fresh) then
                     call gcg_combine(COMBINE_SUM, f%t%x, g, hn)
-                    call apply_a_buffer(r)
+                    call multiply_buffer(SPECTRAL_A, 0.0_dp, r)
                     state%operator_applications = state%operator_applications + 1
                     fresh = .true.; carried = 0
                 end if
@@ -512,7 +506,10 @@ contains
                 ! where the mean gap is held, so that a step keeps it)
                 zd => at
                 if (preconditioned) then
-                    call apply_k(at, pz)
+                    ! (pz = K at, K the inverse of the inner operator's multiplier where the law's
+                    ! slope is added: A, or M/gamma in the splitting)
+                    call f%t%x%assign(at)
+                    call multiply_buffer(SPECTRAL_K, law_stiffness, pz)
                     state%operator_applications = state%operator_applications + 1
                     call gcg_mask(pz, free, rows(1:2, :))
                     shift = 0.0_dp
@@ -535,7 +532,8 @@ contains
                 gsq_prev = gsq
                 ! the step along t with A's curvature (the mean over the free set removed: the
                 ! mean gap is held); pz = A t
-                call apply_a_of(t, pz)
+                call f%t%x%assign(t)
+                call multiply_buffer(SPECTRAL_A, 0.0_dp, pz)
                 state%operator_applications = state%operator_applications + 1
                 call gcg_curvature(pz, t, free, rows)
                 call ordered_sum(problem%kernel%grid, rows, sums)
@@ -550,7 +548,7 @@ contains
                 if (.not. (den > 0.0_dp)) then
                     if (carried > 0 .or. .not. fresh) then
                         call gcg_combine(COMBINE_SUM, f%t%x, g, hn)
-                        call apply_a_buffer(r)
+                        call multiply_buffer(SPECTRAL_A, 0.0_dp, r)
                         state%operator_applications = state%operator_applications + 1
                     end if
                     exit
@@ -618,22 +616,18 @@ contains
             if (clip) call gcg_gap_sums(g, .true., rows)
         end subroutine keep_mean
 
-        !> out = A (the FFT buffer's field) (zero mean), one FFT pair
-        subroutine apply_a_buffer(out)
-            type(rarray_t), intent(inout) :: out
+        !> The FFT buffer's field times the multiplier `mode` (SPECTRAL_*: A, the preconditioner
+        !> K = 1/(A + c1), the operator, the resolvent or the start, c1 = gamma), one FFT pair; into
+        !> `out` when given, else left in the buffer
+        subroutine multiply_buffer(mode, c1, out)
+            integer(c_int), intent(in) :: mode
+            real(dp), intent(in) :: c1
+            type(rarray_t), intent(inout), optional :: out
             call f%t%forward()
-            call gcg_spectral(SPECTRAL_A, f%t%k, a_s, k_s, 0.0_dp, cells)
+            call gcg_spectral(mode, f%t%k, a_s, k_s, c1, cells)
             call f%t%backward_unscaled()
-            call out%assign(f%t%x)
-        end subroutine apply_a_buffer
-
-        !> out = A a (zero mean), one FFT pair
-        subroutine apply_a_of(a, out)
-            type(rarray_t), intent(in) :: a
-            type(rarray_t), intent(inout) :: out
-            call f%t%x%assign(a)
-            call apply_a_buffer(out)
-        end subroutine apply_a_of
+            if (present(out)) call out%assign(f%t%x)
+        end subroutine multiply_buffer
 
         !> The inner solves' preconditioner: the operator's inverse where the operator is stiffer
         !> than the law, 1/(A + k) with k the steepest slope of the attraction (s0/rho for the
@@ -680,18 +674,6 @@ contains
             preconditioned = a_fine > 0.0_dp .and. law_stiffness <= stiff_law*a_fine*cells .and. &
                              a_fine >= stiffening*a_low
         end subroutine choose_preconditioner
-
-        !> out = K a (zero mean where the mean gap is held): the inverse of the inner
-        !> operator's multiplier (A, or M/gamma in the splitting), one FFT pair
-        subroutine apply_k(a, out)
-            type(rarray_t), intent(in) :: a
-            type(rarray_t), intent(inout) :: out
-            call f%t%x%assign(a)
-            call f%t%forward()
-            call gcg_spectral(SPECTRAL_K, f%t%k, a_s, k_s, law_stiffness, cells)
-            call f%t%backward_unscaled()
-            call out%assign(f%t%x)
-        end subroutine apply_k
 
         !> sum over the whole grid, row by row and then over the rows in order
         real(dp) function total(a) result(s)
