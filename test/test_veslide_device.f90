@@ -28,7 +28,8 @@ module test_veslide_device
     use veslide_contact_law, only: contact_law_t
     use veslide_bccg_passes, only: metric_t, metric, metric_values, set_contact, statistics, residual, precondition, &
                                    set_sum, direction, energy, step, &
-                                   update_transform, step_transform, gap_multiply, add_points, clipped_points
+                                   update_transform, step_transform, gap_multiply, add_points, clipped_points, &
+                                   max_points
     use veslide_pdr_passes, only: step_constant, resolvent, scaled_product, residual_sums, residual_gap, relax, &
                                   add_scaled, full_contact, gap_to_z, sum_of, one_plus, difference_from
     use veslide_dr_passes, only: dr_rebalance, dr_project, dr_restore, dr_add_gap, dr_load_sums, dr_shift
@@ -327,7 +328,11 @@ contains
         real(dp) :: wa(na), wb(ny), r3h(3, ny), r3d(3, ny), r4h(4, ny), r4d(4, ny), rh(ny), rdv(ny), ch(ny), cdv(ny), &
                     gmin(2), clip(ny)
         real(dp) :: pts_h(3, 8), pts_d(3, 8)
-        complex(dp) :: ex(na, 3), ey(ny, 3)
+        real(dp), parameter :: pts4(3, 4) = reshape([1.0_dp, 1.0_dp, 0.7_dp, real(nx, dp), real(ny, dp), -0.4_dp, &
+                                                     5.0_dp, 3.0_dp, 1.1_dp, 17.0_dp, 11.0_dp, 0.25_dp], [3, 4])
+        complex(dp), allocatable :: pk0(:, :)
+        type(carray_t) :: work_h, work_d
+        type(fft2d_t) :: fft
         integer(i8) :: nact(2)
         integer :: ncl(2), kh_, kd_, i
         call new_grid(grid, nx, ny, 1.0_dp, 1.0_dp, error); if (allocated(error)) return
@@ -335,6 +340,7 @@ contains
         call twin_real(nx, ny, v, vh, vd)
         call twin_complex(na, ny, kd, kdh, kdd)
         call twin_real(na, ny, ks, ksh, ksd)
+        call work_d%create(na + ny, max_points, .true.)
         ! metric, both ways (on the device formed where each pass reads it: its values as formed)
         call metric(mh, kdh, 0.7_dp, modulus=.true.); call metric(md, kdd, 0.7_dp, modulus=.true.)
         call metric_values(mh, ksh); call metric_values(md, ksd)
@@ -380,10 +386,21 @@ contains
         call same_complex(error, pkh, pkd, "step_transform p^"); call same_complex(error, kh, kdv, "step_transform gap")
         call gap_multiply(kh, pkh, mh, hkh, 0.6_dp); call gap_multiply(kdv, pkd, md, hkd, 0.6_dp)
         call same_complex(error, kh, kdv, "gap_multiply")
-        ex = cmplx(0.3_dp, -0.2_dp, dp)*reshape([(real(i, dp), i=1, 3*na)], [na, 3])
-        ey = cmplx(-0.1_dp, 0.4_dp, dp)*reshape([(real(i, dp), i=1, 3*ny)], [ny, 3])
-        call add_points(pkh, ex, ey, grid); call add_points(pkd, ex, ey, grid)
+        ! a few points' transforms (the origin, the far corner, two inside; on the device their
+        ! factors formed there), against FFTW's transform of the field that holds them
+        call twin_complex(na, ny, pk, pkh, pkd)
+        pk0 = pk
+        call add_points(pkh, pts4, grid, work_h); call add_points(pkd, pts4, grid, work_d)
         call same_complex(error, pkh, pkd, "add_points")
+        call fft%init(nx, ny, error, planner='estimate'); if (allocated(error)) return
+        fft%x = 0.0_dp
+        do i = 1, size(pts4, 2)
+            fft%x(nint(pts4(1, i)), nint(pts4(2, i))) = pts4(3, i)
+        end do
+        call fft%forward()
+        if (.not. allocated(error)) call check(error, maxval(abs(pk - pk0 - fft%k)) <= pass_tol*maxval(abs(fft%k)), &
+                                               "add_points: not the transform of the points")
+        call fft%destroy(); call work_d%destroy()
         call device_errors(error, "bccg passes")
         call xd%destroy(); call pd%destroy(); call vd%destroy(); call ksd%destroy(); call wad%destroy()
         call kdd%destroy(); call kdv%destroy(); call pkd%destroy(); call hkd%destroy(); call ad%destroy()

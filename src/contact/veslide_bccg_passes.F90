@@ -16,7 +16,9 @@
 !>  step        p = a p + alpha v on the set, clipped at 0 (the clipped amounts into x, the
 !>              points leave the set); per row sum p (and the number clipped)
 !>  update_transform / step_transform / gap_multiply: the spectral updates of p^ and of the gap
-!>  add_points  p^ += the transforms of a few point values (clipped points)
+!>  add_points  p^ += the transforms of a few point values (clipped points): on the device the
+!>              points' factors exp(-i q.x) are formed there too, into a work array the solve
+!>              holds (no host arithmetic, no allocation per call)
 !> The metric's multiplier M/N (`metric_t`) is an array on the host; on the device it is not
 !> held: each pass that reads it forms it from K_d with the operations the array was filled with
 !> (the same bits; 4 bytes per cell fewer).
@@ -26,12 +28,12 @@ module veslide_bccg_passes
     use veslide_kinds, only: dp, i8
     use veslide_grid, only: grid_t
     use veslide_arrays, only: rarray_t, carray_t, iarray_t, elements
-    use veslide_device, only: device_alloc, device_free, device_upload, device_download
+    use veslide_device, only: device_download
     use veslide_threads, only: threaded
     implicit none
     private
     public :: metric_t, metric, metric_values, set_contact, statistics, residual, precondition, set_sum, direction, energy, step, &
-              update_transform, step_transform, gap_multiply, add_points, clipped_points
+              update_transform, step_transform, gap_multiply, add_points, clipped_points, max_points
 
     !> M/N = f |K_d| (`modulus`) or f Re K_d on the spectral storage, where a solve runs: on the
     !> host the array `ks`; on the device K_d (held by the caller while this is used), from which
@@ -121,15 +123,19 @@ module veslide_bccg_passes
             real(c_double), value :: f, a, alpha, b
             integer(c_int), value :: modulus, mode
         end subroutine spectral_gpu
-        subroutine add_points_gpu(na, nb, m, pk, ex, ey) bind(c, name='veslide_bccg_add_points')
-            import :: c_int, c_ptr
-            integer(c_int), value :: na, nb, m
-            type(c_ptr), value :: pk, ex, ey
-        end subroutine add_points_gpu
+        !> pts(3, m): (i, j, value) of each point (i, j from 1); exy: (na + nb) x max_points
+        subroutine point_transforms_gpu(na, nb, nx, m, pts, pk, exy) bind(c, name='veslide_bccg_point_transforms')
+            import :: c_int, c_ptr, c_double
+            integer(c_int), value :: na, nb, nx, m
+            real(c_double), intent(in) :: pts(*)
+            type(c_ptr), value :: pk, exy
+        end subroutine point_transforms_gpu
     end interface
 #endif
 
     integer(c_int), parameter :: PK_UPDATE = 0, PK_STEP = 1, PK_GAP = 2
+    !> the most points add_points takes (its work array's columns on the device)
+    integer, parameter :: max_points = 8
 
 contains
 
@@ -342,23 +348,35 @@ contains
         call gap_multiply_cpu(k%h, pk%h, ks%ks%h, hk%h, a)
     end subroutine gap_multiply
 
-    !> pk += sum over the points k of ex(i, k) ey(j, k), (i, j) the half-spectrum entry of each
-    !> storage position of `grid`
-    subroutine add_points(pk, ex, ey, grid)
+    !> pk += the transform of the point values pts(3, k) at the cells (pts(1, k), pts(2, k)) of the
+    !> whole grid (at most max_points): sum_k c_k exp(-i q.x_k), as the factors ex(i, k) ey(j, k)
+    !> over the half-spectrum entries (i, j) of each storage position of `grid`. `work` holds the
+    !> factors on the device ((na + nb) x max_points; unused on the host)
+    subroutine add_points(pk, pts, grid, work)
         type(carray_t), intent(inout) :: pk
-        complex(dp), intent(in) :: ex(:, :), ey(:, :)
+        real(dp), intent(in) :: pts(:, :)
         type(grid_t), intent(in) :: grid
+        type(carray_t), intent(inout) :: work
+        real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
+        complex(dp), allocatable :: ex(:, :), ey(:, :)
+        integer :: i, j, k, m, ic, jc, nyg, nx, nq
 #ifdef VESLIDE_CUDA
-        type(c_ptr) :: exd, eyd
         if (pk%device) then
             ! (a grid on the device is not distributed: storage (a, b) is entry (a, b))
-            call device_alloc(exd, 16_i8*size(ex)); call device_alloc(eyd, 16_i8*size(ey))
-            call device_upload(exd, ex, 16_i8*size(ex)); call device_upload(eyd, ey, 16_i8*size(ey))
-            call add_points_gpu(pk%n1, pk%n2, size(ex, 2), pk%d, exd, eyd)
-            call device_free(exd); call device_free(eyd)
-            return
+            call point_transforms_gpu(pk%n1, pk%n2, grid%nx, size(pts, 2), pts, pk%d, work%d); return
         end if
 #endif
+        m = size(pts, 2); nyg = grid%ny; nx = grid%nx; nq = nx/2 + 1
+        allocate (ex(nq, m), ey(nyg, m))
+        do k = 1, m
+            ic = nint(pts(1, k)); jc = nint(pts(2, k))
+            do i = 1, nq
+                ex(i, k) = pts(3, k)*exp(cmplx(0.0_dp, -two_pi*real(modulo((i - 1)*(ic - 1), nx), dp)/nx, dp))
+            end do
+            do j = 1, nyg
+                ey(j, k) = exp(cmplx(0.0_dp, -two_pi*real(modulo((j - 1)*(jc - 1), nyg), dp)/nyg, dp))
+            end do
+        end do
         call add_points_cpu(pk%h, ex, ey, grid)
     end subroutine add_points
 

@@ -170,6 +170,34 @@ struct add_points_f {
     }
 };
 
+// the factors of a few points' transforms: ex(i, k) = c_k exp(-i 2 pi (i (ic_k - 1) mod nx)/nx)
+// over the na half-spectrum columns, then ey(j, k) = exp(-i 2 pi (j (jc_k - 1) mod ny)/ny) over
+// the ny rows (i, j from 0), each (cos, sin) of the angle the host twin forms, in its order
+constexpr int max_points = 8;
+struct point_factors_f {
+    double2 *ex, *ey;
+    int na, nx, ny, m;
+    int ic[max_points], jc[max_points];
+    double c[max_points];
+    VS_HD void operator()(long n) const {
+        const double two_pi = 6.283185307179586476925286766559;
+        long nex = (long)na * m;
+        double s, co;
+        if (n < nex) {
+            int i = (int)(n % na), k = (int)(n / na);
+            double theta = -(two_pi * (double)(((long)i * ic[k]) % nx) / nx);
+            sincos(theta, &s, &co);
+            ex[n] = vs::cx(c[k] * co, c[k] * s);
+        } else {
+            long e = n - nex;
+            int j = (int)(e % ny), k = (int)(e / ny);
+            double theta = -(two_pi * (double)(((long)j * jc[k]) % ny) / ny);
+            sincos(theta, &s, &co);
+            ey[e] = vs::cx(co, s);
+        }
+    }
+};
+
 }  // namespace
 
 extern "C" {
@@ -219,8 +247,23 @@ void veslide_bccg_spectral(long n, double2 *pk, double2 *k, const double2 *kd, d
     vs::for_each(bccg_spectral_f{pk, k, vs::metric_v{kd, f, modulus}, hk, a, alpha, b, mode}, n);
 }
 
-void veslide_bccg_add_points(int na, int nb, int m, double2 *pk, const double2 *ex, const double2 *ey) {
-    vs::for_each(add_points_f{pk, ex, ey, na, nb, m}, (long)na * nb);
+// pk += the transforms of m points pts (i, j, value; i and j from 1) of a grid of nx x nb cells
+// on one process (storage (a, b) is half-spectrum entry (a, b)): their factors formed into exy
+// ((na + nb) x max_points: ex, then ey), then applied (veslide_bccg_passes.F90's add_points)
+void veslide_bccg_point_transforms(int na, int nb, int nx, int m, const double *pts, double2 *pk, double2 *exy) {
+    if (m > max_points) {
+        vs::note_error("bccg point transforms", "more points than the pass takes");
+        return;
+    }
+    if (m <= 0) return;
+    point_factors_f f{exy, exy + (long)na * m, na, nx, nb, m, {}, {}, {}};
+    for (int k = 0; k < m; ++k) {
+        f.ic[k] = (int)lround(pts[3 * k]) - 1;
+        f.jc[k] = (int)lround(pts[3 * k + 1]) - 1;
+        f.c[k] = pts[3 * k + 2];
+    }
+    vs::for_each(f, (long)(na + nb) * m);
+    vs::for_each(add_points_f{pk, exy, exy + (long)na * m, na, nb, m}, (long)na * nb);
 }
 
 }  // extern "C"

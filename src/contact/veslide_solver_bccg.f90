@@ -45,7 +45,8 @@ module veslide_solver_bccg
     use veslide_contact_law, only: contact_law_t, LAW_HARD_WALL
     use veslide_contact_passes, only: project_and_sum
     use veslide_bccg_passes, only: metric_t, metric, set_contact, statistics, residual, precondition, set_sum, direction, energy, &
-                                   step, update_transform, step_transform, gap_multiply, add_points, clipped_points
+                                   step, update_transform, step_transform, gap_multiply, add_points, clipped_points, &
+                                   max_points
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
     implicit none
@@ -78,6 +79,8 @@ module veslide_solver_bccg
         type(iarray_t) :: act                  !! the contact set (1 in it, 0 outside)
         type(carray_t) :: pk                   !! transform of the pressure (kept along: no drift
                                                !! beyond round-off, and no correction FFT needed)
+        type(carray_t) :: exy                  !! on the device: the clipped points' factors
+                                               !! (add_points' work array, (nq + ny) x max_points)
         logical :: pk_valid = .false.          !! pk is the transform of the last returned pressure
         real(dp) :: pairs = 0.0_dp             !! FFT pairs spent (a single transform counts 1/2)
         ! residual measures of the last solve (dimensionless, as in veslide_contact)
@@ -119,6 +122,7 @@ contains
         call self%act%create(self%nx, self%ny, self%device)
         call self%hk%create(sh(1), sh(2), self%device)
         call self%pk%create(sh(1), sh(2), self%device)
+        if (self%device) call self%exy%create(sh(1) + sh(2), max_points, .true.)
         self%pk_valid = .false.
         self%pairs = 0.0_dp
     end subroutine bccg_init
@@ -126,7 +130,7 @@ contains
     subroutine bccg_destroy(self)
         class(bccg_t), intent(inout) :: self
         call self%ks%destroy(); call self%wa_dev%destroy(); call self%v%destroy(); call self%act%destroy()
-        call self%hk%destroy(); call self%pk%destroy()
+        call self%hk%destroy(); call self%pk%destroy(); call self%exy%destroy()
         self%pk_valid = .false.
     end subroutine bccg_destroy
 
@@ -159,7 +163,7 @@ contains
         logical, intent(in), optional :: same_start
         !> told each iteration (a solve of its own; an outer iteration reports for itself)
         type(progress_ticker_t), intent(inout), optional :: ticker
-        integer, parameter :: max_direct = 8     ! clipped points transformed directly, not by FFT
+        integer, parameter :: max_direct = max_points    ! clipped points transformed directly, not by FFT
         real(dp) :: n, n2, a, a_new, gprev, s1, gmin, spg, sp, c1, gbar, rz, rz_old, beta, rv, rvo, vkv, alpha
         real(dp) :: sr, mv, mz, t3(3), t4(4), m3(3)
         real(dp), allocatable :: rows(:, :), rows4(:, :), cols(:), clip_rows(:), pts(:, :)
@@ -275,7 +279,7 @@ contains
                 call update_transform(self%pk, t%k, a, alpha)
                 if (nclip <= max_direct) then
                     call gather_clipped_points()
-                    call add_point_transforms()
+                    call add_points(self%pk, pts, self%grid, self%exy)
                 else
                     call t%forward()
                     self%pairs = self%pairs + 0.5_dp
@@ -310,25 +314,6 @@ contains
             call clipped_points(t%x, clip_rows, self%grid%j0, max_direct, mine, k)
             call gather_all(self%grid, mine(:, 1:k), pts)
         end subroutine gather_clipped_points
-
-        !> pk += transform of the point values: sum_k c_k exp(-i q.x_k), the points in `pts`
-        subroutine add_point_transforms()
-            complex(dp), allocatable :: ex(:, :), ey(:, :)
-            real(dp), parameter :: two_pi = 6.283185307179586476925286766559_dp
-            integer :: i, j, k, m, ic, jc, nyg, nx, nq
-            m = size(pts, 2); nyg = self%grid%ny; nx = self%nx; nq = self%nq
-            allocate (ex(nq, m), ey(nyg, m))
-            do k = 1, m
-                ic = nint(pts(1, k)); jc = nint(pts(2, k))
-                do i = 1, nq
-                    ex(i, k) = pts(3, k)*exp(cmplx(0.0_dp, -two_pi*real(modulo((i - 1)*(ic - 1), nx), dp)/nx, dp))
-                end do
-                do j = 1, nyg
-                    ey(j, k) = exp(cmplx(0.0_dp, -two_pi*real(modulo((j - 1)*(jc - 1), nyg), dp)/nyg, dp))
-                end do
-            end do
-            call add_points(self%pk, ex, ey, self%grid)
-        end subroutine add_point_transforms
 
     end subroutine bccg_core
 
