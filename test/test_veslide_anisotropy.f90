@@ -1,12 +1,13 @@
 !> Anisotropy tensors, the stretch-and-rotation decomposition, patches and percolation
 module test_veslide_anisotropy
-    use veslide_kinds, only: dp, pi
+    use veslide_kinds, only: dp, pi, i8
     use veslide_error, only: error_t
     use veslide_grid, only: grid_t, new_grid
     use veslide_fftw, only: fft2d_t
     use veslide_spectrum, only: slope_tensor
     use veslide_anisotropy, only: tensor_axes, decompose, compose, m2_of_theta
-    use veslide_patches, only: patch_stats_t, contact_patches, percolates
+    use veslide_patches, only: patch_stats_t, contact_patches, percolates, patch_changes
+    use veslide_strings, only: str
     use testsuite, only: unittest_t, new_unittest, check, report
     implicit none
     private
@@ -23,7 +24,8 @@ contains
             new_unittest("isotropic-and-degenerate-rule", test_degenerate), &
             new_unittest("patches-across-periodic-boundary", test_patches), &
             new_unittest("patch-orientation", test_patch_orientation), &
-            new_unittest("stripe-percolation", test_percolation) &
+            new_unittest("stripe-percolation", test_percolation), &
+            new_unittest("patches-made-and-lost", test_patch_changes) &
             ]
     end subroutine collect_anisotropy
 
@@ -159,5 +161,35 @@ contains
         gap(5, :) = .false.                            ! and a line along y closes the channels
         call check(error, .not. percolates(gap, 1) .and. .not. percolates(gap, 2), "closed cells")
     end subroutine test_percolation
+
+    !> Between two masks: a patch over the corner (one patch through both periodic edges) that
+    !> shrinks stays (neither made nor lost); one that vanishes is lost; a new one (3 cells, across
+    !> the x edge) is made; a patch that splits in two, each part holding an old cell, is neither
+    !> made nor lost; full contact after partial is neither
+    subroutine test_patch_changes(error)
+        type(error_t), allocatable, intent(out) :: error
+        logical :: a(16, 12), b(16, 12)
+        integer :: made, lost
+        integer(i8) :: cm, cl
+        a = .false.; b = .false.
+        a([1, 2, 16], 1) = .true.; a([1, 16], 12) = .true.      ! the corner patch, 5 cells
+        b(16, 12) = .true.                                       ! ... shrunk to 1
+        a(8:9, 6:7) = .true.                                     ! lost, 4 cells
+        b(16, 6) = .true.; b(1:2, 6) = .true.                    ! made, 3 cells across the x edge
+        a(4:8, 10) = .true.; b([4, 8], 10) = .true.              ! split, each part an old cell
+        call patch_changes(a, b, made, lost, cm, cl)
+        call check(error, made == 1 .and. lost == 1 .and. cm == 3 .and. cl == 4, "made "//str(made)// &
+                   " ("//str(int(cm))//" cells), lost "//str(lost)//" ("//str(int(cl))//" cells): expected 1 (3), 1 (4)")
+        if (allocated(error)) return
+        call patch_changes(b, a, made, lost, cm, cl)
+        call check(error, made == 1 .and. lost == 1 .and. cm == 4 .and. cl == 3, "reversed: made and lost swap")
+        if (allocated(error)) return
+        b = .true.
+        call patch_changes(a, b, made, lost, cm, cl)
+        call check(error, made == 0 .and. lost == 0 .and. cm == 0 .and. cl == 0, "full contact: one patch, old cells")
+        if (allocated(error)) return
+        call patch_changes(a, .not. b, made, lost, cm, cl)
+        call check(error, made == 0 .and. lost == 3 .and. cl == count(a), "no contact: every patch lost")
+    end subroutine test_patch_changes
 
 end module test_veslide_anisotropy

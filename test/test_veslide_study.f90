@@ -30,6 +30,9 @@ module test_veslide_study
         " &adhesion law = 'exponential', energy_j_m2 = 0.019739208802178717, range_m = 1.5625e-8 /"// &
         " &solver tolerance = 1e-10, fft_planner = 'estimate' / &output fields = .false. /"
     real(dp), parameter :: pstar = pi*1.0e7_dp*1.0e-6_dp/1.0e-4_dp, jkr_alpha = 0.2_dp
+    !> a load path's patch columns in /summary
+    character(len=*), parameter :: patch_columns(4) = [character(len=21) :: 'path_patches_made', &
+        'path_patches_lost', 'path_patch_cells_made', 'path_patch_cells_lost']
 
     character(len=*), parameter :: base = "&grid nx = 32, ny = 32 / &surface k_cut = 8, eccentricity = 0.5 /"// &
         " &solver fft_planner='estimate', tolerance = 1e-12 / &material model='one_term' / &motion speed_m_s = 0.1 /"
@@ -377,7 +380,7 @@ contains
         type(config_t) :: cfg
         character(len=:), allocatable :: warm, cold
         real(dp), allocatable :: a(:), ac(:), q(:), qc(:), jump(:), ops(:), opsc(:), x(:)
-        integer :: nfail
+        integer :: nfail, k
         real(dp), parameter :: path(10) = [0.3_dp, 0.1_dp, -0.03_dp, 0.1_dp, 0.3_dp, 0.6_dp, 0.7_dp, 0.6_dp, 0.3_dp, &
                                            -0.05_dp]
         warm = unique_name('path-warm.h5'); cold = unique_name('path-cold.h5')
@@ -407,6 +410,11 @@ contains
         if (allocated(error)) return
         call check(error, all(nint(jump) == [0, 0, 0, 0, 0, JUMP_IN, 0, 0, 0, 0]), "the one jump-in, at 0.6 p*")
         if (allocated(error)) return
+        ! (the one patch grows into full contact and back: none made, none lost)
+        do k = 1, 4
+            call table_column(warm, '/summary', patch_columns(k), x, error); if (allocated(error)) return
+            call check(error, all(x == 0.0_dp), trim(patch_columns(k))//" not 0 along the path"); if (allocated(error)) return
+        end do
         ! cold starts: the same solution outside the band, the adhesionless side's branch inside
         call check(error, all(ac(2:4) == 1.0_dp) .and. all(abs(qc(2:4) - q(6:8)) <= 1.0e-6_dp*pstar), &
                    "outside the band: the same full contact"); if (allocated(error)) return
@@ -476,7 +484,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         type(config_t) :: cfg
         character(len=:), allocatable :: whole, resumed, part0, part1, merged, study, other
-        real(dp), allocatable :: x(:)
+        real(dp), allocatable :: x(:), area(:), made(:), lost(:), cells_made(:), cells_lost(:)
         integer :: nfail, j, m, ndiff
         study = "&grid nx = 1024, ny = 1, lx_m = 1.0e-4, ly_m = 9.765625e-8 /"// &
             " &surface kind = 'cosine', amplitude_m = 1.0e-6, wavelength_m = 1.0e-4 /"// &
@@ -491,6 +499,23 @@ contains
         call table_column(whole, '/summary', 'path_jump', x, error); if (allocated(error)) return
         call check(error, all(nint(x) == [0, 0, 0, 0, JUMP_OUT, 0, JUMP_IN, 0, 0, 0, 0, 0, JUMP_OUT, 0, JUMP_IN, 0]) &
                    .and. nfail == 4, "each path separates at -0.045 p* and comes back at 0"); if (allocated(error)) return
+        ! the wave's one patch a period: lost at the separation (all the closed cells before it),
+        ! made where the contact comes back (all its closed cells), neither elsewhere
+        call table_column(whole, '/summary', 'contact_area_fraction_cells', area, error); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_patches_made', made, error); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_patches_lost', lost, error); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_patch_cells_made', cells_made, error); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_patch_cells_lost', cells_lost, error); if (allocated(error)) return
+        call check(error, all(nint(made) == merge(1, 0, nint(x) == JUMP_IN)) .and. &
+                   all(nint(lost) == merge(1, 0, nint(x) == JUMP_OUT)), "patches made and lost: one at each jump")
+        if (allocated(error)) return
+        do j = 2, size(x)
+            if (nint(x(j)) == JUMP_OUT) call check(error, cells_lost(j) == anint(1024*area(j - 1)) .and. &
+                                                   cells_lost(j) > 0.0_dp, "cells lost: the closed cells before")
+            if (nint(x(j)) == JUMP_IN) call check(error, cells_made(j) == anint(1024*area(j)) .and. &
+                                                  cells_made(j) > 0.0_dp, "cells made: the closed cells now")
+            if (allocated(error)) return
+        end do
         call table_column(whole, '/paths', 'pull_off_case', x, error); if (allocated(error)) return
         call check(error, all(x == [4.0_dp, 12.0_dp]), "/paths: a pull-off per path"); if (allocated(error)) return
         call run_study(cfg, resumed, nfail, error, stop_after=5); if (allocated(error)) return

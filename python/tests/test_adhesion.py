@@ -116,6 +116,60 @@ def test_load_path_read_by_the_api(exe, tmp_path):
     assert row["first_case"] == 1 and row["last_case"] == n
 
 
+def periodic_patches(mask):
+    """Labels of the 4-neighbour components of `mask` on the periodic grid (union-find; -1 off it)"""
+    ny, nx = mask.shape
+    parent = np.arange(mask.size)
+
+    def root(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for j, i in zip(*np.nonzero(mask)):
+        for jj, ii in ((j, (i + 1) % nx), ((j + 1) % ny, i)):
+            if mask[jj, ii]:
+                parent[root(j*nx + i)] = root(jj*nx + ii)
+    labels = np.array([root(a) for a in range(mask.size)]).reshape(mask.shape)
+    return np.where(mask, labels, -1)
+
+
+def apart(mask, other):
+    """The components of `mask` that hold no cell of `other`: their number and cells"""
+    labels = periodic_patches(mask)
+    ids = set(labels[mask].tolist()) - set(labels[mask & other].tolist())
+    return len(ids), int(np.isin(labels, list(ids)).sum())
+
+
+@pytest.mark.filterwarnings("ignore:.*contact-resolution")
+def test_load_path_patches_made_and_lost(exe, tmp_path):
+    """A rough surface loaded and unloaded along a path: new patches touch down while the contact
+    grows (no jump of the whole contact) and leave as it shrinks. /summary's path_patches_made
+    and _lost (and their cells) are those of an independent count from the closed cells of
+    consecutive cases (the periodic grid's components, here by union-find)."""
+    loads = [1e3, 3e3, 1e4, 3e4, 1e4, 3e3, 1e3]
+    p = params(grid={"nx": 32, "ny": 32, "lx_m": 0.01},
+               surface={"seed": 3, "k_cut": 8.0, "rms_slope": 0.025},
+               material={"model": "elastic", "young_pa": 1e7, "poisson": 0.5},
+               adhesion={"law": "exponential", "energy_j_m2": 0.05, "range_m": 2e-5},
+               solver={"method": "gcg"}, sweep={"pressures_pa": loads}, output={"fields": True})
+    r = veslide.run(p, output=tmp_path/"patches.h5", exe=exe, progress=None)
+    s = r.summary
+    assert (s["converged"] == 1).all() and (s["path_jump"] == 0).all()
+    closed = [r.cases[k].fields.gap_m.values <= 0.0 for k in s["case"]]
+    for k in range(len(loads)):
+        want = (0, 0, 0, 0)
+        if k > 0:
+            want = apart(closed[k], closed[k - 1]) + apart(closed[k - 1], closed[k])
+            want = (want[0], want[2], want[1], want[3])
+        got = tuple(int(s[c].iloc[k]) for c in ("path_patches_made", "path_patches_lost",
+                                                 "path_patch_cells_made", "path_patch_cells_lost"))
+        assert got == want, "case %d" % (k + 1)
+    # (the scene makes patches while loading and loses them while unloading)
+    assert s["path_patches_made"][:4].sum() > 0 and s["path_patches_lost"][4:].sum() > 0
+
+
 @pytest.mark.parametrize("sweep, adhesive, words", [
     ({"approaches_m": [1e-7, -1e-7]}, False, ["&sweep approaches_m", "adhesive law"]),
     ({"approaches_m": [1e-7, 2.0]}, True, ["&sweep approaches_m(2)", "allowed", ">= -1 and <= 1 [m]"]),

@@ -21,7 +21,7 @@ module veslide_patches
     use veslide_anisotropy, only: tensor_axes
     implicit none
     private
-    public :: patch_stats_t, contact_patches, percolates, label_components
+    public :: patch_stats_t, contact_patches, percolates, label_components, patch_changes
 
     type :: patch_stats_t
         integer :: count = 0                    !! number of patches
@@ -275,5 +275,54 @@ contains
         acc(3:5) = acc(3:5) + a*gg
         acc(6) = acc(6) + a*(gg(1) + gg(2))
     end subroutine add_patch
+
+    !> The patches (4-neighbour components, periodic) of `after` that hold no cell of `before`
+    !> (made: their number and cells) and those of `before` that hold no cell of `after` (lost),
+    !> on the whole grid held by one process (a study's case)
+    subroutine patch_changes(before, after, made, lost, cells_made, cells_lost)
+        logical, intent(in) :: before(:, :), after(:, :)
+        integer, intent(out) :: made, lost
+        integer(i8), intent(out) :: cells_made, cells_lost
+        call apart(after, before, made, cells_made)
+        call apart(before, after, lost, cells_lost)
+    end subroutine patch_changes
+
+    !> The components of `mask` with no cell in `other`: their number and cells (a flood fill
+    !> over the periodic grid, one component at a time)
+    subroutine apart(mask, other, n, cells)
+        logical, intent(in) :: mask(:, :), other(:, :)
+        integer, intent(out) :: n
+        integer(i8), intent(out) :: cells
+        logical, allocatable :: seen(:, :)
+        integer, allocatable :: stack(:, :)
+        integer :: nx, ny, i, j, top, ci, cj, k, ni, nj, size_now
+        logical :: touches
+        integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
+        nx = size(mask, 1); ny = size(mask, 2)
+        n = 0; cells = 0_i8
+        allocate (seen(nx, ny), stack(2, count(mask)))
+        seen = .false.
+        do j = 1, ny
+            do i = 1, nx
+                if (.not. mask(i, j) .or. seen(i, j)) cycle
+                seen(i, j) = .true.; top = 1; stack(:, 1) = [i, j]
+                touches = .false.; size_now = 0
+                do while (top > 0)
+                    ci = stack(1, top); cj = stack(2, top); top = top - 1
+                    size_now = size_now + 1
+                    touches = touches .or. other(ci, cj)
+                    do k = 1, 4
+                        ni = modulo(ci - 1 + di(k), nx) + 1; nj = modulo(cj - 1 + dj(k), ny) + 1
+                        if (mask(ni, nj) .and. .not. seen(ni, nj)) then
+                            seen(ni, nj) = .true.; top = top + 1; stack(:, top) = [ni, nj]
+                        end if
+                    end do
+                end do
+                if (.not. touches) then
+                    n = n + 1; cells = cells + size_now
+                end if
+            end do
+        end do
+    end subroutine apart
 
 end module veslide_patches

@@ -46,6 +46,7 @@ module veslide_study
     use veslide_case_file, only: write_warnings
     use veslide_validity, only: check_surface_scale
     use veslide_warning, only: warning_t
+    use veslide_patches, only: patch_changes
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
@@ -249,6 +250,9 @@ contains
         type(study_progress_t) :: info
         type(study_chain_t) :: ch
         integer :: ic, iv, is, k, j, rank, nranks, nmine, nrow, jump_now
+        !> a load path's patches made and lost since its previous case, and their cells
+        integer :: patches(2)
+        integer(i8) :: patch_cells(2)
         integer, allocatable :: keep(:)
         logical, allocatable :: done(:)
         integer(i8) :: surface_seed, estimate
@@ -366,11 +370,18 @@ contains
                     if (allocated(error)) then
                         call kept%finish(); return
                     end if
+                    ! (a load path: the contact patches made and lost since its previous case,
+                    ! from the two cases' closed cells)
+                    patches = 0; patch_cells = 0_i8
+                    if (plan%path .and. is > 1 .and. allocated(g_prev)) &
+                        call patch_changes(g_prev <= 0.0_dp, c%state%g <= 0.0_dp, patches(1), patches(2), &
+                                           patch_cells(1), patch_cells(2))
                     p_prev = c%state%p; g_prev = c%state%g
                     if (.not. c%state%converged) nfail = nfail + 1
                     call case_results(c, r)
                     call write_row(k, ch, plan%speeds(iv), is, error); if (allocated(error)) return
-                    if (is < plan%nstep .and. cfg%sweep%warm_start) then
+                    ! (a load path keeps it without warm starts too: the next case's patch counts)
+                    if (is < plan%nstep .and. (cfg%sweep%warm_start .or. plan%path)) then
                         call save_warm_start(k, error); if (allocated(error)) return
                     end if
                     info%done = info%done + 1
@@ -527,7 +538,7 @@ contains
             nk = np + size(keep)
             if (.not. allocated(table)) then
                 ! a load path's two columns last: the case's place on its path and its event
-                j = nk + merge(2, 0, plan%path)
+                j = nk + merge(6, 0, plan%path)
                 allocate (columns(j), units(j), is_int(j))
                 allocate (table(j, nmine))
                 columns(1:np) = param_names(1:np); units(1:np) = param_units(1:np)
@@ -537,8 +548,9 @@ contains
                     is_int(np + j) = r%scalars(keep(j))%is_integer
                 end do
                 if (plan%path) then
-                    columns(nk + 1:nk + 2) = [character(len=64) :: 'path_step', 'path_jump']
-                    units(nk + 1:nk + 2) = '-'; is_int(nk + 1:nk + 2) = .true.
+                    columns(nk + 1:nk + 6) = [character(len=64) :: 'path_step', 'path_jump', 'path_patches_made', &
+                                              'path_patches_lost', 'path_patch_cells_made', 'path_patch_cells_lost']
+                    units(nk + 1:nk + 6) = '-'; is_int(nk + 1:nk + 6) = .true.
                 end if
             end if
             ! the event since the path's previous case (the last row written, when it is k - 1)
@@ -560,7 +572,7 @@ contains
                     table(np + j, nrow) = transfer(r%scalars(keep(j))%value, 0_i8)
                 end if
             end do
-            if (plan%path) table(nk + 1:nk + 2, nrow) = [int(step, i8), int(jump_now, i8)]
+            if (plan%path) table(nk + 1:nk + 6, nrow) = [int(step, i8), int(jump_now, i8), int(patches, i8), patch_cells]
             call f%append_row('/summary', columns, units, is_int, table(:, nrow), error); if (allocated(error)) return
             if (.not. f%attr_exists('/summary', 'parameters')) then     ! (the first row made the table)
                 call f%writeattr('/summary', 'parameters', param_names(1:np), error); if (allocated(error)) return
