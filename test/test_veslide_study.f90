@@ -518,6 +518,10 @@ contains
         end do
         call table_column(whole, '/paths', 'pull_off_case', x, error); if (allocated(error)) return
         call check(error, all(x == [4.0_dp, 12.0_dp]), "/paths: a pull-off per path"); if (allocated(error)) return
+        call table_column(whole, '/paths', 'n_patches_made', made, error); if (allocated(error)) return
+        call table_column(whole, '/paths', 'n_patches_lost', lost, error); if (allocated(error)) return
+        call check(error, all(made == 1.0_dp) .and. all(lost == 1.0_dp), "/paths: one patch made and one lost a path")
+        if (allocated(error)) return
         call run_study(cfg, resumed, nfail, error, stop_after=5); if (allocated(error)) return
         call run_study(cfg, resumed, nfail, error); if (allocated(error)) return
         call run_study(cfg, part0, nfail, error, part=[0, 2]); if (allocated(error)) return

@@ -168,6 +168,9 @@ def test_load_path_patches_made_and_lost(exe, tmp_path):
         assert got == want, "case %d" % (k + 1)
     # (the scene makes patches while loading and loses them while unloading)
     assert s["path_patches_made"][:4].sum() > 0 and s["path_patches_lost"][4:].sum() > 0
+    row = r.paths.iloc[0]
+    assert row["n_patches_made"] == s["path_patches_made"].sum()
+    assert row["n_patches_lost"] == s["path_patches_lost"].sum()
 
 
 @pytest.mark.parametrize("sweep, adhesive, words", [

@@ -176,7 +176,8 @@ class Result:
     """A veslide result file (or one case group of a study), read with `veslide.read`.
 
     Attributes read at once: `scalars`, `summary`, `ensemble`, `paths` (a load path study's
-    /paths: each path's jumps and pull-off, docs/adhesion.md; None otherwise), `input`, `input_text`,
+    /paths: each path's jumps, pull-off and patches made and lost, docs/adhesion.md; None
+    otherwise), `input`, `input_text`,
     `provenance`, `anisotropy`, `patches`, `persson`, `parameters`, `validity` (the validity
     measures of a case, /validity: values, `.units`, `.attrs` with each threshold and when it
     warns; `validity_table` as a DataFrame); read when first used: `fields`, `cases`,

@@ -604,7 +604,7 @@ contains
 
     !> /paths, a row per load path of the complete /summary `table` (rows in case order): the
     !> path's seed, spectrum, speed (and temperature), its cases, the jumps flagged along it, the
-    !> first case after a jump-in and its load, and the pull-off: under load control the most
+    !> first case after a jump-in and its load, the patches made and lost along it, and the pull-off: under load control the most
     !> tensile load carried just before the contact was lost (the last case before separation),
     !> under approach control the most tensile load at a minimum of the load along the path (both
     !> neighbours carry more); case 0 and NaN where the path shows none. The attribute `control`
@@ -621,14 +621,16 @@ contains
         integer(i8), allocatable :: e(:, :)
         real(dp) :: load(plan%nstep), area(plan%nstep), pull
         integer :: jump(plan%nstep)
+        integer(i8) :: made(plan%nstep), lost(plan%nstep)
         logical :: conv(plan%nstep)
-        integer :: ic, n, s, k0, jm, jc, jj, ja, ipull, ijin, nt
+        integer :: ic, n, s, k0, jm, jc, jj, ja, ipull, ijin, nt, jpm, jpl
         if (size(table, 2) /= plan%ncase .or. size(units) /= size(columns)) then
             call fatal_error(error, "veslide:study:write_paths: the table is not the complete study"); return
         end if
         jm = findloc(columns, 'mean_pressure_pa', dim=1); jc = findloc(columns, 'converged', dim=1)
         jj = findloc(columns, 'path_jump', dim=1); ja = findloc(columns, 'contact_area_fraction_cells', dim=1)
-        if (min(jm, jc, jj, ja) == 0) then
+        jpm = findloc(columns, 'path_patches_made', dim=1); jpl = findloc(columns, 'path_patches_lost', dim=1)
+        if (min(jm, jc, jj, ja, jpm, jpl) == 0) then
             call fatal_error(error, "veslide:study:write_paths: /summary lacks a column of the load path"); return
         end if
         nt = merge(1, 0, plan%nparam == 7)
@@ -638,10 +640,10 @@ contains
             pcols = [character(len=64) :: pcols, 'temperature_c']; punits = [character(len=64) :: punits, 'degC']
         end if
         pcols = [character(len=64) :: pcols, 'first_case', 'last_case', 'n_jump_in', 'n_jump_out', 'jump_in_case', &
-                 'jump_in_pa', 'pull_off_case', 'pull_off_pa']
-        punits = [character(len=64) :: punits, '-', '-', '-', '-', '-', 'Pa', '-', 'Pa']
+                 'jump_in_pa', 'pull_off_case', 'pull_off_pa', 'n_patches_made', 'n_patches_lost']
+        punits = [character(len=64) :: punits, '-', '-', '-', '-', '-', 'Pa', '-', 'Pa', '-', '-']
         pint = [.true., .false., .false., .false., [(.false., s = 1, nt)], .true., .true., .true., .true., .true., &
-                .false., .true., .false.]
+                .false., .true., .false., .true., .true.]
         n = plan%nstep
         allocate (e(size(pcols), size(plan%chains)))
         do ic = 1, size(plan%chains)
@@ -650,6 +652,7 @@ contains
                 do s = 1, n
                     load(s) = cell(table, is_int, jm, k0 + s - 1); area(s) = cell(table, is_int, ja, k0 + s - 1)
                     conv(s) = table(jc, k0 + s - 1) == 1; jump(s) = int(table(jj, k0 + s - 1))
+                    made(s) = table(jpm, k0 + s - 1); lost(s) = table(jpl, k0 + s - 1)
                 end do
                 ijin = findloc(jump, JUMP_IN, dim=1)
                 ipull = 0; pull = huge(1.0_dp)
@@ -674,7 +677,7 @@ contains
                                   merge(int(k0 + ijin - 1, i8), 0_i8, ijin > 0), &
                                   transfer(merge(load(max(ijin, 1)), nan(), ijin > 0), 0_i8), &
                                   merge(int(k0 + ipull - 1, i8), 0_i8, ipull > 0), &
-                                  transfer(merge(pull, nan(), ipull > 0), 0_i8)]
+                                  transfer(merge(pull, nan(), ipull > 0), 0_i8), sum(made), sum(lost)]
             end associate
         end do
         call f%write_table('/paths', pcols, punits, pint, e, error); if (allocated(error)) return
