@@ -287,42 +287,49 @@ contains
         call apart(before, after, lost, cells_lost)
     end subroutine patch_changes
 
-    !> The components of `mask` with no cell in `other`: their number and cells (a flood fill
-    !> over the periodic grid, one component at a time)
+    !> The components of `mask` with no cell in `other`: their number and cells (the rows'
+    !> labelling, periodic along x, with the labels of the last and first rows joined: periodic
+    !> along y on the whole grid)
     subroutine apart(mask, other, n, cells)
         logical, intent(in) :: mask(:, :), other(:, :)
         integer, intent(out) :: n
         integer(i8), intent(out) :: cells
-        logical, allocatable :: seen(:, :)
-        integer, allocatable :: stack(:, :)
-        integer :: nx, ny, i, j, top, ci, cj, k, ni, nj, size_now
-        logical :: touches
-        integer, parameter :: di(4) = [1, -1, 0, 0], dj(4) = [0, 0, 1, -1]
+        type(grid_t) :: g
+        integer, allocatable :: lab(:, :), ox(:, :), up(:)
+        real(dp), allocatable :: sums(:, :), size_of(:)
+        logical, allocatable :: touches(:)
+        integer :: nlab, nx, ny, i, j, k
+        logical :: wrap_x
         nx = size(mask, 1); ny = size(mask, 2)
-        n = 0; cells = 0_i8
-        allocate (seen(nx, ny), stack(2, count(mask)))
-        seen = .false.
+        g%nx = nx; g%ny = ny; g%j0 = 0; g%ny_local = ny; g%rows_of = [ny]
+        call label_rows(g, mask, lab, ox, sums, nlab, wrap_x)
+        up = [(k, k = 1, nlab)]
+        do i = 1, nx
+            if (lab(i, 1) > 0 .and. lab(i, ny) > 0) up(top(lab(i, 1))) = top(lab(i, ny))
+        end do
+        allocate (touches(nlab), size_of(nlab))
+        touches = .false.; size_of = 0.0_dp
+        do k = 1, nlab
+            size_of(top(k)) = size_of(top(k)) + sums(1, k)
+        end do
         do j = 1, ny
             do i = 1, nx
-                if (.not. mask(i, j) .or. seen(i, j)) cycle
-                seen(i, j) = .true.; top = 1; stack(:, 1) = [i, j]
-                touches = .false.; size_now = 0
-                do while (top > 0)
-                    ci = stack(1, top); cj = stack(2, top); top = top - 1
-                    size_now = size_now + 1
-                    touches = touches .or. other(ci, cj)
-                    do k = 1, 4
-                        ni = modulo(ci - 1 + di(k), nx) + 1; nj = modulo(cj - 1 + dj(k), ny) + 1
-                        if (mask(ni, nj) .and. .not. seen(ni, nj)) then
-                            seen(ni, nj) = .true.; top = top + 1; stack(:, top) = [ni, nj]
-                        end if
-                    end do
-                end do
-                if (.not. touches) then
-                    n = n + 1; cells = cells + size_now
-                end if
+                if (lab(i, j) > 0 .and. other(i, j)) touches(top(lab(i, j))) = .true.
             end do
         end do
+        n = 0; cells = 0_i8
+        do k = 1, nlab
+            if (up(k) /= k .or. touches(k)) cycle
+            n = n + 1; cells = cells + nint(size_of(k), i8)
+        end do
+    contains
+        integer function top(k0) result(k)
+            integer, intent(in) :: k0
+            k = k0
+            do while (up(k) /= k)
+                k = up(k)
+            end do
+        end function top
     end subroutine apart
 
 end module veslide_patches

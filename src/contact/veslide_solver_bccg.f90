@@ -62,7 +62,7 @@ module veslide_solver_bccg
     !> solve runs (veslide_arrays)
     type :: bccg_t
         type(grid_t) :: grid                   !! the grid (distributed or not)
-        integer :: nx = 0, ny = 0, nq = 0      !! ny: this process's rows
+        integer :: nx = 0, ny = 0              !! ny: this process's rows
         real(dp) :: cells = 0.0_dp             !! N = nx ny, the whole grid's cells
         logical :: device = .false.            !! the arrays are on the device
         type(metric_t) :: ks                   !! M/N on the spectral storage (grid%spectral_shape):
@@ -80,7 +80,7 @@ module veslide_solver_bccg
         type(carray_t) :: pk                   !! transform of the pressure (kept along: no drift
                                                !! beyond round-off, and no correction FFT needed)
         type(carray_t) :: exy                  !! on the device: the clipped points' factors
-                                               !! (add_points' work array, (nq + ny) x max_points)
+                                               !! (add_points' work array, (nx/2 + 1 + ny) x max_points)
         logical :: pk_valid = .false.          !! pk is the transform of the last returned pressure
         real(dp) :: pairs = 0.0_dp             !! FFT pairs spent (a single transform counts 1/2)
         ! residual measures of the last solve (dimensionless, as in veslide_contact)
@@ -106,7 +106,7 @@ contains
         call self%destroy()
         self%grid = grid
         self%device = t%device
-        self%nx = t%nx; self%ny = t%x%n2; self%nq = t%nx/2 + 1
+        self%nx = t%nx; self%ny = t%x%n2
         self%cells = grid%cells()
         sh = grid%spectral_shape()
         if (grid%transposed) then

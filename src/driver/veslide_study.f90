@@ -537,7 +537,8 @@ contains
                 keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names(1:np)), j = 1, r%n)])
             nk = np + size(keep)
             if (.not. allocated(table)) then
-                ! a load path's two columns last: the case's place on its path and its event
+                ! a load path's six columns last: the case's place on its path, its event, and the
+                ! patches made and lost since the path's previous case with their cells
                 j = nk + merge(6, 0, plan%path)
                 allocate (columns(j), units(j), is_int(j))
                 allocate (table(j, nmine))
@@ -604,8 +605,9 @@ contains
 
     !> /paths, a row per load path of the complete /summary `table` (rows in case order): the
     !> path's seed, spectrum, speed (and temperature), its cases, the jumps flagged along it, the
-    !> first case after a jump-in and its load, the patches made and lost along it, and the pull-off: under load control the most
-    !> tensile load carried just before the contact was lost (the last case before separation),
+    !> first case after a jump-in and its load, the patches made and lost along it, and the
+    !> pull-off: under load control the most tensile load carried just before the contact was lost
+    !> (the last case before separation),
     !> under approach control the most tensile load at a minimum of the load along the path (both
     !> neighbours carry more); case 0 and NaN where the path shows none. The attribute `control`
     !> says which ('load' or 'approach').
