@@ -6,7 +6,7 @@ module test_veslide_anisotropy
     use veslide_fftw, only: fft2d_t
     use veslide_spectrum, only: slope_tensor
     use veslide_anisotropy, only: tensor_axes, decompose, compose, m2_of_theta
-    use veslide_patches, only: patch_stats_t, contact_patches, percolates, patch_changes
+    use veslide_patches, only: patch_stats_t, contact_patches, percolates, patch_changes, cell_set_t, cell_set
     use veslide_strings, only: str
     use testsuite, only: unittest_t, new_unittest, check, report
     implicit none
@@ -25,7 +25,8 @@ contains
             new_unittest("patches-across-periodic-boundary", test_patches), &
             new_unittest("patch-orientation", test_patch_orientation), &
             new_unittest("stripe-percolation", test_percolation), &
-            new_unittest("patches-made-and-lost", test_patch_changes) &
+            new_unittest("patches-made-and-lost", test_patch_changes), &
+            new_unittest("patches-bistable", test_patches_bistable) &
             ]
     end subroutine collect_anisotropy
 
@@ -191,5 +192,57 @@ contains
         call patch_changes(a, .not. b, made, lost, cm, cl)
         call check(error, made == 0 .and. lost == 3 .and. cl == count(a), "no contact: every patch lost")
     end subroutine test_patch_changes
+
+    !> A set of cells kept as runs holds exactly the mask's cells (runs crossing rows, one at the
+    !> last cell); the patches made and lost between two states that earlier states at the same
+    !> controls held the other way: none where those states are the two themselves, both where
+    !> the after control held the before state, and each alone as the sets decide
+    subroutine test_patches_bistable(error)
+        type(error_t), allocatable, intent(out) :: error
+        logical :: a(16, 12), b(16, 12), m(16, 12), e(16, 12)
+        type(cell_set_t) :: s
+        type(cell_set_t), allocatable :: none(:)
+        integer :: made, lost, nb, r
+        integer(i8) :: cm, cl, c
+        a = .false.; b = .false.
+        a([1, 2, 16], 1) = .true.; a([1, 16], 12) = .true.      ! the corner patch: kept
+        b(16, 12) = .true.
+        a(8:9, 6:7) = .true.                                     ! lost, 4 cells
+        b(16, 6) = .true.; b(1:2, 6) = .true.                    ! made, 3 cells across the x edge
+        ! the runs: expanded again they are the mask
+        m = a .or. b; m(1, 7) = .true.                          ! (a run from row 6 into row 7)
+        s = cell_set(m)
+        e = .false.
+        do r = 1, size(s%runs, 2)
+            do c = s%runs(1, r), s%runs(1, r) + s%runs(2, r) - 1
+                e(int(modulo(c - 1, 16_i8)) + 1, int((c - 1)/16) + 1) = .true.
+            end do
+        end do
+        call check(error, all(e .eqv. m) .and. size(s%runs, 2) == 8, "the runs of a set are not its cells ("// &
+                   str(size(s%runs, 2))//" runs, expected 8)")
+        if (allocated(error)) return
+        ! the states themselves at their controls: nothing is bistable
+        call patch_changes(a, b, made, lost, cm, cl, at_before=[cell_set(a)], at_after=[cell_set(b)], bistable=nb)
+        call check(error, made == 1 .and. lost == 1 .and. nb == 0, "the two states themselves: "//str(nb)//" bistable")
+        if (allocated(error)) return
+        ! the after control held the before state earlier: both patches are bistable
+        allocate (none(0))     ! (a variable: gfortran 12 passes a literal empty list as absent)
+        call patch_changes(a, b, made, lost, cm, cl, at_before=none, at_after=[cell_set(a)], bistable=nb)
+        call check(error, nb == 2, "after's control held the before state: "//str(nb)//" bistable, expected 2")
+        if (allocated(error)) return
+        ! the before control held nothing: the lost patch only; held the made one's cell: it only
+        call patch_changes(a, b, made, lost, cm, cl, at_before=[cell_set(.not. (a .or. b))], &
+                           at_after=[cell_set(b)], bistable=nb)
+        call check(error, nb == 1, "before's control held no cell of the lost patch: "//str(nb)//" bistable")
+        if (allocated(error)) return
+        m = a; m(2, 6) = .true.
+        call patch_changes(a, b, made, lost, cm, cl, at_before=[cell_set(m)], at_after=[cell_set(b)], bistable=nb)
+        call check(error, nb == 1, "before's control held a cell of the made patch: "//str(nb)//" bistable")
+        if (allocated(error)) return
+        ! without the earlier states: none
+        call patch_changes(a, b, made, lost, cm, cl, bistable=nb)
+        call check(error, nb == 0 .and. made == 1 .and. lost == 1 .and. cm == 3 .and. cl == 4, &
+                   "no earlier states: "//str(nb)//" bistable")
+    end subroutine test_patches_bistable
 
 end module test_veslide_anisotropy

@@ -56,7 +56,8 @@ contains
             new_unittest("load-path-one-load-is-the-single-solve", test_path_single), &
             new_unittest("load-path-branches-both-ways", test_path_hysteresis), &
             new_unittest("load-path-pull-off-of-the-jkr-wave", test_path_pull_off), &
-            new_unittest("load-path-resumed-and-joined", test_path_resume_merge) &
+            new_unittest("load-path-resumed-and-joined", test_path_resume_merge), &
+            new_unittest("load-path-bistable-patches-resumed", test_path_bistable_resume) &
             ]
     end subroutine collect_study
 
@@ -539,6 +540,45 @@ contains
         end do
         call remove(whole); call remove(resumed); call remove(part0); call remove(part1); call remove(merged)
     end subroutine test_path_resume_merge
+
+    !> A rough path with a short range (its cohesive zone 0.17 of a cell: the contact at a load
+    !> depends on the path to it), loaded, unloaded and reloaded: patches lost while unloading and
+    !> made while reloading are bistable (an earlier case at the same load held them the other
+    !> way), none on the first leg; /paths sums them; stopped on the unloading leg and resumed,
+    !> the study counts the same (the states of the first leg come back from the .resume file)
+    subroutine test_path_bistable_resume(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        character(len=:), allocatable :: study, whole, resumed
+        real(dp), allocatable :: x(:), made(:), lost(:), total(:)
+        integer :: nfail, ndiff, j
+        study = "&grid nx = 32, ny = 32, lx_m = 0.01 / &surface seed = 3, k_cut = 8.0, rms_slope = 0.025 /"// &
+            " &material model = 'elastic', young_pa = 1.0e7, poisson = 0.5 /"// &
+            " &adhesion law = 'exponential', energy_j_m2 = 0.05, range_m = 5.0e-7 /"// &
+            " &solver method = 'gcg', tolerance = 1e-8, fft_planner = 'estimate' / &output fields = .false. /"// &
+            " &sweep pressures_pa = 1e3, 3e3, 1e4, 3e4, 1e4, 3e3, 1e3, 3e3, 1e4, 3e4 /"
+        whole = unique_name('bistable-whole.h5'); resumed = unique_name('bistable-resumed.h5')
+        call read_text('path-bistable', study, cfg, error); if (allocated(error)) return
+        call run_study(cfg, whole, nfail, error); if (allocated(error)) return
+        call check(error, nfail, 0, "cases not converged"); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_patches_bistable', x, error); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_patches_made', made, error); if (allocated(error)) return
+        call table_column(whole, '/summary', 'path_patches_lost', lost, error); if (allocated(error)) return
+        call check(error, all(x(1:4) == 0.0_dp) .and. sum(x(5:7)) >= 1.0_dp .and. sum(x(8:10)) >= 1.0_dp .and. &
+                   all(x <= made + lost), "bistable patches by leg: "//str(nint(sum(x(1:4))))//", "// &
+                   str(nint(sum(x(5:7))))//", "//str(nint(sum(x(8:10))))//" (expected 0, >= 1, >= 1)")
+        if (allocated(error)) return
+        call table_column(whole, '/paths', 'n_patches_bistable', total, error); if (allocated(error)) return
+        call check(error, total(1) == sum(x), "/paths: the bistable patches of the path"); if (allocated(error)) return
+        call run_study(cfg, resumed, nfail, error, stop_after=5); if (allocated(error)) return
+        call run_study(cfg, resumed, nfail, error); if (allocated(error)) return
+        do j = 1, 2
+            call table_differences(whole, resumed, trim(merge('/summary', '/paths  ', j == 1)), ndiff, error)
+            if (allocated(error)) return
+            call check(error, ndiff, 0, "the resumed study differs from the uninterrupted one"); if (allocated(error)) return
+        end do
+        call remove(whole); call remove(resumed)
+    end subroutine test_path_bistable_resume
 
     subroutine record_progress(info)
         type(study_progress_t), intent(in) :: info

@@ -171,6 +171,56 @@ def test_load_path_patches_made_and_lost(exe, tmp_path):
     row = r.paths.iloc[0]
     assert row["n_patches_made"] == s["path_patches_made"].sum()
     assert row["n_patches_lost"] == s["path_patches_lost"].sum()
+    # (the same closed cells at each load both ways: no patch is bistable)
+    assert all(np.array_equal(closed[k], closed[len(loads) - 1 - k]) for k in range(3))
+    assert (s["path_patches_bistable"] == 0).all() and row["n_patches_bistable"] == 0
+
+
+def bistable_patches(closed, control, k):
+    """The patches made and lost between cases k - 1 and k (0-based) held the other way by an
+    earlier case at the same control: a lost one absent at the previous case's control or present
+    at this case's, a made one present at the previous case's control or absent at this case's"""
+    n = 0
+    for mask, other, made in ((closed[k], closed[k - 1], True), (closed[k - 1], closed[k], False)):
+        labels = periodic_patches(mask)
+        for pid in set(labels[mask].tolist()) - set(labels[mask & other].tolist()):
+            cells = labels == pid
+            held_before = [closed[j][cells].any() for j in range(k - 1) if control[j] == control[k - 1]]
+            held_after = [closed[j][cells].any() for j in range(k) if control[j] == control[k]]
+            if made:
+                n += any(held_before) or not all(held_after)
+            else:
+                n += (not all(held_before)) or any(held_after)
+    return n
+
+
+@pytest.mark.filterwarnings("ignore:.*contact-resolution", "ignore:.*adhesion-zone-unresolved")
+def test_load_path_bistable_patches(exe, tmp_path):
+    """The rough path of test_load_path_patches_made_and_lost with a short range (0.5 um, its
+    cohesive zone 0.17 of a cell: the contact at a load depends on the path to it), loaded,
+    unloaded and reloaded: at the same load the closed cells differ between the legs, and
+    /summary's path_patches_bistable counts the patches made or lost that an earlier case at the
+    same load held the other way, as an independent count from the cases' closed cells does;
+    /paths sums them."""
+    loads = [1e3, 3e3, 1e4, 3e4, 1e4, 3e3, 1e3, 3e3, 1e4, 3e4]
+    p = params(grid={"nx": 32, "ny": 32, "lx_m": 0.01},
+               surface={"seed": 3, "k_cut": 8.0, "rms_slope": 0.025},
+               material={"model": "elastic", "young_pa": 1e7, "poisson": 0.5},
+               adhesion={"law": "exponential", "energy_j_m2": 0.05, "range_m": 5e-7},
+               solver={"method": "gcg"}, sweep={"pressures_pa": loads}, output={"fields": True})
+    r = veslide.run(p, output=tmp_path/"bistable.h5", exe=exe, progress=None)
+    s = r.summary
+    assert (s["converged"] == 1).all() and (s["path_jump"] == 0).all()
+    closed = [r.cases[k].fields.gap_m.values <= 0.0 for k in s["case"]]
+    want = [0] + [bistable_patches(closed, loads, k) for k in range(1, len(loads))]
+    assert list(s["path_patches_bistable"]) == want
+    # (hysteresis: the unloading leg keeps cells the loading leg had open, and a patch lost while
+    # unloading and one made while reloading are bistable; none on the first leg, none made while
+    # unloading, and never more than the patches made and lost)
+    assert not np.array_equal(closed[2], closed[4])
+    assert sum(want[4:7]) >= 1 and sum(want[7:]) >= 1 and sum(want[:4]) == 0
+    assert (s["path_patches_bistable"] <= s["path_patches_made"] + s["path_patches_lost"]).all()
+    assert r.paths.iloc[0]["n_patches_bistable"] == sum(want)
 
 
 @pytest.mark.parametrize("sweep, adhesive, words", [

@@ -176,7 +176,7 @@ class Result:
     """A veslide result file (or one case group of a study), read with `veslide.read`.
 
     Attributes read at once: `scalars`, `summary`, `ensemble`, `paths` (a load path study's
-    /paths: each path's jumps, pull-off and patches made and lost, docs/adhesion.md; None
+    /paths: each path's jumps, pull-off and patches made, lost and bistable, docs/adhesion.md; None
     otherwise), `input`, `input_text`,
     `provenance`, `anisotropy`, `patches`, `persson`, `parameters`, `validity` (the validity
     measures of a case, /validity: values, `.units`, `.attrs` with each threshold and when it

@@ -22,6 +22,7 @@ module veslide_patches
     implicit none
     private
     public :: patch_stats_t, contact_patches, percolates, label_components, patch_changes
+    public :: cell_set_t, cell_set
 
     type :: patch_stats_t
         integer :: count = 0                    !! number of patches
@@ -30,6 +31,12 @@ module veslide_patches
         real(dp) :: gamma = 0.0_dp              !! its eigenvalue ratio (min/max)
         real(dp) :: theta = 0.0_dp              !! direction of its major axis [rad, 0..pi)
     end type patch_stats_t
+
+    !> A set of cells of the whole grid, as runs of consecutive cells in storage order (x fastest):
+    !> a closed set kept compactly (two integers a run) to be compared with later cases
+    type :: cell_set_t
+        integer(i8), allocatable :: runs(:, :)  !! (first cell, count) a run; cells numbered from 1
+    end type cell_set_t
 
     !> Sums of one component in its frame: cells, x, y, xx, yy, xy (positions in cells)
     integer, parameter :: nsum = 6
@@ -278,27 +285,73 @@ contains
 
     !> The patches (4-neighbour components, periodic) of `after` that hold no cell of `before`
     !> (made: their number and cells) and those of `before` that hold no cell of `after` (lost),
-    !> on the whole grid held by one process (a study's case)
-    subroutine patch_changes(before, after, made, lost, cells_made, cells_lost)
+    !> on the whole grid held by one process (a study's case).
+    !> With `at_before` and `at_after` (either may be absent: no such state), the closed sets of
+    !> earlier states at the same control as `before` and as `after`, `bistable` counts the patches made or lost that one of those
+    !> states holds the other way: a patch lost is bistable where a state at `before`'s control
+    !> held none of its cells, or one at `after`'s control held one; a patch made, where a state
+    !> at `before`'s control held one of its cells, or one at `after`'s control held none.
+    subroutine patch_changes(before, after, made, lost, cells_made, cells_lost, at_before, at_after, bistable)
         logical, intent(in) :: before(:, :), after(:, :)
         integer, intent(out) :: made, lost
         integer(i8), intent(out) :: cells_made, cells_lost
-        call apart(after, before, made, cells_made)
-        call apart(before, after, lost, cells_lost)
+        type(cell_set_t), intent(in), optional :: at_before(:), at_after(:)
+        integer, intent(out), optional :: bistable
+        integer :: nb_made, nb_lost
+        ! (an absent set list, here or in apart, holds no earlier state)
+        call apart(after, before, made, cells_made, at_before, at_after, nb_made)
+        call apart(before, after, lost, cells_lost, at_after, at_before, nb_lost)
+        if (present(bistable)) bistable = nb_made + nb_lost
     end subroutine patch_changes
+
+    !> The cells of `mask` (the whole grid) as a set
+    function cell_set(mask) result(s)
+        logical, intent(in) :: mask(:, :)
+        type(cell_set_t) :: s
+        integer(i8), allocatable :: runs(:, :), tmp(:, :)
+        integer(i8) :: k, first
+        integer :: i, j, nrun
+        allocate (runs(2, 16)); nrun = 0; first = 0; k = 0
+        do j = 1, size(mask, 2)
+            do i = 1, size(mask, 1)
+                k = k + 1
+                if (mask(i, j)) then
+                    if (first == 0) first = k
+                else if (first > 0) then
+                    call add_run(k)
+                end if
+            end do
+        end do
+        if (first > 0) call add_run(k + 1)
+        s%runs = runs(:, 1:nrun)
+    contains
+        !> the run from `first` to the cell before `past`
+        subroutine add_run(past)
+            integer(i8), intent(in) :: past
+            nrun = nrun + 1
+            if (nrun > size(runs, 2)) then
+                allocate (tmp(2, 2*size(runs, 2))); tmp(:, 1:nrun - 1) = runs(:, 1:nrun - 1)
+                call move_alloc(tmp, runs)
+            end if
+            runs(:, nrun) = [first, past - first]; first = 0
+        end subroutine add_run
+    end function cell_set
 
     !> The components of `mask` with no cell in `other`: their number and cells (the rows'
     !> labelling, periodic along x, with the labels of the last and first rows joined: periodic
-    !> along y on the whole grid)
-    subroutine apart(mask, other, n, cells)
+    !> along y on the whole grid); with `held` and `unheld`, `nb` counts those of them that hold a
+    !> cell of one of the sets `held`, or no cell of one of the sets `unheld`
+    subroutine apart(mask, other, n, cells, held, unheld, nb)
         logical, intent(in) :: mask(:, :), other(:, :)
         integer, intent(out) :: n
         integer(i8), intent(out) :: cells
+        type(cell_set_t), intent(in), optional :: held(:), unheld(:)
+        integer, intent(out), optional :: nb
         type(grid_t) :: g
         integer, allocatable :: lab(:, :), ox(:, :), up(:)
         real(dp), allocatable :: sums(:, :), size_of(:)
-        logical, allocatable :: touches(:)
-        integer :: nlab, nx, ny, i, j, k
+        logical, allocatable :: touches(:), flagged(:), hits(:)
+        integer :: nlab, nx, ny, i, j, k, e
         logical :: wrap_x
         nx = size(mask, 1); ny = size(mask, 2)
         g%nx = nx; g%ny = ny; g%j0 = 0; g%ny_local = ny; g%rows_of = [ny]
@@ -307,8 +360,8 @@ contains
         do i = 1, nx
             if (lab(i, 1) > 0 .and. lab(i, ny) > 0) up(top(lab(i, 1))) = top(lab(i, ny))
         end do
-        allocate (touches(nlab), size_of(nlab))
-        touches = .false.; size_of = 0.0_dp
+        allocate (touches(nlab), size_of(nlab), flagged(nlab), hits(nlab))
+        touches = .false.; size_of = 0.0_dp; flagged = .false.
         do k = 1, nlab
             size_of(top(k)) = size_of(top(k)) + sums(1, k)
         end do
@@ -317,10 +370,22 @@ contains
                 if (lab(i, j) > 0 .and. other(i, j)) touches(top(lab(i, j))) = .true.
             end do
         end do
+        if (present(held)) then
+            do e = 1, size(held)
+                call hit(held(e)); flagged = flagged .or. hits
+            end do
+        end if
+        if (present(unheld)) then
+            do e = 1, size(unheld)
+                call hit(unheld(e)); flagged = flagged .or. .not. hits
+            end do
+        end if
         n = 0; cells = 0_i8
+        if (present(nb)) nb = 0
         do k = 1, nlab
             if (up(k) /= k .or. touches(k)) cycle
             n = n + 1; cells = cells + nint(size_of(k), i8)
+            if (present(nb) .and. flagged(k)) nb = nb + 1
         end do
     contains
         integer function top(k0) result(k)
@@ -330,6 +395,20 @@ contains
                 k = up(k)
             end do
         end function top
+
+        !> hits(k): component k (a root) holds a cell of the set s
+        subroutine hit(s)
+            type(cell_set_t), intent(in) :: s
+            integer(i8) :: r, c
+            integer :: l
+            hits = .false.
+            do r = 1, size(s%runs, 2, i8)
+                do c = s%runs(1, r), s%runs(1, r) + s%runs(2, r) - 1
+                    l = lab(int(modulo(c - 1, int(nx, i8)) + 1), int((c - 1)/nx + 1))
+                    if (l > 0) hits(top(l)) = .true.
+                end do
+            end do
+        end subroutine hit
     end subroutine apart
 
 end module veslide_patches

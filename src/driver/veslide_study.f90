@@ -46,7 +46,7 @@ module veslide_study
     use veslide_case_file, only: write_warnings
     use veslide_validity, only: check_surface_scale
     use veslide_warning, only: warning_t
-    use veslide_patches, only: patch_changes
+    use veslide_patches, only: patch_changes, cell_set_t, cell_set
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
@@ -250,9 +250,14 @@ contains
         type(study_progress_t) :: info
         type(study_chain_t) :: ch
         integer :: ic, iv, is, k, j, rank, nranks, nmine, nrow, jump_now
-        !> a load path's patches made and lost since its previous case, and their cells
-        integer :: patches(2)
+        !> a load path's patches made and lost since its previous case, their cells, and how many
+        !> of them are bistable (the path held them the other way at the same control before)
+        integer :: patches(2), bistable
         integer(i8) :: patch_cells(2)
+        !> the closed cells of the path's converged cases whose control recurs later on the path,
+        !> and their places on it: the states a later case at the same control is compared with
+        type(cell_set_t), allocatable :: seen(:)
+        integer, allocatable :: seen_step(:)
         integer, allocatable :: keep(:)
         logical, allocatable :: done(:)
         integer(i8) :: surface_seed, estimate
@@ -324,6 +329,7 @@ contains
                     have_surface = .true.
                     surface_seed = chain%seed; surface_ecc = chain%eccentricity; surface_alpha = chain%alpha_deg
                 end if
+                seen = [cell_set_t ::]; seen_step = [integer ::]
                 do is = 1, plan%nstep
                     k = chain%first_case + is - 1
                     if (done(k)) cycle
@@ -343,7 +349,7 @@ contains
                             ch%pressure_pa = plan%loads(is)
                         end if
                     end if
-                    if (is > 1 .and. .not. allocated(p_prev)) call restore_warm_start(k - 1)
+                    if (is > 1 .and. .not. allocated(p_prev)) call restore_warm_start(k - 1, is)
                     c%spec = chain_spec(base, ch, mat, plan%speeds(iv))
                     if (plan%approach) then
                         c%spec%approach_m = plan%loads(is); c%spec%mean_pressure_pa = 0.0_dp
@@ -371,11 +377,27 @@ contains
                         call kept%finish(); return
                     end if
                     ! (a load path: the contact patches made and lost since its previous case,
-                    ! from the two cases' closed cells)
-                    patches = 0; patch_cells = 0_i8
-                    if (plan%path .and. is > 1 .and. allocated(g_prev)) &
-                        call patch_changes(g_prev <= 0.0_dp, c%state%g <= 0.0_dp, patches(1), patches(2), &
-                                           patch_cells(1), patch_cells(2))
+                    ! from the two cases' closed cells; between two converged cases, those the
+                    ! path held the other way at the same control before)
+                    patches = 0; patch_cells = 0_i8; bistable = 0
+                    if (plan%path .and. is > 1 .and. allocated(g_prev)) then
+                        if (c%state%converged .and. converged_case(k - 1)) then
+                            call patch_changes(g_prev <= 0.0_dp, c%state%g <= 0.0_dp, patches(1), patches(2), &
+                                               patch_cells(1), patch_cells(2), &
+                                               at_before=pack(seen, seen_step < is - 1 .and. &
+                                                              plan%loads(seen_step) == plan%loads(is - 1)), &
+                                               at_after=pack(seen, plan%loads(seen_step) == plan%loads(is)), &
+                                               bistable=bistable)
+                        else
+                            call patch_changes(g_prev <= 0.0_dp, c%state%g <= 0.0_dp, patches(1), patches(2), &
+                                               patch_cells(1), patch_cells(2))
+                        end if
+                    end if
+                    if (plan%path .and. c%state%converged) then
+                        if (any(plan%loads(is + 1:) == plan%loads(is))) then
+                            seen = [seen, cell_set(c%state%g <= 0.0_dp)]; seen_step = [seen_step, is]
+                        end if
+                    end if
                     p_prev = c%state%p; g_prev = c%state%g
                     if (.not. c%state%converged) nfail = nfail + 1
                     call case_results(c, r)
@@ -474,16 +496,42 @@ contains
             call w%write('/pressure_pa', c%state%p, error); if (allocated(error)) return
             call w%write('/gap_m', c%state%g, error); if (allocated(error)) return
             call w%write('/case', int(k, i8), error); if (allocated(error)) return
+            ! (a load path: the states a later case is compared with, the runs of each set)
+            if (plan%path .and. size(seen) > 0) then
+                call w%write('/seen_step', real(seen_step, dp), error); if (allocated(error)) return
+                do j = 1, size(seen)      ! (an empty set as one empty run: no zero-sized dataset)
+                    if (size(seen(j)%runs, 2) > 0) then
+                        call w%write(seen_name(j), real(seen(j)%runs, dp), error)
+                    else
+                        call w%write(seen_name(j), reshape([0.0_dp, 0.0_dp], [2, 1]), error)
+                    end if
+                    if (allocated(error)) return
+                end do
+            end if
             call w%close(error)
         end subroutine save_warm_start
 
+        !> The name of the runs of the j-th state kept along a path in the .resume file
+        function seen_name(j) result(name)
+            integer, intent(in) :: j
+            character(len=:), allocatable :: name
+            character(len=16) :: tag
+            write (tag, '("/seen_",i6.6)') j
+            name = trim(tag)
+        end function seen_name
+
         !> The warm start of case k + 1 after a resume: case k's pressure and gap when the file
-        !> holds them, otherwise none (the chain continues from a cold start)
-        subroutine restore_warm_start(k)
-            integer, intent(in) :: k
+        !> holds them, otherwise none (the chain continues from a cold start); on a load path
+        !> (case k + 1 at place `step`) also the states kept for comparison
+        subroutine restore_warm_start(k, step)
+            integer, intent(in) :: k, step
             type(h5file_t) :: w
             type(error_t), allocatable :: e
             integer(i8) :: kr
+            integer(i8) :: dims(7)
+            integer :: rank_of, j
+            logical :: is_double
+            real(dp), allocatable :: x(:, :)
             if (path_kind(path//'.resume') /= PATH_REGULAR) return
             call w%open(path//'.resume', 'r', e); if (allocated(e)) return
             call w%read_i0('/case', kr, e)
@@ -492,9 +540,38 @@ contains
                 call w%read_r2('/pressure_pa', p_prev, e)
                 if (.not. allocated(e)) call w%read_r2('/gap_m', g_prev, e)
                 if (allocated(e)) deallocate (p_prev, g_prev)
+                if (.not. allocated(e) .and. plan%path .and. w%exists('/seen_step')) then
+                    call w%shape_of('/seen_step', dims, rank_of, is_double)
+                    allocate (x(1, dims(1)))
+                    call w%read_r2('/seen_step', x, e)
+                    if (.not. allocated(e)) then
+                        seen_step = nint(x(1, :)); deallocate (seen); allocate (seen(size(seen_step)))
+                        do j = 1, size(seen)
+                            call w%shape_of(seen_name(j), dims, rank_of, is_double)
+                            deallocate (x); allocate (x(dims(1), dims(2)))
+                            call w%read_r2(seen_name(j), x, e); if (allocated(e)) exit
+                            seen(j)%runs = nint(x, i8)
+                        end do
+                    end if
+                    ! (a file that does not hold them all: no comparison before this point)
+                    if (allocated(e) .or. any(seen_step >= step)) then
+                        seen = [cell_set_t ::]; seen_step = [integer ::]
+                    end if
+                end if
             end if
             call w%close()
         end subroutine restore_warm_start
+
+        !> Did case k, the last one written, converge?
+        logical function converged_case(k) result(yes)
+            integer, intent(in) :: k
+            integer :: jc
+            yes = .false.
+            if (nrow == 0 .or. .not. allocated(columns)) return
+            if (table(1, nrow) /= k) return
+            jc = findloc(columns, 'converged', dim=1)
+            yes = table(jc, nrow) == 1
+        end function converged_case
 
         !> Did case k, the last one written, lose the contact (not converged, or no cell closed)?
         logical function separated(k) result(yes)
@@ -537,9 +614,10 @@ contains
                 keep = pack([(j, j = 1, r%n)], [(all(r%scalars(j)%name /= param_names(1:np)), j = 1, r%n)])
             nk = np + size(keep)
             if (.not. allocated(table)) then
-                ! a load path's six columns last: the case's place on its path, its event, and the
-                ! patches made and lost since the path's previous case with their cells
-                j = nk + merge(6, 0, plan%path)
+                ! a load path's seven columns last: the case's place on its path, its event, the
+                ! patches made and lost since the path's previous case with their cells, and how
+                ! many of those are bistable
+                j = nk + merge(7, 0, plan%path)
                 allocate (columns(j), units(j), is_int(j))
                 allocate (table(j, nmine))
                 columns(1:np) = param_names(1:np); units(1:np) = param_units(1:np)
@@ -549,9 +627,10 @@ contains
                     is_int(np + j) = r%scalars(keep(j))%is_integer
                 end do
                 if (plan%path) then
-                    columns(nk + 1:nk + 6) = [character(len=64) :: 'path_step', 'path_jump', 'path_patches_made', &
-                                              'path_patches_lost', 'path_patch_cells_made', 'path_patch_cells_lost']
-                    units(nk + 1:nk + 6) = '-'; is_int(nk + 1:nk + 6) = .true.
+                    columns(nk + 1:nk + 7) = [character(len=64) :: 'path_step', 'path_jump', 'path_patches_made', &
+                                              'path_patches_lost', 'path_patch_cells_made', 'path_patch_cells_lost', &
+                                              'path_patches_bistable']
+                    units(nk + 1:nk + 7) = '-'; is_int(nk + 1:nk + 7) = .true.
                 end if
             end if
             ! the event since the path's previous case (the last row written, when it is k - 1)
@@ -573,7 +652,8 @@ contains
                     table(np + j, nrow) = transfer(r%scalars(keep(j))%value, 0_i8)
                 end if
             end do
-            if (plan%path) table(nk + 1:nk + 6, nrow) = [int(step, i8), int(jump_now, i8), int(patches, i8), patch_cells]
+            if (plan%path) table(nk + 1:nk + 7, nrow) = [int(step, i8), int(jump_now, i8), int(patches, i8), patch_cells, &
+                                                         int(bistable, i8)]
             call f%append_row('/summary', columns, units, is_int, table(:, nrow), error); if (allocated(error)) return
             if (.not. f%attr_exists('/summary', 'parameters')) then     ! (the first row made the table)
                 call f%writeattr('/summary', 'parameters', param_names(1:np), error); if (allocated(error)) return
@@ -623,16 +703,17 @@ contains
         integer(i8), allocatable :: e(:, :)
         real(dp) :: load(plan%nstep), area(plan%nstep), pull
         integer :: jump(plan%nstep)
-        integer(i8) :: made(plan%nstep), lost(plan%nstep)
+        integer(i8) :: made(plan%nstep), lost(plan%nstep), bist(plan%nstep)
         logical :: conv(plan%nstep)
-        integer :: ic, n, s, k0, jm, jc, jj, ja, ipull, ijin, nt, jpm, jpl
+        integer :: ic, n, s, k0, jm, jc, jj, ja, ipull, ijin, nt, jpm, jpl, jpb
         if (size(table, 2) /= plan%ncase .or. size(units) /= size(columns)) then
             call fatal_error(error, "veslide:study:write_paths: the table is not the complete study"); return
         end if
         jm = findloc(columns, 'mean_pressure_pa', dim=1); jc = findloc(columns, 'converged', dim=1)
         jj = findloc(columns, 'path_jump', dim=1); ja = findloc(columns, 'contact_area_fraction_cells', dim=1)
         jpm = findloc(columns, 'path_patches_made', dim=1); jpl = findloc(columns, 'path_patches_lost', dim=1)
-        if (min(jm, jc, jj, ja, jpm, jpl) == 0) then
+        jpb = findloc(columns, 'path_patches_bistable', dim=1)
+        if (min(jm, jc, jj, ja, jpm, jpl, jpb) == 0) then
             call fatal_error(error, "veslide:study:write_paths: /summary lacks a column of the load path"); return
         end if
         nt = merge(1, 0, plan%nparam == 7)
@@ -642,10 +723,11 @@ contains
             pcols = [character(len=64) :: pcols, 'temperature_c']; punits = [character(len=64) :: punits, 'degC']
         end if
         pcols = [character(len=64) :: pcols, 'first_case', 'last_case', 'n_jump_in', 'n_jump_out', 'jump_in_case', &
-                 'jump_in_pa', 'pull_off_case', 'pull_off_pa', 'n_patches_made', 'n_patches_lost']
-        punits = [character(len=64) :: punits, '-', '-', '-', '-', '-', 'Pa', '-', 'Pa', '-', '-']
+                 'jump_in_pa', 'pull_off_case', 'pull_off_pa', 'n_patches_made', 'n_patches_lost', &
+                 'n_patches_bistable']
+        punits = [character(len=64) :: punits, '-', '-', '-', '-', '-', 'Pa', '-', 'Pa', '-', '-', '-']
         pint = [.true., .false., .false., .false., [(.false., s = 1, nt)], .true., .true., .true., .true., .true., &
-                .false., .true., .false., .true., .true.]
+                .false., .true., .false., .true., .true., .true.]
         n = plan%nstep
         allocate (e(size(pcols), size(plan%chains)))
         do ic = 1, size(plan%chains)
@@ -655,6 +737,7 @@ contains
                     load(s) = cell(table, is_int, jm, k0 + s - 1); area(s) = cell(table, is_int, ja, k0 + s - 1)
                     conv(s) = table(jc, k0 + s - 1) == 1; jump(s) = int(table(jj, k0 + s - 1))
                     made(s) = table(jpm, k0 + s - 1); lost(s) = table(jpl, k0 + s - 1)
+                    bist(s) = table(jpb, k0 + s - 1)
                 end do
                 ijin = findloc(jump, JUMP_IN, dim=1)
                 ipull = 0; pull = huge(1.0_dp)
@@ -679,7 +762,7 @@ contains
                                   merge(int(k0 + ijin - 1, i8), 0_i8, ijin > 0), &
                                   transfer(merge(load(max(ijin, 1)), nan(), ijin > 0), 0_i8), &
                                   merge(int(k0 + ipull - 1, i8), 0_i8, ipull > 0), &
-                                  transfer(merge(pull, nan(), ipull > 0), 0_i8), sum(made), sum(lost)]
+                                  transfer(merge(pull, nan(), ipull > 0), 0_i8), sum(made), sum(lost), sum(bist)]
             end associate
         end do
         call f%write_table('/paths', pcols, punits, pint, e, error); if (allocated(error)) return
