@@ -142,6 +142,15 @@ def apart(mask, other):
     return len(ids), int(np.isin(labels, list(ids)).sum())
 
 
+def rough_path(loads, range_m):
+    """A rough surface on 32^2 cells (elastic, w = 0.05 J/m^2), loaded along a path of loads"""
+    return params(grid={"nx": 32, "ny": 32, "lx_m": 0.01},
+                  surface={"seed": 3, "k_cut": 8.0, "rms_slope": 0.025},
+                  material={"model": "elastic", "young_pa": 1e7, "poisson": 0.5},
+                  adhesion={"law": "exponential", "energy_j_m2": 0.05, "range_m": range_m},
+                  solver={"method": "gcg"}, sweep={"pressures_pa": loads}, output={"fields": True})
+
+
 @pytest.mark.filterwarnings("ignore:.*contact-resolution")
 def test_load_path_patches_made_and_lost(exe, tmp_path):
     """A rough surface loaded and unloaded along a path: new patches touch down while the contact
@@ -149,12 +158,7 @@ def test_load_path_patches_made_and_lost(exe, tmp_path):
     and _lost (and their cells) are those of an independent count from the closed cells of
     consecutive cases (the periodic grid's components, here by union-find)."""
     loads = [1e3, 3e3, 1e4, 3e4, 1e4, 3e3, 1e3]
-    p = params(grid={"nx": 32, "ny": 32, "lx_m": 0.01},
-               surface={"seed": 3, "k_cut": 8.0, "rms_slope": 0.025},
-               material={"model": "elastic", "young_pa": 1e7, "poisson": 0.5},
-               adhesion={"law": "exponential", "energy_j_m2": 0.05, "range_m": 2e-5},
-               solver={"method": "gcg"}, sweep={"pressures_pa": loads}, output={"fields": True})
-    r = veslide.run(p, output=tmp_path/"patches.h5", exe=exe, progress=None)
+    r = veslide.run(rough_path(loads, 2e-5), output=tmp_path/"patches.h5", exe=exe, progress=None)
     s = r.summary
     assert (s["converged"] == 1).all() and (s["path_jump"] == 0).all()
     closed = [r.cases[k].fields.gap_m.values <= 0.0 for k in s["case"]]
@@ -203,12 +207,7 @@ def test_load_path_bistable_patches(exe, tmp_path):
     same load held the other way, as an independent count from the cases' closed cells does;
     /paths sums them."""
     loads = [1e3, 3e3, 1e4, 3e4, 1e4, 3e3, 1e3, 3e3, 1e4, 3e4]
-    p = params(grid={"nx": 32, "ny": 32, "lx_m": 0.01},
-               surface={"seed": 3, "k_cut": 8.0, "rms_slope": 0.025},
-               material={"model": "elastic", "young_pa": 1e7, "poisson": 0.5},
-               adhesion={"law": "exponential", "energy_j_m2": 0.05, "range_m": 5e-7},
-               solver={"method": "gcg"}, sweep={"pressures_pa": loads}, output={"fields": True})
-    r = veslide.run(p, output=tmp_path/"bistable.h5", exe=exe, progress=None)
+    r = veslide.run(rough_path(loads, 5e-7), output=tmp_path/"bistable.h5", exe=exe, progress=None)
     s = r.summary
     assert (s["converged"] == 1).all() and (s["path_jump"] == 0).all()
     closed = [r.cases[k].fields.gap_m.values <= 0.0 for k in s["case"]]

@@ -47,6 +47,7 @@ module veslide_study
     use veslide_validity, only: check_surface_scale
     use veslide_warning, only: warning_t
     use veslide_patches, only: patch_changes, cell_set_t, cell_set
+    use veslide_strings, only: str
     implicit none
     private
     public :: study_plan_t, study_progress_t, progress_callback, plan_study, run_study, merge_study_parts, &
@@ -501,24 +502,15 @@ contains
                 call w%write('/seen_step', real(seen_step, dp), error); if (allocated(error)) return
                 do j = 1, size(seen)      ! (an empty set as one empty run: no zero-sized dataset)
                     if (size(seen(j)%runs, 2) > 0) then
-                        call w%write(seen_name(j), real(seen(j)%runs, dp), error)
+                        call w%write('/seen_'//str(j), real(seen(j)%runs, dp), error)
                     else
-                        call w%write(seen_name(j), reshape([0.0_dp, 0.0_dp], [2, 1]), error)
+                        call w%write('/seen_'//str(j), reshape([0.0_dp, 0.0_dp], [2, 1]), error)
                     end if
                     if (allocated(error)) return
                 end do
             end if
             call w%close(error)
         end subroutine save_warm_start
-
-        !> The name of the runs of the j-th state kept along a path in the .resume file
-        function seen_name(j) result(name)
-            integer, intent(in) :: j
-            character(len=:), allocatable :: name
-            character(len=16) :: tag
-            write (tag, '("/seen_",i6.6)') j
-            name = trim(tag)
-        end function seen_name
 
         !> The warm start of case k + 1 after a resume: case k's pressure and gap when the file
         !> holds them, otherwise none (the chain continues from a cold start); on a load path
@@ -547,9 +539,9 @@ contains
                     if (.not. allocated(e)) then
                         seen_step = nint(x(1, :)); deallocate (seen); allocate (seen(size(seen_step)))
                         do j = 1, size(seen)
-                            call w%shape_of(seen_name(j), dims, rank_of, is_double)
+                            call w%shape_of('/seen_'//str(j), dims, rank_of, is_double)
                             deallocate (x); allocate (x(dims(1), dims(2)))
-                            call w%read_r2(seen_name(j), x, e); if (allocated(e)) exit
+                            call w%read_r2('/seen_'//str(j), x, e); if (allocated(e)) exit
                             seen(j)%runs = nint(x, i8)
                         end do
                     end if
