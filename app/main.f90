@@ -270,7 +270,8 @@ contains
     end subroutine print_progress
 
     !> A load path's case: its place on the path, the approach given (approach control; p is then
-    !> the load carried), and a jump since the previous case
+    !> the load carried), a jump since the previous case, and the patches made or lost since then
+    !> that the path held the other way at the same load before (bistable)
     function path_note(info) result(note)
         type(study_progress_t), intent(in) :: info
         character(len=:), allocatable :: note
@@ -284,6 +285,8 @@ contains
         end if
         if (info%path_jump == JUMP_IN) note = note//", JUMP-IN"
         if (info%path_jump == JUMP_OUT) note = note//", JUMP-OUT"
+        if (info%path_bistable > 0) note = note//", "//str(info%path_bistable)// &
+                                           trim(merge(" BISTABLE PATCH  ", " BISTABLE PATCHES", info%path_bistable == 1))
     end function path_note
 
     !> A line every few seconds of a long solve

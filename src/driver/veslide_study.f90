@@ -9,8 +9,9 @@
 !> control) is a load path instead: one chain per (seed, temperature, eccentricity, angle, speed)
 !> runs through the loads in the order given, each case warm-started from the previous one in
 !> either direction, so that it follows the branch it is on (hysteresis); jump-in and jump-out
-!> between consecutive cases are flagged in /summary (path_step, path_jump) and each path's
-!> pull-off and first jump-in tabulated in /paths. A path is one chain: it stays on one rank.
+!> between consecutive cases are flagged in /summary (path_step, path_jump), with the contact
+!> patches made, lost and bistable (held the other way at the same load earlier on the path), and
+!> each path's pull-off and first jump-in tabulated in /paths. A path is one chain: it stays on one rank.
 !> Each surface is generated once per (seed, eccentricity, angle), each speed's kernel built once.
 !> On the device a chain's fields stay there from speed to speed (solve_contact's `keep`): the next
 !> speed's warm start is formed from the last case's p and g where they are, and the heights
@@ -105,9 +106,9 @@ module veslide_study
         integer :: operator_applications = 0
         logical :: converged = .false.
         !> a load path's: the case's place on it (0 outside a path), its event (JUMP_IN, JUMP_OUT
-        !> or 0), and under approach control the approach given [m] (pressure_pa is then the load
-        !> the case carried)
-        integer :: path_step = 0, path_jump = 0
+        !> or 0), its bistable patches (path_patches_bistable), and under approach control the
+        !> approach given [m] (pressure_pa is then the load the case carried)
+        integer :: path_step = 0, path_jump = 0, path_bistable = 0
         real(dp) :: approach_m = huge(1.0_dp)
         !> what the case's validity measures warn of (its input's warnings are the study's, said once)
         type(warning_t), allocatable :: warnings(:)
@@ -415,7 +416,7 @@ contains
                         info%alpha_deg = chain%alpha_deg; info%pressure_pa = ch%pressure_pa
                         info%speed_m_s = plan%speeds(iv)
                         if (plan%path) then
-                            info%path_step = is; info%path_jump = jump_now
+                            info%path_step = is; info%path_jump = jump_now; info%path_bistable = bistable
                             if (plan%approach) then
                                 info%approach_m = plan%loads(is); info%pressure_pa = r%get('mean_pressure_pa')
                             end if
