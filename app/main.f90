@@ -19,7 +19,8 @@ program veslide_main
     use veslide_solver_options, only: solver_progress_t, progress_line
     use veslide_version, only: version_string
     use veslide_strings, only: str
-    use veslide_system, only: ignore_file_size_signal, exit_now, prefer_passive_wait
+    use veslide_system, only: ignore_file_size_signal, exit_now, prefer_passive_wait, catch_termination, &
+                              defer_termination, allow_termination
     use veslide_solver_options, only: device_choice_id, solver_method_id
     use veslide_solver_table, only: runs_on_device
     use veslide_solver, only: gpu_visible
@@ -36,6 +37,7 @@ program veslide_main
     call prefer_passive_wait()            ! threads that wait sleep (docs/solver-scaling.md)
     overwrite = .false.; quiet = .false.; lock = -1; memory_only = .false.; processes = 1
     call ignore_file_size_signal()        ! a write past `ulimit -f` fails like a full disk, not fatally
+    call catch_termination()              ! a stop (SIGTERM, SIGINT, SIGHUP) waits for a study's write
     output = ''; device = ''
     allocate (character(len=0) :: input)
     output_given = .false.
@@ -106,12 +108,16 @@ program veslide_main
             logical :: resuming
             ! a part file left by a killed run of this study is resumed, and kept if this run fails
             inquire (file=tmp, exist=resuming)
+            ! (a stop ends the study during a solve, or after the write under way: the part file
+            ! is never left half-written)
+            call defer_termination()
             call run_study(cfg, tmp, nfail, error, progress=print_progress)   ! (quiet: its warnings only)
             if (allocated(error)) then
                 if (.not. resuming) call discard_output(tmp)
                 call fail(error)
             end if
             call commit_output(tmp, cfg%output%file, cfg%output%overwrite, error)
+            call allow_termination()
             if (allocated(error)) call fail(error)
             call release_output(lock, cfg%output%file)
             if (.not. quiet) write (stdout, '(a)') "veslide: study written to "//cfg%output%file

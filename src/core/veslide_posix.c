@@ -1,6 +1,7 @@
 /* The few POSIX facilities veslide needs from C: what kind of file a path is, an advisory
- * lock that dies with its process, SIGXFSZ turned into an ordinary write error, and the memory
- * a process may use and has used. Called from veslide_system (Fortran, bind(c)). */
+ * lock that dies with its process, SIGXFSZ turned into an ordinary write error, a termination
+ * signal held off while a result file is being written, and the memory a process may use and
+ * has used. Called from veslide_system (Fortran, bind(c)). */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -79,6 +80,50 @@ void veslide_exit(int status)
 void veslide_ignore_sigxfsz(void)
 {
     signal(SIGXFSZ, SIG_IGN);
+}
+
+/* Termination (SIGTERM, SIGINT, SIGHUP) held off while a file is written: a signal that comes
+ * while `deferring` is noted and acted on (the default action: the process ends by it) when the
+ * write is done, so that a study's part file is never left half-written by a stop. Outside a
+ * deferred stretch the signal ends the process at once, as without the handler. The handler
+ * only sets flags (async-signal-safe) in whichever thread it runs. */
+static volatile sig_atomic_t deferring = 0, pending = 0;
+
+static void on_termination(int sig)
+{
+    if (deferring) {
+        pending = sig;
+        return;
+    }
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+void veslide_catch_termination(void)
+{
+    struct sigaction sa;
+    int sigs[3] = {SIGTERM, SIGINT, SIGHUP};
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_termination;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    for (int k = 0; k < 3; k++) sigaction(sigs[k], &sa, NULL);
+}
+
+void veslide_defer_termination(void)
+{
+    deferring = 1;
+}
+
+void veslide_allow_termination(void)
+{
+    deferring = 0;
+    if (pending) {
+        int sig = pending;
+        pending = 0;
+        signal(sig, SIG_DFL);
+        raise(sig);
+    }
 }
 
 static long long read_number(const char *path)

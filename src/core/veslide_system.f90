@@ -11,6 +11,7 @@ module veslide_system
     private
     public :: path_kind, PATH_MISSING, PATH_REGULAR, PATH_DIRECTORY, PATH_OTHER
     public :: lock_file, unlock_file, LOCK_BUSY, ignore_file_size_signal, last_system_error, missing_reason
+    public :: catch_termination, defer_termination, allow_termination
     public :: available_memory_bytes, peak_memory_bytes, resident_memory_bytes, exit_now, prefer_passive_wait
     public :: use_threads, rename_file, link_file, remove_file, process_id
 
@@ -53,6 +54,16 @@ module veslide_system
         end subroutine c_unlock
         subroutine ignore_file_size_signal() bind(c, name='veslide_ignore_sigxfsz')
         end subroutine ignore_file_size_signal
+        !> Termination signals (SIGTERM, SIGINT, SIGHUP) held off inside defer_termination ..
+        !> allow_termination (first thing in a program; without it those two do nothing)
+        subroutine catch_termination() bind(c, name='veslide_catch_termination')
+        end subroutine catch_termination
+        !> From here a termination signal waits for allow_termination (a file being written)
+        subroutine defer_termination() bind(c, name='veslide_defer_termination')
+        end subroutine defer_termination
+        !> A termination signal that came since defer_termination ends the process now
+        subroutine allow_termination() bind(c, name='veslide_allow_termination')
+        end subroutine allow_termination
         !> Unless OMP_WAIT_POLICY is set, run this program again with it 'passive' (first thing
         !> in a program: before any OpenMP region; returns when nothing was done)
         subroutine prefer_passive_wait() bind(c, name='veslide_prefer_passive_wait')

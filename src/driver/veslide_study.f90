@@ -37,7 +37,7 @@ module veslide_study
     use veslide_memory, only: size_and_check_memory
     use veslide_hdf5, only: h5file_t
     use veslide_output, only: write_provenance, discard_output
-    use veslide_system, only: path_kind, PATH_REGULAR, use_threads
+    use veslide_system, only: path_kind, PATH_REGULAR, use_threads, defer_termination, allow_termination
     use veslide_version, only: version_string
     use veslide_quantities, only: results_t, axial_of, AXIAL_NONE, AXIAL_HALF_TURN
     use veslide_quantities, only: case_results
@@ -302,6 +302,10 @@ contains
             call check_surface_scale(base, grid, fft, h, error, surface_slope); if (allocated(error)) return
         end if
 
+        ! (the file as it stands is complete: a stop during a solve, where termination is let
+        ! through, leaves it readable and resumable; a program that defers termination around the
+        ! study, as veslide does, lets it through only there)
+        call f%flush(error); if (allocated(error)) return
         t_start = wall_seconds()
         info%total = nmine; info%resumed = count(done); info%done = info%resumed
         if (info%resumed > 0 .and. present(progress)) call progress(info)
@@ -370,11 +374,13 @@ contains
                     end if
                     ! (on the device the fields stay from case to case of the chain: the warm
                     ! start is formed there from the last case's p and g, the heights stay)
+                    call allow_termination()
                     if (warm) then
                         call solve_prepared(fft, c, error, p_init=p_prev, g_init=g_prev, keep=kept, same_heights=.true.)
                     else
                         call solve_prepared(fft, c, error, keep=kept)
                     end if
+                    call defer_termination()
                     if (allocated(error)) then
                         call kept%finish(); return
                     end if
