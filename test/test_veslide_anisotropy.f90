@@ -243,6 +243,23 @@ contains
         call patch_changes(a, b, made, lost, cm, cl, bistable=nb)
         call check(error, nb == 0 .and. made == 1 .and. lost == 1 .and. cm == 3 .and. cl == 4, &
                    "no earlier states: "//str(nb)//" bistable")
+        if (allocated(error)) return
+        ! a patch lost across the y edge (one patch, its cells in the last and the first row), held
+        ! by the second of two states at the after control through its first-row cell; the patch
+        ! made is held by both
+        a = .false.; b = .false.; m = .false.
+        a(5, 12) = .true.; a(5, 1) = .true.
+        b(10, 6) = .true.
+        m(5, 1) = .true.; m(10, 6) = .true.
+        call patch_changes(a, b, made, lost, cm, cl, at_before=[cell_set(a)], at_after=[cell_set(b), cell_set(m)], &
+                           bistable=nb)
+        call check(error, made == 1 .and. lost == 1 .and. cl == 2 .and. nb == 1, "across the y edge: made "// &
+                   str(made)//", lost "//str(lost)//" ("//str(int(cl))//" cells), "//str(nb)//" bistable; expected"// &
+                   " 1, 1 (2), 1")
+        if (allocated(error)) return
+        ! (a literal empty list, which gfortran 12 passes as absent: no earlier state either way)
+        call patch_changes(a, b, made, lost, cm, cl, at_before=[cell_set_t ::], at_after=[cell_set_t ::], bistable=nb)
+        call check(error, nb == 0, "empty lists: "//str(nb)//" bistable")
     end subroutine test_patches_bistable
 
 end module test_veslide_anisotropy

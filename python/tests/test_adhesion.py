@@ -213,9 +213,8 @@ def test_load_path_bistable_patches(exe, tmp_path):
     closed = [r.cases[k].fields.gap_m.values <= 0.0 for k in s["case"]]
     want = [0] + [bistable_patches(closed, loads, k) for k in range(1, len(loads))]
     assert list(s["path_patches_bistable"]) == want
-    # (hysteresis: the unloading leg keeps cells the loading leg had open, and a patch lost while
-    # unloading and one made while reloading are bistable; none on the first leg, none made while
-    # unloading, and never more than the patches made and lost)
+    # (hysteresis: the unloading leg keeps cells the loading leg had open; bistable patches on the
+    # unloading and on the reloading leg, none on the first, never more than those made and lost)
     assert not np.array_equal(closed[2], closed[4])
     assert sum(want[4:7]) >= 1 and sum(want[7:]) >= 1 and sum(want[:4]) == 0
     assert (s["path_patches_bistable"] <= s["path_patches_made"] + s["path_patches_lost"]).all()

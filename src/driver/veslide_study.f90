@@ -66,6 +66,9 @@ module veslide_study
     !> none, or to full contact) or lost (to none, to a case that did not converge, or from full
     !> contact)
     integer, parameter :: JUMP_IN = 1, JUMP_OUT = -1
+    !> The columns a load path adds at the end of /summary (docs/output.md)
+    character(len=64), parameter :: path_columns(7) = [character(len=64) :: 'path_step', 'path_jump', &
+        'path_patches_made', 'path_patches_lost', 'path_patch_cells_made', 'path_patch_cells_lost', 'path_patches_bistable']
 
     !> One chain: a surface and a load run through every speed, or (a load path) a surface and a
     !> speed run through every load
@@ -479,6 +482,20 @@ contains
             end if
             if (f%exists('/summary')) then
                 call f%read_table('/summary', columns, is_int, rows, error); if (allocated(error)) return
+                ! (a part file of an earlier build of the same version whose load path had fewer
+                ! columns: the rows of this run would not fit its table)
+                if (plan%path) then
+                    if (size(columns) < size(path_columns)) then
+                        kk = 0
+                    else
+                        kk = count(columns(size(columns) - size(path_columns) + 1:) == path_columns)
+                    end if
+                    if (kk /= size(path_columns)) then
+                        call fatal_error(error, "veslide: '"//path//"' is the part file of another build of veslide"// &
+                            " (its /summary lacks the load path's columns of this one): remove it to start afresh")
+                        return
+                    end if
+                end if
                 allocate (units(size(columns)))
                 call f%read_attr_text_list('/summary', 'units', units, error); if (allocated(error)) return
                 allocate (table(size(columns), nmine))
@@ -500,22 +517,24 @@ contains
             integer, intent(in) :: k
             type(error_t), allocatable, intent(out) :: error
             type(h5file_t) :: w
+            integer :: js
             call w%open(path//'.resume', 'w', error); if (allocated(error)) return
             call w%write('/pressure_pa', c%state%p, error); if (allocated(error)) return
             call w%write('/gap_m', c%state%g, error); if (allocated(error)) return
-            call w%write('/case', int(k, i8), error); if (allocated(error)) return
             ! (a load path: the states a later case is compared with, the runs of each set)
             if (plan%path .and. size(seen) > 0) then
                 call w%write('/seen_step', real(seen_step, dp), error); if (allocated(error)) return
-                do j = 1, size(seen)      ! (an empty set as one empty run: no zero-sized dataset)
-                    if (size(seen(j)%runs, 2) > 0) then
-                        call w%write('/seen_'//str(j), real(seen(j)%runs, dp), error)
+                do js = 1, size(seen)     ! (an empty set as one empty run: no zero-sized dataset)
+                    if (size(seen(js)%runs, 2) > 0) then
+                        call w%write('/seen_'//str(js), real(seen(js)%runs, dp), error)
                     else
-                        call w%write('/seen_'//str(j), reshape([0.0_dp, 0.0_dp], [2, 1]), error)
+                        call w%write('/seen_'//str(js), reshape([0.0_dp, 0.0_dp], [2, 1]), error)
                     end if
                     if (allocated(error)) return
                 end do
             end if
+            ! (last: a file cut short holds no case, and is not used)
+            call w%write('/case', int(k, i8), error); if (allocated(error)) return
             call w%close(error)
         end subroutine save_warm_start
 
@@ -529,7 +548,7 @@ contains
             integer(i8) :: kr
             integer(i8) :: dims(7)
             integer :: rank_of, j
-            logical :: is_double
+            logical :: is_double, ok
             real(dp), allocatable :: x(:, :)
             if (path_kind(path//'.resume') /= PATH_REGULAR) return
             call w%open(path//'.resume', 'r', e); if (allocated(e)) return
@@ -541,19 +560,31 @@ contains
                 if (allocated(e)) deallocate (p_prev, g_prev)
                 if (.not. allocated(e) .and. plan%path .and. w%exists('/seen_step')) then
                     call w%shape_of('/seen_step', dims, rank_of, is_double)
-                    allocate (x(1, dims(1)))
-                    call w%read_r2('/seen_step', x, e)
-                    if (.not. allocated(e)) then
+                    ok = rank_of == 1 .and. is_double
+                    if (ok) then
+                        allocate (x(1, dims(1)))
+                        call w%read_r2('/seen_step', x, e)
+                        ok = .not. allocated(e)
+                    end if
+                    if (ok) then
                         seen_step = nint(x(1, :)); deallocate (seen); allocate (seen(size(seen_step)))
                         do j = 1, size(seen)
                             call w%shape_of('/seen_'//str(j), dims, rank_of, is_double)
+                            ok = rank_of == 2 .and. is_double .and. dims(1) == 2
+                            if (.not. ok) exit
                             deallocate (x); allocate (x(dims(1), dims(2)))
-                            call w%read_r2('/seen_'//str(j), x, e); if (allocated(e)) exit
+                            call w%read_r2('/seen_'//str(j), x, e)
+                            ok = .not. allocated(e)
+                            if (.not. ok) exit
                             seen(j)%runs = nint(x, i8)
+                            ! (runs inside the grid: first cell from 1, last at most nx ny)
+                            ok = all(seen(j)%runs(2, :) == 0 .or. (seen(j)%runs(1, :) >= 1 .and. seen(j)%runs(2, :) > 0 &
+                                     .and. seen(j)%runs(1, :) + seen(j)%runs(2, :) - 1 <= int(grid%nx, i8)*grid%ny))
+                            if (.not. ok) exit
                         end do
                     end if
-                    ! (a file that does not hold them all: no comparison before this point)
-                    if (allocated(e) .or. any(seen_step >= step)) then
+                    ! (a file that does not hold them all as written: no comparison before this point)
+                    if (.not. ok .or. any(seen_step >= step)) then
                         seen = [cell_set_t ::]; seen_step = [integer ::]
                     end if
                 end if
@@ -626,9 +657,7 @@ contains
                     is_int(np + j) = r%scalars(keep(j))%is_integer
                 end do
                 if (plan%path) then
-                    columns(nk + 1:nk + 7) = [character(len=64) :: 'path_step', 'path_jump', 'path_patches_made', &
-                                              'path_patches_lost', 'path_patch_cells_made', 'path_patch_cells_lost', &
-                                              'path_patches_bistable']
+                    columns(nk + 1:nk + 7) = path_columns
                     units(nk + 1:nk + 7) = '-'; is_int(nk + 1:nk + 7) = .true.
                 end if
             end if
