@@ -207,7 +207,8 @@ def test_load_path_bistable_patches(exe, tmp_path):
     same load held the other way, as an independent count from the cases' closed cells does;
     /paths sums them."""
     loads = [1e3, 3e3, 1e4, 3e4, 1e4, 3e3, 1e3, 3e3, 1e4, 3e4]
-    r = veslide.run(rough_path(loads, 5e-7), output=tmp_path/"bistable.h5", exe=exe, progress=None)
+    lines = []
+    r = veslide.run(rough_path(loads, 5e-7), output=tmp_path/"bistable.h5", exe=exe, progress=lines.append)
     s = r.summary
     assert (s["converged"] == 1).all() and (s["path_jump"] == 0).all()
     closed = [r.cases[k].fields.gap_m.values <= 0.0 for k in s["case"]]
@@ -219,6 +220,12 @@ def test_load_path_bistable_patches(exe, tmp_path):
     assert sum(want[4:7]) >= 1 and sum(want[7:]) >= 1 and sum(want[:4]) == 0
     assert (s["path_patches_bistable"] <= s["path_patches_made"] + s["path_patches_lost"]).all()
     assert r.paths.iloc[0]["n_patches_bistable"] == sum(want)
+    # (each case's progress line names them: ', 1 BISTABLE PATCH', ', 2 BISTABLE PATCHES')
+    cases = [line for line in lines if line.startswith("case ")]
+    assert len(cases) == len(loads)
+    for line, n in zip(cases, want):
+        named = {0: "BISTABLE" not in line, 1: ", 1 BISTABLE PATCH," in line}.get(n, ", %d BISTABLE PATCHES," % n in line)
+        assert named, line
 
 
 @pytest.mark.parametrize("sweep, adhesive, words", [
