@@ -287,10 +287,11 @@ contains
     !> (made: their number and cells) and those of `before` that hold no cell of `after` (lost),
     !> on the whole grid held by one process (a study's case).
     !> With `at_before` and `at_after` (either may be absent: no such state), the closed sets of
-    !> earlier states at the same control as `before` and as `after`, `bistable` counts the patches made or lost that one of those
-    !> states holds the other way: a patch lost is bistable where a state at `before`'s control
-    !> held none of its cells, or one at `after`'s control held one; a patch made, where a state
-    !> at `before`'s control held one of its cells, or one at `after`'s control held none.
+    !> earlier states at the same control as `before` and as `after`, `bistable` counts the
+    !> patches made or lost that one of those states holds the other way: a patch lost is
+    !> bistable where a state at `before`'s control held none of its cells, or one at `after`'s
+    !> control held one; a patch made, where a state at `before`'s control held one of its cells,
+    !> or one at `after`'s control held none.
     subroutine patch_changes(before, after, made, lost, cells_made, cells_lost, at_before, at_after, bistable)
         logical, intent(in) :: before(:, :), after(:, :)
         integer, intent(out) :: made, lost

@@ -392,17 +392,13 @@ contains
                     ! path held the other way at the same control before)
                     patches = 0; patch_cells = 0_i8; bistable = 0
                     if (plan%path .and. is > 1 .and. allocated(g_prev)) then
-                        if (c%state%converged .and. converged_case(k - 1)) then
-                            call patch_changes(g_prev <= 0.0_dp, c%state%g <= 0.0_dp, patches(1), patches(2), &
-                                               patch_cells(1), patch_cells(2), &
-                                               at_before=pack(seen, seen_step < is - 1 .and. &
-                                                              plan%loads(seen_step) == plan%loads(is - 1)), &
-                                               at_after=pack(seen, plan%loads(seen_step) == plan%loads(is)), &
-                                               bistable=bistable)
-                        else
-                            call patch_changes(g_prev <= 0.0_dp, c%state%g <= 0.0_dp, patches(1), patches(2), &
-                                               patch_cells(1), patch_cells(2))
-                        end if
+                        call patch_changes(g_prev <= 0.0_dp, c%state%g <= 0.0_dp, patches(1), patches(2), &
+                                           patch_cells(1), patch_cells(2), &
+                                           at_before=pack(seen, seen_step < is - 1 .and. &
+                                                          plan%loads(seen_step) == plan%loads(is - 1)), &
+                                           at_after=pack(seen, plan%loads(seen_step) == plan%loads(is)), &
+                                           bistable=bistable)
+                        if (.not. (c%state%converged .and. converged_case(k - 1))) bistable = 0
                     end if
                     if (plan%path .and. c%state%converged) then
                         if (any(plan%loads(is + 1:) == plan%loads(is))) then
