@@ -10,6 +10,13 @@
 !>                                 on all the machine's cores at VESLIDE_BENCH_CPU (default
 !>                                 "2048 4096"). Table on stdout, CSV into VESLIDE_BENCH_CSV
 !>                                 (default results/bench-gpu.csv)
+!>   veslide-bench adhesion DEVICES ROUNDS N [N ...]  the adhesive solver against the hard wall:
+!>                                 the paper scene (tolerance 1e-10, all the machine's cores) with
+!>                                 inputs/adhesion/sliding.nml's exponential law and without it, at
+!>                                 N^2 on DEVICES ('gpu', 'cpu' or 'both'), ROUNDS interleaved
+!>                                 rounds (adhesive, hard wall, on each device in turn): FFT pairs,
+!>                                 median solve times and their ratios; with 'both', the device's
+!>                                 adhesive solution against the CPU's (pressures, closed cells)
 !>   veslide-bench validity [N [ROUNDS]]  the validity measures of a case (veslide_validity)
 !>                                 against its solve: the paper scene (tolerance 1e-8, one
 !>                                 thread) at N^2 (default 512), solve and measures timed in turn
@@ -104,6 +111,19 @@ program veslide_bench
         end do
         if (size(sizes) == 0) sizes = [1024, 2048, 4096, 8192, 16384, 32768]
         call bench_gpu(sizes)
+    case ('adhesion')           ! adhesion DEVICES ROUNDS N [N ...]
+        block
+            character(len=8) :: devices
+            devices = 'cpu'
+            if (command_argument_count() >= 2) call get_command_argument(2, devices)
+            allocate (sizes(0))
+            do k = 4, command_argument_count()
+                call get_command_argument(k, arg); read (arg, *) n
+                sizes = [sizes, n]
+            end do
+            if (size(sizes) == 0) sizes = [256]
+            call bench_adhesion(trim(devices), int_arg(3, 3), sizes)
+        end block
     case ('validity')
         call bench_validity(int_arg(2, 512), int_arg(3, 7))
     case ('prony')
@@ -144,7 +164,7 @@ program veslide_bench
         write (stdout, '(a)') "usage: veslide-bench solver [N ...] | kernels | accuracy [NMAX]", &
             "                     | hard [N [memory [balance_every [ratio [factor [method [first [last]]]]]]]]", &
             "                     | scaling elastic|visco METHOD TOL N [N ...] | iteration [N [ROUNDS]] | gpu [N ...]", &
-            "                     | validity [N [ROUNDS]]"
+            "                     | validity [N [ROUNDS]] | adhesion gpu|cpu|both ROUNDS N [N ...]"
         error stop 1
     end select
 
@@ -386,6 +406,88 @@ contains
         omp_threads = 1
         !$ omp_threads = omp_get_max_threads()
     end function omp_threads
+
+    !> The adhesive solver's cost against the hard wall's on the paper scene (see the program's
+    !> header): at each N^2, `rounds` rounds, each solving the adhesive case and then the hard-wall
+    !> one on each device of `devices` in turn (interleaved, so that a change of load on the
+    !> machine affects all alike). One row per device and grid: FFT pairs, medians of the solve
+    !> times (the whole solve: on the device its uploads, plans and downloads), their ratio, the
+    !> time per FFT pair spent. With 'both', the device's adhesive solution of the first round
+    !> against the CPU's: max |dp| / max |p|, the closed cells that differ, the friction's relative
+    !> difference.
+    subroutine bench_adhesion(devices, rounds, sizes)
+        character(len=*), intent(in) :: devices
+        integer, intent(in) :: rounds, sizes(:)
+        character(len=3), allocatable :: on(:)
+        type(config_t) :: cfg(2)
+        type(case_t) :: c
+        type(error_t), allocatable :: error
+        real(dp), allocatable :: t(:, :, :), p(:, :, :), g(:, :, :)
+        real(dp) :: fric(2, 2)
+        integer :: k, r, d, m, pairs(2, 2), its(2, 2)
+        logical :: conv(2, 2)
+        select case (devices)
+        case ('gpu'); on = ['gpu']
+        case ('cpu'); on = ['cpu']
+        case ('both'); on = ['gpu', 'cpu']
+        case default
+            write (stdout, '(a)') "veslide-bench adhesion: DEVICES is 'gpu', 'cpu' or 'both', not '"//devices//"'"
+            error stop 1
+        end select
+        if (any(on == 'gpu') .and. (.not. device_enabled .or. device_count() == 0)) then
+            write (stdout, '(a)') "veslide-bench adhesion: no device (a GPU build, gpu/build.sh, on a machine with a GPU)"
+            error stop 1
+        end if
+        write (stdout, '(a,i0,a,i0,a)') "paper scene, tolerance 1e-10, method auto; adhesive: exponential law, "// &
+            "w 0.05 J/m^2, range 2 um (inputs/adhesion/sliding.nml); ", rounds, " interleaved rounds, ", &
+            omp_threads(), " threads; medians"
+        write (stdout, '(a)') "| N | device | FFT pairs, adhesive | FFT pairs, hard wall | pairs ratio |"// &
+            " adhesive solve [s] | hard-wall solve [s] | time ratio | adhesive per FFT pair [ms] |"// &
+            " hard wall per FFT pair [ms] | iterations (adhesive, hard) | converged | friction (adhesive, hard) |"
+        write (stdout, '(a)') "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        do k = 1, size(sizes)
+            call scene(sizes(k), 'visco', 'auto', 1.0e-10_dp, cfg(2))
+            cfg(1) = cfg(2)
+            cfg(1)%adhesion%law = 'exponential'; cfg(1)%adhesion%energy_j_m2 = 0.05_dp
+            cfg(1)%adhesion%range_m = 2.0e-6_dp
+            call complete_config(cfg(1), error); call check(error)
+            allocate (t(rounds, 2, size(on)))
+            do r = 1, rounds
+                do d = 1, size(on)
+                    do m = 1, 2
+                        cfg(m)%solver%device = on(d); cfg(m)%solver%threads = 0
+                        call run_case(cfg(m), c, error); call check(error)
+                        t(r, m, d) = c%solve_seconds
+                        pairs(m, d) = c%state%operator_applications; its(m, d) = c%state%iterations
+                        conv(m, d) = c%state%converged
+                        fric(m, d) = -c%force_pa(1)/cfg(m)%load%mean_pressure_pa
+                        if (r == 1 .and. m == 1 .and. size(on) == 2) then
+                            if (d == 1) allocate (p(size(c%state%p, 1), size(c%state%p, 2), 2), &
+                                                  g(size(c%state%p, 1), size(c%state%p, 2), 2))
+                            p(:, :, d) = c%state%p; g(:, :, d) = c%state%g
+                        end if
+                    end do
+                end do
+            end do
+            do d = 1, size(on)
+                write (stdout, '("| ",i0," | ",a," | ",i0," | ",i0," | ",f6.3," | ",f9.3," | ",f9.3," | ",f6.3," | ",&
+                    &f9.4," | ",f9.4," | ",i0,", ",i0," | ",l1,", ",l1," | ",es12.5,", ",es12.5," |")') sizes(k), on(d), &
+                    pairs(:, d), real(pairs(1, d), dp)/pairs(2, d), median(t(:, 1, d)), median(t(:, 2, d)), &
+                    median(t(:, 1, d))/median(t(:, 2, d)), 1e3*median(t(:, 1, d))/pairs(1, d), &
+                    1e3*median(t(:, 2, d))/pairs(2, d), its(:, d), conv(:, d), fric(:, d)
+            end do
+            if (size(on) == 2) then
+                write (stdout, '("| ",i0," | device against CPU, adhesive: max |dp|/max |p| ",es9.2,", closed cells that", &
+                    &" differ ",i0," of ",i0,", friction ",es9.2," relative |")') sizes(k), &
+                    maxval(abs(p(:, :, 1) - p(:, :, 2)))/maxval(abs(p(:, :, 2))), &
+                    count((g(:, :, 1) <= 0.0_dp) .neqv. (g(:, :, 2) <= 0.0_dp)), count(g(:, :, 2) <= 0.0_dp), &
+                    abs(fric(1, 1) - fric(1, 2))/abs(fric(1, 2))
+                deallocate (p, g)
+            end if
+            deallocate (t)
+            flush (stdout)
+        end do
+    end subroutine bench_adhesion
 
     !> Westergaard (h0 cos 2 pi x/l, plane strain, p/p* = 0.3) under refinement, per variant
     subroutine bench_kernels()

@@ -1,15 +1,24 @@
 #!/usr/bin/env bash
-# On the GPU machine, from the repository root with gpu/dist packed by gpu/pack.sh: the device
-# checks (gpu/check.sh) and the benchmark (veslide-bench gpu) in stages, each with a time limit,
-# inside a budget of VESLIDE_REMOTE_BUDGET seconds (default 540: the whole within 10 minutes); a
-# stage that no longer fits is skipped and said so. In order: the suite 'device'; the paper scene
-# at 4096^2, 8192^2, 16384^2 with the CPU path at 4096^2 in the same run; at 32768^2; the other
-# suites and compute-sanitizer's memcheck (gpu/check.sh); pdr's lean layout at 4096^2 and 8192^2
-# (VESLIDE_DEVICE_LEAN=1: cuFFT's work area in u, the device memory veslide --memory's refusal
-# counts on); the per-pass profile at 4096^2, 8192^2; the adhesive solver (gcg) on the example
-# input's scene at 1024^2, on the device and on the CPU. Logs and the benchmark's CSV go to $OUT
-# (default gpu-out/), at most 8 files: summary.txt, device.log, bench.log (with big.log and
-# lean.log appended to bench-gpu.csv), profile.log, suites.log.
+# On the GPU machine, from the repository root with gpu/dist packed by gpu/pack.sh, in stages, each
+# with a time limit, inside a budget of VESLIDE_REMOTE_BUDGET seconds (default 540: the whole within
+# 10 minutes); a stage that no longer fits is skipped and said so. Logs go to $OUT (default
+# gpu-out/), at most 8 files, summary.txt first.
+#   bash gpu/remote.sh [all]       the device checks (gpu/check.sh) and the benchmark (veslide-bench
+#       gpu). In order: the suite 'device'; the paper scene at 4096^2, 8192^2, 16384^2 with the CPU
+#       path at 4096^2 in the same run; at 32768^2; the other suites and compute-sanitizer's
+#       memcheck (gpu/check.sh); pdr's lean layout at 4096^2 and 8192^2 (VESLIDE_DEVICE_LEAN=1:
+#       cuFFT's work area in u, the device memory veslide --memory's refusal counts on); the
+#       per-pass profile at 4096^2, 8192^2; the adhesive solver (gcg) on the example input's scene
+#       at 1024^2, on the device and on the CPU. Files: summary.txt, device.log, bench.log (with
+#       big.log and lean.log appended to bench-gpu.csv), profile.log, suites.log.
+#   bash gpu/remote.sh adhesion    the adhesive solver on the card first: the suite 'device' (its
+#       passes against their CPU twins, the adhesive scenes and the 29 adhesive hard cases against
+#       the CPU); veslide-bench adhesion (the paper scene with and without adhesion, interleaved)
+#       on the device and the CPU at 1024^2, on the device at 2048^2 and 4096^2, then 8192^2;
+#       memcheck of the gcg passes and of the adhesive scenes; the suite 'solver-gcg' with 'auto';
+#       then, as time allows, the paper scene's benchmark at 4096^2..16384^2 (device only), its
+#       per-pass profile, and the adhesive bench on the CPU at 2048^2. Files: summary.txt,
+#       device.log, adhesion.log, suites.log, bench.log, profile.log, bench-gpu.csv.
 set -uo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 out=${OUT:-gpu-out}; mkdir -p "$out"
@@ -48,6 +57,35 @@ stage() {
     echo "$name: rc $rc in $(($(date +%s) - t0)) s$([ $rc -eq 124 ] && echo ' (timed out)')" >> "$summary"
 }
 bin=$dist/bin
+plan=${1:-all}
+if [ "$plan" = adhesion ]; then
+    stage "device suite" 150 "$out/device.log" "$bin/veslide-tests" device
+    stage "adhesion bench at 1024, device and CPU" 100 "$out/adhesion.log" "$bin/veslide-bench" adhesion both 3 1024
+    stage "adhesion bench at 2048, 4096, device" 90 "$out/adhesion.log" "$bin/veslide-bench" adhesion gpu 3 2048 4096
+    for t in passes-gcg adhesive-scenes-against-cpu; do
+        if command -v compute-sanitizer >/dev/null 2>&1; then
+            echo "## memcheck $t" >> "$out/suites.log"
+            stage "memcheck $t" 80 "$out/suites.log" compute-sanitizer --tool memcheck --error-exitcode 3 \
+                "$bin/veslide-tests" device "$t"
+        else
+            echo "memcheck $t: compute-sanitizer not found" >> "$summary"
+        fi
+    done
+    stage "suite solver-gcg (auto)" 60 "$out/suites.log" "$bin/veslide-tests" solver-gcg
+    stage "adhesion bench at 8192, device, one round" 60 "$out/adhesion.log" "$bin/veslide-bench" adhesion gpu 1 8192
+    VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV="$out/bench-gpu.csv" stage "benchmark 4096..16384 (device)" \
+        60 "$out/bench.log" "$bin/veslide-bench" gpu 4096 8192 16384
+    VESLIDE_DEVICE_PROFILE=1 VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/profile.csv \
+        stage "profile at 4096, 8192" 40 "$out/profile.log" "$bin/veslide-bench" gpu 4096 8192
+    stage "adhesion bench at 2048, device and CPU, one round" 90 "$out/adhesion.log" \
+        "$bin/veslide-bench" adhesion both 1 2048
+    echo "total: $(($(date +%s) - start)) s" >> "$summary"
+    cat "$summary"
+    grep -E "passed|failed|FAIL" "$out/device.log" | tail -5
+    grep -E "^\||^paper" "$out/adhesion.log" | grep -v -- "---" | cut -c1-300
+    grep -E "ERROR SUMMARY|passed|failed" "$out/suites.log" | tail -6
+    exit 0
+fi
 stage "device suite" 120 "$out/device.log" "$bin/veslide-tests" device
 VESLIDE_BENCH_CPU=4096 VESLIDE_BENCH_CSV="$out/bench-gpu.csv" stage "benchmark 4096..16384 and the CPU at 4096" \
     200 "$out/bench.log" "$bin/veslide-bench" gpu 4096 8192 16384
