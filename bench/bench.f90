@@ -412,7 +412,9 @@ contains
     !> one on each device of `devices` in turn (interleaved, so that a change of load on the
     !> machine affects all alike). One row per device and grid: FFT pairs, medians of the solve
     !> times (the whole solve: on the device its uploads, plans and downloads), their ratio, the
-    !> time per FFT pair spent. With 'both', the device's adhesive solution of the first round
+    !> time per FFT pair spent; before them a line per solve as it ends (the case's whole time beside
+    !> the solve's). With VESLIDE_DEVICE_PROFILE=1, each pass's time in the first adhesive solve
+    !> at each grid. With 'both', the device's adhesive solution of the first round
     !> against the CPU's: max |dp| / max |p|, the closed cells that differ, the friction's relative
     !> difference.
     subroutine bench_adhesion(devices, rounds, sizes)
@@ -423,7 +425,7 @@ contains
         type(case_t) :: c
         type(error_t), allocatable :: error
         real(dp), allocatable :: t(:, :, :), p(:, :, :), g(:, :, :)
-        real(dp) :: fric(2, 2)
+        real(dp) :: fric(2, 2), t0
         integer :: k, r, d, m, pairs(2, 2), its(2, 2)
         logical :: conv(2, 2)
         select case (devices)
@@ -456,8 +458,15 @@ contains
                 do d = 1, size(on)
                     do m = 1, 2
                         cfg(m)%solver%device = on(d); cfg(m)%solver%threads = 0
+                        if (r == 1 .and. m == 1) call device_profile()  ! (VESLIDE_DEVICE_PROFILE=1)
+                        t0 = now()
                         call run_case(cfg(m), c, error); call check(error)
+                        if (r == 1 .and. m == 1) call device_profile()
                         t(r, m, d) = c%solve_seconds
+                        write (stdout, '("  round ",i0,", ",i0,"^2 on the ",a,", ",a,": solve ",f0.3," s of ",f0.3, &
+                            &" s for the case, ",i0," FFT pairs")') r, sizes(k), on(d), trim(merge('adhesive ', &
+                            'hard wall', m == 1)), c%solve_seconds, now() - t0, c%state%operator_applications
+                        flush (stdout)
                         pairs(m, d) = c%state%operator_applications; its(m, d) = c%state%iterations
                         conv(m, d) = c%state%converged
                         fric(m, d) = -c%force_pa(1)/cfg(m)%load%mean_pressure_pa

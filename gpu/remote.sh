@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # On the GPU machine, from the repository root with gpu/dist packed by gpu/pack.sh, in stages, each
 # with a time limit, inside a budget of VESLIDE_REMOTE_BUDGET seconds (default 540: the whole within
-# 10 minutes); a stage that no longer fits is skipped and said so. Logs go to $OUT (default
+# 10 minutes); a stage that no longer fits is skipped and said so, and VESLIDE_REMOTE_FROM=K
+# starts at stage K (the summary numbers them). Logs go to $OUT (default
 # gpu-out/), at most 8 files, summary.txt first.
 #   bash gpu/remote.sh [all]       the device checks (gpu/check.sh) and the benchmark (veslide-bench
 #       gpu). In order: the suite 'device'; the paper scene at 4096^2, 8192^2, 16384^2 with the CPU
@@ -14,11 +15,10 @@
 #   bash gpu/remote.sh adhesion    the adhesive solver on the card first: the suite 'device' (its
 #       passes against their CPU twins, the adhesive scenes and the 29 adhesive hard cases against
 #       the CPU); veslide-bench adhesion (the paper scene with and without adhesion, interleaved)
-#       on the device and the CPU at 1024^2, on the device at 2048^2 and 4096^2, then 8192^2;
+#       on the device and the CPU at 1024^2 (three rounds), on the device at 2048^2 (three);
 #       memcheck of the gcg passes and of the adhesive scenes; the suite 'solver-gcg' with 'auto';
-#       then, as time allows, the paper scene's benchmark at 4096^2..16384^2 (device only), its
-#       per-pass profile, and the adhesive bench on the CPU at 2048^2. Files: summary.txt,
-#       device.log, adhesion.log, suites.log, bench.log, profile.log, bench-gpu.csv.
+#       one round at 4096^2 with each pass profiled; at 2048^2 on the device and the CPU; at
+#       8192^2 on the device. Files: summary.txt, device.log, adhesion.log, suites.log.
 set -uo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 out=${OUT:-gpu-out}; mkdir -p "$out"
@@ -43,9 +43,14 @@ summary="$out/summary.txt"
     nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.sm,clocks.mem --format=csv 2>&1
     ldd "$dist/bin/veslide-tests" | grep -E "not found|cufft|cudart|veslide_device"
 } > "$summary"
-# stage NAME LIMIT LOG COMMAND...: run when at least LIMIT/2 seconds of the budget are left
+# stage NAME LIMIT LOG COMMAND...: run when at least LIMIT/2 seconds of the budget are left (and
+# the stage's number is VESLIDE_REMOTE_FROM or later: a second session goes on where one stopped)
+from=${VESLIDE_REMOTE_FROM:-1}
+count=0
 stage() {
     local name=$1 limit=$2 log=$3; shift 3
+    count=$((count + 1)); name="$count. $name"
+    if [ "$count" -lt "$from" ]; then echo "$name: skipped (VESLIDE_REMOTE_FROM=$from)" >> "$summary"; return; fi
     local left=$((budget - ($(date +%s) - start)))
     if [ "$left" -lt $((limit / 2)) ]; then
         echo "$name: skipped ($left s of the budget left)" >> "$summary"; return
@@ -61,7 +66,7 @@ plan=${1:-all}
 if [ "$plan" = adhesion ]; then
     stage "device suite" 150 "$out/device.log" "$bin/veslide-tests" device
     stage "adhesion bench at 1024, device and CPU" 100 "$out/adhesion.log" "$bin/veslide-bench" adhesion both 3 1024
-    stage "adhesion bench at 2048, 4096, device" 90 "$out/adhesion.log" "$bin/veslide-bench" adhesion gpu 3 2048 4096
+    stage "adhesion bench at 2048, device" 40 "$out/adhesion.log" "$bin/veslide-bench" adhesion gpu 3 2048
     for t in passes-gcg adhesive-scenes-against-cpu; do
         if command -v compute-sanitizer >/dev/null 2>&1; then
             echo "## memcheck $t" >> "$out/suites.log"
@@ -72,13 +77,11 @@ if [ "$plan" = adhesion ]; then
         fi
     done
     stage "suite solver-gcg (auto)" 60 "$out/suites.log" "$bin/veslide-tests" solver-gcg
-    stage "adhesion bench at 8192, device, one round" 60 "$out/adhesion.log" "$bin/veslide-bench" adhesion gpu 1 8192
-    VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV="$out/bench-gpu.csv" stage "benchmark 4096..16384 (device)" \
-        60 "$out/bench.log" "$bin/veslide-bench" gpu 4096 8192 16384
-    VESLIDE_DEVICE_PROFILE=1 VESLIDE_BENCH_CPU=none VESLIDE_BENCH_CSV=/tmp/profile.csv \
-        stage "profile at 4096, 8192" 40 "$out/profile.log" "$bin/veslide-bench" gpu 4096 8192
-    stage "adhesion bench at 2048, device and CPU, one round" 90 "$out/adhesion.log" \
+    VESLIDE_DEVICE_PROFILE=1 stage "adhesion bench at 4096, device, one round, profiled" 90 "$out/adhesion.log" \
+        "$bin/veslide-bench" adhesion gpu 1 4096
+    stage "adhesion bench at 2048, device and CPU, one round" 120 "$out/adhesion.log" \
         "$bin/veslide-bench" adhesion both 1 2048
+    stage "adhesion bench at 8192, device, one round" 120 "$out/adhesion.log" "$bin/veslide-bench" adhesion gpu 1 8192
     echo "total: $(($(date +%s) - start)) s" >> "$summary"
     cat "$summary"
     grep -E "passed|failed|FAIL" "$out/device.log" | tail -5
