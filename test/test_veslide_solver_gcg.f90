@@ -12,6 +12,8 @@ module test_veslide_solver_gcg
     use veslide_solver_options, only: solver_options_t, solver_method_id
     use veslide_solver, only: solve_contact
     use veslide_strings, only: str
+    use veslide_config, only: config_t, default_config, complete_config
+    use veslide_case, only: case_t, run_case
     use testsuite, only: error_t, unittest_t, new_unittest, check, report
     implicit none
     private
@@ -31,7 +33,8 @@ contains
             new_unittest("jkr-wave-johnson-1995", test_jkr_wave), &
             new_unittest("maugis-dugdale-cylinder-pull-off", test_md_cylinder), &
             new_unittest("sliding-limits-are-the-elastic-solids", test_sliding_limits), &
-            new_unittest("sliding-force-is-the-dissipation", test_sliding_energy) &
+            new_unittest("sliding-force-is-the-dissipation", test_sliding_energy), &
+            new_unittest("tolerance-below-round-off-ends", test_round_off_floor) &
             ]
     end subroutine collect_solver_gcg
 
@@ -187,6 +190,59 @@ contains
         if (allocated(error)) return
         call check(error, abs(-f(1)*v - power) <= 1.0e-10_dp*abs(power), "force x speed = dissipated power")
     end subroutine test_sliding_energy
+
+    !> A tolerance below the round-off of the adhesive gradient: its largest entry over the grid
+    !> cannot be computed closer than about epsilon times the operator's largest entry (2e-12 of
+    !> the pressure scale on the paper scene at 256^2, 4e-11 at 4096^2, where the default 1e-10
+    !> stalled), and an inner solve asked for less never ended. The paper scene with adhesion
+    !> (inputs/adhesion/sliding.nml) at 128^2: at the smallest tolerance allowed (1e-13) the solve
+    !> ends within twice the iterations it takes at 1e-10 (before: at the cap, 3000 here), its
+    !> pressure is that solve's to 1e-9 of the largest, and it warns 'tolerance-below-round-off'
+    !> (the floor, 1e-12 here, is the validity measure gradient_round_off); at 1e-10 it does not
+    subroutine test_round_off_floor(error)
+        type(error_t), allocatable, intent(out) :: error
+        type(config_t) :: cfg
+        type(case_t) :: loose, tight
+        call default_config(cfg, 'floor')
+        cfg%grid%nx = 128; cfg%grid%ny = 128; cfg%grid%lx_m = 0.01_dp; cfg%grid%ly_m = 0.01_dp
+        cfg%surface%k_cut = 64.0_dp
+        cfg%material%model = 'one_term'; cfg%material%einf_pa = 1.0e8_dp; cfg%material%ratio = 11.0_dp
+        cfg%material%tau_s = 0.01_dp; cfg%material%poisson = 0.5_dp
+        cfg%motion%speed_m_s = 0.13_dp; cfg%load%mean_pressure_pa = 32.0e3_dp
+        cfg%adhesion%law = 'exponential'; cfg%adhesion%energy_j_m2 = 0.05_dp; cfg%adhesion%range_m = 2.0e-6_dp
+        cfg%solver%method = 'gcg'; cfg%solver%threads = 1; cfg%solver%max_iterations = 3000
+        cfg%solver%tolerance = 1.0e-10_dp
+        cfg%output%fields = .false.; cfg%output%file = 'x.h5'
+        call complete_config(cfg, error); if (allocated(error)) return
+        call run_case(cfg, loose, error); if (allocated(error)) return
+        call check(error, loose%state%converged, "not converged at 1e-10"); if (allocated(error)) return
+        cfg%solver%tolerance = 1.0e-13_dp
+        call run_case(cfg, tight, error); if (allocated(error)) return
+        call report("iterations at 1e-10", real(loose%state%iterations, dp))
+        call report("iterations at 1e-13", real(tight%state%iterations, dp))
+        call report("residual at 1e-13", tight%state%residual)
+        call check(error, tight%state%iterations <= 2*loose%state%iterations, "at 1e-13: "// &
+                   str(tight%state%iterations)//" iterations against "//str(loose%state%iterations)//" at 1e-10")
+        if (allocated(error)) return
+        call check(error, maxval(abs(tight%state%p - loose%state%p)) <= 1.0e-9_dp*maxval(abs(loose%state%p)), &
+                   "the pressures at 1e-13 and 1e-10 differ")
+        if (allocated(error)) return
+        ! the floor is a validity measure; the tolerance below it warns, the one above does not
+        call report("floor over the tolerance at 1e-10", loose%state%round_off/1.0e-10_dp)
+        call check(error, loose%state%round_off > 1.0e-13_dp .and. loose%state%round_off < 1.0e-10_dp, &
+                   "the floor at 128^2: "//str(loose%state%round_off))
+        if (allocated(error)) return
+        call check(error, warns(tight) .and. .not. warns(loose), "the warning 'tolerance-below-round-off'")
+    contains
+        logical function warns(c)
+            type(case_t), intent(in) :: c
+            integer :: k
+            warns = .false.
+            do k = 1, size(c%warnings)
+                if (c%warnings(k)%code == 'tolerance-below-round-off') warns = .true.
+            end do
+        end function warns
+    end subroutine test_round_off_floor
 
     !> The JKR wave (alpha 0.2 with E* = estar or `e_wave` [Pa], exponential law of range h/64
     !> or `range` [m]) on n cells under the load p_mean [Pa], solved by 'gcg' from a cold start:

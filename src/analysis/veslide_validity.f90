@@ -17,7 +17,8 @@
 !> - whether a modelled ingredient matters: `loss_tan_delta_max` (a viscoelastic solid in motion:
 !>   the largest loss tangent over the frequencies the surface excites), `layer_effect` (a layer:
 !>   1 - S(q d) at the surface's longest wave, the largest change it makes to a mode's compliance);
-!> - an adhesive law's resolution: `adhesion_zone_cells`, its cohesive zone in cells.
+!> - an adhesive law's resolution: `adhesion_zone_cells`, its cohesive zone in cells; and its
+!>   solver's: `gradient_round_off`, the round-off floor of the adhesive gradient over the tolerance.
 module veslide_validity
     use veslide_kinds, only: dp, i8, pi
     use veslide_error, only: error_t, fatal_error
@@ -273,8 +274,18 @@ contains
                     sig(c%spec%solver%tolerance, 2)//"): a half-space (thickness_m = 0) gives the same result")
             end if
 
-            ! an adhesive law: is its cohesive zone resolved by the grid?
+            ! an adhesive law: is its cohesive zone resolved by the grid? can the solver's
+            ! gradient be resolved to the tolerance asked?
             if (c%spec%law%adhesive()) call zone_measure()
+            if (c%state%round_off > 0.0_dp) then
+                call measure('gradient_round_off', c%state%round_off/c%spec%solver%tolerance, '-', WARNS_ABOVE, &
+                    1.0_dp, 'tolerance-below-round-off', "the adhesive solver's gradient cannot be computed closer"// &
+                    " than "//sig(c%state%round_off, 2)//" of the pressure scale on this grid (its round-off grows"// &
+                    " with the finest wavenumber), above &solver tolerance "//sig(c%spec%solver%tolerance, 2)// &
+                    ": the inner solves stopped there, and the result is converged only where the problem's"// &
+                    " residual met the tolerance; a tolerance of "//sig(2.0_dp*c%state%round_off, 1)//" or more"// &
+                    " asks for what double precision can give")
+            end if
 
             ! an adhesive law under load control: a load the branch followed cannot carry although
             ! the law is met (to a tenth of the load's error, as the secant's inner solves are) at

@@ -130,6 +130,9 @@ contains
         type(carray_t) :: kd
         real(dp), allocatable :: gstart(:, :)
         real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol, gamma, softest, mean_metric, least, most
+        !> the round-off floor of the gradient's largest entry (see round_off_floor): no inner
+        !> solve and no tightening asks for less
+        real(dp) :: floor_tol
         integer :: nx, ny, its, kind, attempt
         !> the splitting (a non-symmetric operator); the inner solves hold the mean gap (all but
         !> the splitting's under load control, whose metric holds the mean instead)
@@ -177,6 +180,8 @@ contains
             end where
         end if
         call kd%destroy()
+        floor_tol = round_off_floor()
+        state%round_off = floor_tol
         softest = lowest_compliance()
         hold_mean = .true.
         if (split) then
@@ -219,7 +224,7 @@ contains
         slope = 0.0_dp
         ! to the tolerance on the law's gradient; then confirmed on the problem's residual (a
         ! fresh K p), and solved again a tenth tighter while that is above the tolerance
-        tol = opts%tolerance
+        tol = max(opts%tolerance, floor_tol)
         do attempt = 1, max_tighten
             if (split) call start_splitting()
             if (problem%approach_control) then
@@ -246,7 +251,9 @@ contains
             if (state%converged) exit
             if (dev .and. device_failed()) exit
             call scaled_copy(f%g, g, hs)
-            tol = tol/10
+            ! (at the floor a tighter solve is the same solve)
+            if (tol <= floor_tol) exit
+            tol = max(tol/10, floor_tol)
         end do
         call hn%destroy(); call g%destroy(); call t%destroy(); call r%destroy(); call at%destroy(); call pz%destroy()
         call free%destroy(); call edge%destroy(); call a_s%destroy(); call k_s%destroy()
@@ -472,6 +479,9 @@ contains
             type(rarray_t), pointer :: zd
             logical :: restart, fresh, moved, shifted
             integer :: n_inner, carried
+            real(dp) :: tol_in
+            ! (never below the floor: the gradient's round-off would keep the solve from ending)
+            tol_in = max(itol, floor_tol)
             tight = .false.
             if (hold_mean) call keep_mean(dbar)
             gsq_prev = 1.0_dp; restart = .true.
@@ -489,12 +499,12 @@ contains
                 end if
                 call gradient(lam, err)
                 pm = -lam
-                if (err <= itol .or. n_inner >= opts%max_iterations .or. dev .and. device_failed()) then
+                if (err <= tol_in .or. n_inner >= opts%max_iterations .or. dev .and. device_failed()) then
                     ! (confirmed on a fresh r when it was carried)
                     if (carried > 0 .and. .not. (dev .and. device_failed())) then
                         fresh = .false.; cycle
                     end if
-                    ok = err <= itol; tight = ok .and. itol <= tol
+                    ok = err <= tol_in; tight = ok .and. tol_in <= tol
                     exit
                 end if
                 n_inner = n_inner + 1
@@ -674,6 +684,20 @@ contains
             preconditioned = a_fine > 0.0_dp .and. law_stiffness <= stiff_law*a_fine*cells .and. &
                              a_fine >= stiffening*a_low
         end subroutine choose_preconditioner
+
+        !> The round-off floor of the gradient's largest entry, in units of p_s: the gradient
+        !> A (g + h) + sigma(g) is formed from heights of order h_s (one, in these units) that carry
+        !> a rounding error of order epsilon each, which A amplifies by up to its largest entry;
+        !> FFTW's or cuFFT's own error is of the same order. So the largest entry over the grid
+        !> cannot be trusted below about round_off epsilon max|A|, round_off = 8 (measured on the
+        !> paper scene, docs/adhesion.md: an evaluation of A h errs by 4e-11 p_s at 4096^2, 2e-11
+        !> at 2048^2, growing with the grid's finest wavenumber; this estimate gives 6e-11 and
+        !> 3e-11). With the splitting, the operator's |A| (before its step).
+        real(dp) function round_off_floor() result(fl)
+            real(dp), parameter :: round_off = 8.0_dp
+            fl = round_off*epsilon(1.0_dp)*maxval(ainv)*cells
+            call global_max(problem%kernel%grid, fl)
+        end function round_off_floor
 
         !> sum over the whole grid, row by row and then over the rows in order
         real(dp) function total(a) result(s)
