@@ -18,7 +18,8 @@
 !>   the largest loss tangent over the frequencies the surface excites), `layer_effect` (a layer:
 !>   1 - S(q d) at the surface's longest wave, the largest change it makes to a mode's compliance);
 !> - an adhesive law's resolution: `adhesion_zone_cells`, its cohesive zone in cells; and its
-!>   solver's: `gradient_round_off`, the round-off floor of the adhesive gradient over the tolerance.
+!>   solver's: `gradient_round_off`, where the adhesive gradient stalled at its round-off over the
+!>   tolerance (0: it did not).
 module veslide_validity
     use veslide_kinds, only: dp, i8, pi
     use veslide_error, only: error_t, fatal_error
@@ -277,14 +278,13 @@ contains
             ! an adhesive law: is its cohesive zone resolved by the grid? can the solver's
             ! gradient be resolved to the tolerance asked?
             if (c%spec%law%adhesive()) call zone_measure()
-            if (c%state%round_off > 0.0_dp) then
+            if (c%spec%law%adhesive() .and. c%state%method == 'gcg') then
                 call measure('gradient_round_off', c%state%round_off/c%spec%solver%tolerance, '-', WARNS_ABOVE, &
-                    1.0_dp, 'tolerance-below-round-off', "the adhesive solver's gradient cannot be computed closer"// &
-                    " than "//sig(c%state%round_off, 2)//" of the pressure scale on this grid (its round-off grows"// &
+                    1.0_dp, 'tolerance-below-round-off', "the adhesive solver's gradient stopped falling at "// &
+                    sig(c%state%round_off, 2)//" of the pressure scale, its round-off on this grid (which grows"// &
                     " with the finest wavenumber), above &solver tolerance "//sig(c%spec%solver%tolerance, 2)// &
-                    ": the inner solves stopped there, and the result is converged only where the problem's"// &
-                    " residual met the tolerance; a tolerance of "//sig(2.0_dp*c%state%round_off, 1)//" or more"// &
-                    " asks for what double precision can give")
+                    ": the case converged only if the problem's residual met the tolerance; a tolerance of "// &
+                    sig(2.0_dp*c%state%round_off, 1)//" or more asks for what double precision can give")
             end if
 
             ! an adhesive law under load control: a load the branch followed cannot carry although

@@ -74,9 +74,8 @@ module veslide_contact
         real(dp) :: penetration = huge(1.0_dp), complementarity = huge(1.0_dp)
         real(dp) :: negative_pressure = huge(1.0_dp), load_error = huge(1.0_dp)
         real(dp) :: residual = huge(1.0_dp)
-        !> the round-off floor of the solver's own residual, in units of the problem's pressure
-        !> scale ('gcg': of the adhesive gradient's largest entry, where an inner target below it
-        !> would never be met); 0 where the solver measures none
+        !> where the solver's own residual stalled at its round-off, in units of the problem's
+        !> pressure scale ('gcg': the adhesive gradient's largest entry); 0 where it did not
         real(dp) :: round_off = 0.0_dp
         character(len=:), allocatable :: method  !! name of the method used
         character(len=3) :: device = 'cpu'      !! where it was solved: 'cpu' or 'gpu'

@@ -74,7 +74,7 @@ module veslide_solver_gcg
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_contact_law, only: ADH_STRESS, ADH_RANGE, LAW_EXPONENTIAL, LAW_DUGDALE
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
-    use veslide_collective, only: ordered_sum, global_max, global_min
+    use veslide_collective, only: ordered_sum, ordered_sum_scalar, global_max, global_min
     use veslide_arrays, only: rarray_t, carray_t, iarray_t
     use veslide_device, only: device_failed
     use veslide_passes, only: fill, subtract, scaled_copy, centre_divide, row_sums
@@ -95,6 +95,15 @@ module veslide_solver_gcg
     real(dp), parameter :: inexact = 1.0e-2_dp
     !> the most solves a tenth tighter when the problem's residual is above the tolerance
     integer, parameter :: max_tighten = 4
+    !> the splitting, or an inner solve within it, has stalled at its round-off when its
+    !> gradient has not fallen below 0.9 of its best for `stall_outer` outer or `stall_inner`
+    !> inner iterations while that best is within `stall_band` times the estimated floor
+    !> (round_off_floor, an estimate that can be far above the real one: on a profile whose rows
+    !> are equal, the modes across them carry no round-off); it then stops there, and the
+    !> problem's residual gives the verdict. Not on a symmetric operator: there the thin bonded
+    !> layers' slow conjugate gradients plateau within that band and fall on (docs/adhesion.md)
+    integer, parameter :: stall_inner = 100, stall_outer = 20
+    real(dp), parameter :: stall_band = 16.0_dp
     !> the inner solves are preconditioned when the law's steepest slope is at most this
     !> fraction of the operator's largest stiffness (docs/adhesion.md: measured crossover)
     real(dp), parameter :: stiff_law = 0.05_dp
@@ -130,9 +139,11 @@ contains
         type(carray_t) :: kd
         real(dp), allocatable :: gstart(:, :)
         real(dp) :: hs, ps, cells, target, s0, rho, d, p_d, slope, tol, gamma, softest, mean_metric, least, most
-        !> the round-off floor of the gradient's largest entry (see round_off_floor): no inner
-        !> solve and no tightening asks for less
-        real(dp) :: floor_tol
+        !> the estimated round-off floor of the gradient's largest entry (see round_off_floor),
+        !> and `reached` the level where a solve's gradient stalled within `stall_band` of it
+        !> (at_floor; 0 before): no later inner solve is asked for less than the lower of the two
+        real(dp) :: floor_tol, reached
+        logical :: at_floor
         integer :: nx, ny, its, kind, attempt
         !> the splitting (a non-symmetric operator); the inner solves hold the mean gap (all but
         !> the splitting's under load control, whose metric holds the mean instead)
@@ -181,7 +192,7 @@ contains
         end if
         call kd%destroy()
         floor_tol = round_off_floor()
-        state%round_off = floor_tol
+        reached = 0.0_dp; at_floor = .false.
         softest = lowest_compliance()
         hold_mean = .true.
         if (split) then
@@ -224,7 +235,7 @@ contains
         slope = 0.0_dp
         ! to the tolerance on the law's gradient; then confirmed on the problem's residual (a
         ! fresh K p), and solved again a tenth tighter while that is above the tolerance
-        tol = max(opts%tolerance, floor_tol)
+        tol = opts%tolerance
         do attempt = 1, max_tighten
             if (split) call start_splitting()
             if (problem%approach_control) then
@@ -251,10 +262,11 @@ contains
             if (state%converged) exit
             if (dev .and. device_failed()) exit
             call scaled_copy(f%g, g, hs)
-            ! (at the floor a tighter solve is the same solve)
-            if (tol <= floor_tol) exit
-            tol = max(tol/10, floor_tol)
+            ! (stalled at the round-off, a tighter solve is the same solve)
+            if (at_floor) exit
+            tol = tol/10
         end do
+        state%round_off = reached
         call hn%destroy(); call g%destroy(); call t%destroy(); call r%destroy(); call at%destroy(); call pz%destroy()
         call free%destroy(); call edge%destroy(); call a_s%destroy(); call k_s%destroy()
         if (split) then
@@ -376,9 +388,11 @@ contains
             real(dp), intent(out) :: pm
             logical, intent(out) :: ok
             real(dp), parameter :: inner_fraction = 0.3_dp
-            real(dp) :: err, lam, ptmp
+            real(dp) :: err, lam, ptmp, best
             logical :: iok
+            integer :: n_outer, n_best
             ok = .false.; tight = .false.
+            best = huge(1.0_dp); n_outer = 0; n_best = 0
             if (hold_mean) then
                 ! the mean gap moves with z's
                 call subtract(z, -(dbar - total(z)/cells))
@@ -398,6 +412,13 @@ contains
                 pm = -lam
                 if (err <= itol) then
                     ok = .true.; tight = itol <= tol; exit
+                end if
+                ! (stalled at the round-off: stop there)
+                n_outer = n_outer + 1
+                if (err < 0.9_dp*best) then
+                    best = err; n_best = n_outer
+                else if (n_outer - n_best >= stall_outer .and. best <= stall_band*floor_tol) then
+                    call stalled(err); ok = .true.; tight = .true.; exit
                 end if
                 if (its >= opts%max_iterations .or. dev .and. device_failed()) exit
                 call ticker%tick(its, err, state%operator_applications)
@@ -478,10 +499,14 @@ contains
             !> the direction's new part: the gradient (at) or its preconditioned form (pz)
             type(rarray_t), pointer :: zd
             logical :: restart, fresh, moved, shifted
-            integer :: n_inner, carried
-            real(dp) :: tol_in
-            ! (never below the floor: the gradient's round-off would keep the solve from ending)
-            tol_in = max(itol, floor_tol)
+            integer :: n_inner, carried, n_best
+            real(dp) :: tol_in, best
+            logical :: stall
+            ! (once a solve stalled at the round-off, never below the estimated floor or where it
+            ! stalled, the lower: it would not end)
+            tol_in = itol
+            if (at_floor) tol_in = max(itol, min(floor_tol, reached))
+            best = huge(1.0_dp); n_best = 0
             tight = .false.
             if (hold_mean) call keep_mean(dbar)
             gsq_prev = 1.0_dp; restart = .true.
@@ -499,12 +524,20 @@ contains
                 end if
                 call gradient(lam, err)
                 pm = -lam
-                if (err <= tol_in .or. n_inner >= opts%max_iterations .or. dev .and. device_failed()) then
+                ! (stalled at the round-off: stop there)
+                if (err < 0.9_dp*best) then
+                    best = err; n_best = n_inner
+                end if
+                stall = split .and. n_inner - n_best >= stall_inner .and. best <= stall_band*floor_tol
+                if (err <= tol_in .or. stall .or. n_inner >= opts%max_iterations .or. dev .and. device_failed()) then
                     ! (confirmed on a fresh r when it was carried)
                     if (carried > 0 .and. .not. (dev .and. device_failed())) then
                         fresh = .false.; cycle
                     end if
                     ok = err <= tol_in; tight = ok .and. tol_in <= tol
+                    if (stall .and. .not. ok) then
+                        call stalled(err); ok = .true.; tight = .true.
+                    end if
                     exit
                 end if
                 n_inner = n_inner + 1
@@ -685,18 +718,31 @@ contains
                              a_fine >= stiffening*a_low
         end subroutine choose_preconditioner
 
-        !> The round-off floor of the gradient's largest entry, in units of p_s: the gradient
-        !> A (g + h) + sigma(g) is formed from heights of order h_s (one, in these units) that carry
-        !> a rounding error of order epsilon each, which A amplifies by up to its largest entry;
-        !> FFTW's or cuFFT's own error is of the same order. So the largest entry over the grid
-        !> cannot be trusted below about round_off epsilon max|A|, round_off = 8 (measured on the
-        !> paper scene, docs/adhesion.md: an evaluation of A h errs by 4e-11 p_s at 4096^2, 2e-11
-        !> at 2048^2, growing with the grid's finest wavenumber; this estimate gives 6e-11 and
-        !> 3e-11). With the splitting, the operator's |A| (before its step).
+        !> A solve stopped where its gradient `err` stalled at the round-off
+        subroutine stalled(err)
+            real(dp), intent(in) :: err
+            at_floor = .true.
+            reached = max(reached, err)
+        end subroutine stalled
+
+        !> The round-off floor of the gradient's largest entry, in units of p_s, estimated: the
+        !> gradient A (g + h) + sigma(g) is formed from heights of order h_s (one, in these units)
+        !> that carry a rounding error of order epsilon each, white across the modes, which A
+        !> amplifies mode by mode; FFTW's or cuFFT's own error is of the same order. So the
+        !> largest entry over the grid cannot be trusted below about round_off epsilon rms|A|, the
+        !> rms over the modes, round_off = 14 (on the paper scene, docs/validity.md (10): an
+        !> evaluation of A h errs by up to 4e-11 p_s at 4096^2, 2e-11 at 2048^2, growing with the
+        !> grid's finest wavenumber; this estimate gives 6e-11 and 3e-11). With the splitting, the
+        !> operator's |A| (before its step). Only the band in which a stalled gradient counts as
+        !> round-off: where the round-off does not fill every mode (a profile whose rows are equal)
+        !> it is far above it.
         real(dp) function round_off_floor() result(fl)
-            real(dp), parameter :: round_off = 8.0_dp
-            fl = round_off*epsilon(1.0_dp)*maxval(ainv)*cells
-            call global_max(problem%kernel%grid, fl)
+            real(dp), parameter :: round_off = 14.0_dp
+            real(dp) :: modes, squares
+            squares = ordered_sum_scalar(problem%kernel%grid, sum(ainv**2, dim=1), spectral=.true.)
+            modes = ordered_sum_scalar(problem%kernel%grid, spread(real(size(ainv, 1), dp), 1, size(ainv, 2)), &
+                                       spectral=.true.)
+            fl = round_off*epsilon(1.0_dp)*sqrt(squares/modes)*cells
         end function round_off_floor
 
         !> sum over the whole grid, row by row and then over the rows in order
