@@ -197,8 +197,10 @@ contains
     !> gradient stalls at 7e-12 of the pressure scale at 256^2, 3.5e-10 at 4096^2, where the
     !> default 1e-10 ran to the iteration cap on a GPU), and a solve asked for less never ended. The paper scene
     !> with adhesion (inputs/adhesion/sliding.nml) at 256^2, at the tolerance 1e-12: the solve
-    !> stops where its gradient stalls, within twice the iterations it takes at 1e-10 (before:
-    !> 3410, at the cap; now 569 against 368), its pressure is that solve's to 1e-9 of the
+    !> stops where its gradient stalls, within three times the iterations it takes at 1e-10
+    !> (before the stall rule: 3410, at the cap; with it, 569 against 368; with the inexact inner
+    !> solves, 519 against 220: the 1e-10 solve took 40 % fewer steps, while the stall is still
+    !> told after the same 20 outer iterations), its pressure is that solve's to 1e-9 of the
     !> largest, and it warns 'tolerance-below-round-off' with the level it stalled at
     !> (gradient_round_off above 1); at 1e-10 it converges without stalling or the warning
     subroutine test_round_off_floor(error)
@@ -225,7 +227,7 @@ contains
         call report("residual at 1e-12", tight%state%residual)
         call report("level stalled at, 1e-10", loose%state%round_off)
         call report("level stalled at, 1e-12", tight%state%round_off)
-        call check(error, tight%state%iterations <= 2*loose%state%iterations, "at 1e-12: "// &
+        call check(error, tight%state%iterations <= 3*loose%state%iterations, "at 1e-12: "// &
                    str(tight%state%iterations)//" iterations against "//str(loose%state%iterations)//" at 1e-10")
         if (allocated(error)) return
         call check(error, maxval(abs(tight%state%p - loose%state%p)) <= 1.0e-9_dp*maxval(abs(loose%state%p)), &

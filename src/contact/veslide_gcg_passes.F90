@@ -45,7 +45,7 @@ module veslide_gcg_passes
     integer(c_int), parameter :: SPECTRAL_A = 0, SPECTRAL_K = 1, SPECTRAL_OPERATOR = 2, SPECTRAL_RESOLVENT = 3, &
                                  SPECTRAL_START = 4
     !> gcg_combine's element-wise combinations into d:
-    !>  SUM: a + b;  DIFFERENCE: (a - b) - c1;  REFLECT: a - 2 b;  ACCUMULATE: d + (a - b);
+    !>  SUM: a + b;  DIFFERENCE: (a - b) - c1;  REFLECT: a - 2 b;  ACCUMULATE: d + c1 (a - b);
     !>  PRESSURE: c1 + c2 (a - c3);  DISPLACEMENT: c2 ((a + b) - c1);  FROM: c1 - a;
     !>  AXPY: d - c1 a
     integer(c_int), parameter :: COMBINE_SUM = 0, COMBINE_DIFFERENCE = 1, COMBINE_REFLECT = 2, COMBINE_ACCUMULATE = 3, &
@@ -700,7 +700,7 @@ contains
             case (COMBINE_REFLECT)
                 d(:, j) = a(:, j) - 2.0_dp*b(:, j)
             case (COMBINE_ACCUMULATE)
-                d(:, j) = d(:, j) + (a(:, j) - b(:, j))
+                d(:, j) = d(:, j) + k(1)*(a(:, j) - b(:, j))
             case (COMBINE_PRESSURE)
                 d(:, j) = k(1) + k(2)*(a(:, j) - k(3))
             case (COMBINE_DISPLACEMENT)

@@ -270,7 +270,7 @@ struct combine_f {
         case 0: d[n] = a[n] + b[n]; break;
         case 1: d[n] = (a[n] - b[n]) - c1; break;
         case 2: d[n] = a[n] - 2.0 * b[n]; break;
-        case 3: d[n] = d[n] + (a[n] - b[n]); break;
+        case 3: d[n] = d[n] + c1*(a[n] - b[n]); break;
         case 4: d[n] = c1 + c2 * (a[n] - c3); break;
         case 5: d[n] = c2 * ((a[n] + b[n]) - c1); break;
         case 6: d[n] = c1 - a[n]; break;
