@@ -40,8 +40,8 @@ module veslide_gcg_passes
 
     !> gcg_spectral's multipliers of k (A the real `ainv`, K the complex `kinv`, N the cells):
     !>  A: k A;  K: k/((A N + c1) N) where A /= 0, else 0 (c1 the law's stiffness);
-    !>  OPERATOR: k K;  RESOLVENT: k/((1 + c1 K/|K|) N) where K /= 0, else k/N (c1 = gamma);
-    !>  START: k (c1 K/|K|)/N where K /= 0, else 0
+    !>  OPERATOR: k K;  RESOLVENT: k/((1 + K/A) N) where K /= 0, else k/N;  START: k (K/A)/N where
+    !>  K /= 0, else 0 (A the splitting's metric over its step: gamma K/|K| where it is |K|/gamma)
     integer(c_int), parameter :: SPECTRAL_A = 0, SPECTRAL_K = 1, SPECTRAL_OPERATOR = 2, SPECTRAL_RESOLVENT = 3, &
                                  SPECTRAL_START = 4
     !> gcg_combine's element-wise combinations into d:
@@ -170,7 +170,7 @@ contains
         case (SPECTRAL_A, SPECTRAL_K)
             call spectral_real_cpu(mode, k%h, ainv%h, c1, cells)
         case default
-            call spectral_complex_cpu(mode, k%h, kinv%h, c1, cells)
+            call spectral_complex_cpu(mode, k%h, kinv%h, ainv%h, cells)
         end select
     end subroutine gcg_spectral
 
@@ -473,11 +473,11 @@ contains
         !$omp end parallel do
     end subroutine spectral_real_cpu
 
-    subroutine spectral_complex_cpu(mode, k, kinv, c1, cells)
+    subroutine spectral_complex_cpu(mode, k, kinv, ainv, cells)
         integer(c_int), intent(in) :: mode
         complex(dp), intent(inout) :: k(:, :)
         complex(dp), intent(in) :: kinv(:, :)
-        real(dp), intent(in) :: c1, cells
+        real(dp), intent(in) :: ainv(:, :), cells
         integer :: j
         !$omp parallel do schedule(static) if (threaded(2*size(k), size(k, 2)))
         do j = 1, size(k, 2)
@@ -486,13 +486,13 @@ contains
                 k(:, j) = k(:, j)*kinv(:, j)
             case (SPECTRAL_RESOLVENT)
                 where (kinv(:, j) /= (0.0_dp, 0.0_dp))
-                    k(:, j) = k(:, j)/((1.0_dp + c1*kinv(:, j)/abs(kinv(:, j)))*cells)
+                    k(:, j) = k(:, j)/((1.0_dp + kinv(:, j)/ainv(:, j))*cells)
                 elsewhere
                     k(:, j) = k(:, j)/cells
                 end where
             case default
                 where (kinv(:, j) /= (0.0_dp, 0.0_dp))
-                    k(:, j) = k(:, j)*(c1*kinv(:, j)/abs(kinv(:, j)))/cells
+                    k(:, j) = k(:, j)*(kinv(:, j)/ainv(:, j))/cells
                 elsewhere
                     k(:, j) = (0.0_dp, 0.0_dp)
                 end where

@@ -233,11 +233,10 @@ struct spectral_f {
         case 2:   // the operator
             k[n] = vs::cmul(k[n], kinv[n]);
             break;
-        case 3: {   // the resolvent: k/((1 + c1 K/|K|) N)
+        case 3: {   // the resolvent: k/((1 + K/A) N)
             double2 q = kinv[n];
             if (q.x != 0.0 || q.y != 0.0) {
-                double m = hypot(q.x, q.y);
-                double2 u = vs::cdivr(vs::cscale(c1, q), m);
+                double2 u = vs::cdivr(q, ainv[n]);
                 double2 den = vs::cscale(cells, vs::cx(1.0 + u.x, u.y));
                 k[n] = vs::cdiv(k[n], den);
             } else {
@@ -245,11 +244,10 @@ struct spectral_f {
             }
             break;
         }
-        default: {   // the start: k (c1 K/|K|)/N
+        default: {   // the start: k (K/A)/N
             double2 q = kinv[n];
             if (q.x != 0.0 || q.y != 0.0) {
-                double m = hypot(q.x, q.y);
-                double2 u = vs::cdivr(vs::cscale(c1, q), m);
+                double2 u = vs::cdivr(q, ainv[n]);
                 k[n] = vs::cdivr(vs::cmul(k[n], u), cells);
             } else {
                 k[n] = vs::cx(0.0, 0.0);

@@ -49,8 +49,9 @@
 !> problem is the inclusion 0 in T(g) + dPsi(g) with T(g) = A (g + h) monotone and Psi the law's
 !> energy sum V(g) with g >= 0 and the mean gap held (weakly convex, not convex). Douglas-Rachford
 !> in the metric M = |A| (as `pdr` does in the pressure for the hard wall), with step gamma:
-!>   x = (I + gamma M^-1 T)^-1 z:  x^ + h^ = (z^ + h^)/(1 + gamma A/|A|)   (one FFT pair; at
-!>       gamma = 1 the denominator's modulus is 2 cos(delta/2) >= sqrt 2, delta the loss angle)
+!>   x = (I + gamma M^-1 T)^-1 z:  x^ + h^ = (z^ + h^)/(1 + gamma A/M)   (one FFT pair; with
+!>       M = |A| and gamma = 1 the denominator's modulus is 2 cos(delta/2) >= sqrt 2, delta the
+!>       loss angle)
 !>   y = argmin over g >= 0 at the mean gap of 1/2 <y - v, (M/gamma) (y - v)> + sum V(y),
 !>       v = 2x - z: the symmetric adhesive problem above with the multiplier M/gamma and the
 !>       heights -v, solved by the conjugate gradients warm-started from the last y
@@ -64,7 +65,12 @@
 !> (its residual not down by `progress`, a factor 5, over `patience`, 10, outer iterations: a
 !> hard-wall-like contact forming under a stiff operator, whose inner solves take thousands of
 !> steps), the bound doubles, up to unbounded. Measured in docs/adhesion.md (the paper scene:
-!> 1144 -> 707 FFT pairs at 256^2, 2613 -> 1388 at 2048^2). gamma = 1 (the options' step when
+!> 1144 -> 707 FFT pairs at 256^2, 2613 -> 1388 at 2048^2). Where even that makes no progress
+!> (`rescue_after` doublings in a row: a contact near full cycled between contact sets), the
+!> inner problem is likely not convex, M softer than the law's steepest slope k on the long
+!> waves: the metric is floored at k (M' = max(M, k), the mean mode as it was), which makes it
+!> convex and its solution unique, and the splitting restarts from y (once; it costs speed on
+!> the modes it changes, so it is not the default). gamma = 1 (the options' step when
 !> set), as measured on the sliding JKR wave (docs/adhesion.md): 0.6 is slower and 1.5 or 3
 !> diverge (a splitting of a non-convex problem converges for steps small against the law's
 !> curvature).
@@ -82,7 +88,7 @@ module veslide_solver_gcg
     use veslide_contact, only: contact_problem_t, contact_state_t, contact_fields_t
     use veslide_contact_law, only: ADH_STRESS, ADH_RANGE, LAW_EXPONENTIAL, LAW_DUGDALE
     use veslide_solver_options, only: solver_options_t, progress_ticker_t
-    use veslide_collective, only: ordered_sum, ordered_sum_scalar, global_max, global_min
+    use veslide_collective, only: ordered_sum, ordered_sum_scalar, global_max, global_min, global_any
     use veslide_arrays, only: rarray_t, carray_t, iarray_t
     use veslide_device, only: device_failed
     use veslide_passes, only: fill, subtract, scaled_copy, centre_divide, row_sums
@@ -123,6 +129,10 @@ module veslide_solver_gcg
     !> a contact forming under Einf/E0 = 1000 unconverged)
     integer, parameter :: inner_steps = 5, patience = 10
     real(dp), parameter :: progress = 0.2_dp
+    !> after this many doublings of that bound in a row (40 outer iterations without the progress),
+    !> the splitting's metric is floored at the law's steepest slope and the splitting restarted
+    !> from y, once (floor_metric; docs/adhesion.md: a contact near full that cycled)
+    integer, parameter :: rescue_after = 4
 
 contains
 
@@ -144,9 +154,9 @@ contains
         type(iarray_t) :: free, edge
         ! the splitting's (a non-symmetric operator): its z and x, the heights
         type(rarray_t) :: z, x, h0
-        !> the modulus multiplier A = 1/K (real; with the splitting |1/K|/gamma) and, with the
-        !> splitting, 1/K itself, on the half-spectrum where the solve runs; `ainv` and `kinv` their
-        !> host copies, from which the preconditioner is chosen
+        !> the modulus multiplier A = 1/K (real; with the splitting the metric over the step, |1/K|/gamma
+        !> or floor_metric's) and, with the splitting, 1/K itself, on the half-spectrum where the
+        !> solve runs; `ainv` and `kinv` their host copies, from which the preconditioner is chosen
         type(rarray_t) :: a_s
         type(carray_t) :: k_s
         real(dp), allocatable, target :: ainv(:, :)
@@ -170,6 +180,8 @@ contains
         logical :: preconditioned
         !> the splitting's bound on the steps of an inner solve (see inner_steps)
         integer :: inner_cap
+        !> the splitting's metric has been floored at the law's stiffness (see floor_metric)
+        logical :: floored
         type(progress_ticker_t) :: ticker
 
         nx = f%p%n1; ny = f%p%n2
@@ -210,7 +222,7 @@ contains
         end if
         call kd%destroy()
         floor_tol = round_off_floor()
-        reached = 0.0_dp; at_floor = .false.
+        reached = 0.0_dp; at_floor = .false.; floored = .false.
         softest = lowest_compliance()
         hold_mean = .true.
         if (split) then
@@ -226,8 +238,8 @@ contains
         call choose_preconditioner()
         ! the multipliers where the solve runs (on the host views of these)
         if (dev) then
+            ! (ainv kept on the host, 4 bytes per cell: floor_metric forms the floored metric there)
             call a_s%create(size(ainv, 1), size(ainv, 2), .true.); call a_s%upload(ainv)
-            deallocate (ainv)
             if (split) then
                 call k_s%create(size(kinv, 1), size(kinv, 2), .true.); call k_s%upload(kinv)
                 deallocate (kinv)
@@ -408,10 +420,11 @@ contains
             real(dp), parameter :: inner_fraction = 0.3_dp
             real(dp) :: err, lam, ptmp, best, err_check
             logical :: iok
-            integer :: n_outer, n_best
+            integer :: n_outer, n_best, n_doubled
             ok = .false.; tight = .false.
             best = huge(1.0_dp); n_outer = 0; n_best = 0
             inner_cap = inner_steps; err_check = huge(1.0_dp)
+            n_doubled = 0
             if (hold_mean) then
                 ! the mean gap moves with z's
                 call subtract(z, -(dbar - total(z)/cells))
@@ -436,8 +449,23 @@ contains
                 n_outer = n_outer + 1
                 ! (too inexact: the inner solves' bound doubles)
                 if (mod(n_outer, patience) == 0) then
-                    if (err > progress*err_check .and. inner_cap < huge(inner_cap)/2) inner_cap = 2*inner_cap
+                    if (err > progress*err_check) then
+                        if (inner_cap < huge(inner_cap)/2) inner_cap = 2*inner_cap
+                        n_doubled = n_doubled + 1
+                    else
+                        n_doubled = 0
+                    end if
                     err_check = err
+                    ! (no progress with the inner solves far from bounded: the metric floored,
+                    ! the splitting restarted from y)
+                    if (n_doubled >= rescue_after .and. .not. floored) then
+                        if (floor_metric()) then
+                            call start_splitting()
+                            if (hold_mean) call subtract(z, -(dbar - total(z)/cells))
+                            best = huge(1.0_dp); n_best = n_outer; err_check = huge(1.0_dp)
+                            inner_cap = inner_steps; n_doubled = 0
+                        end if
+                    end if
                 end if
                 if (err < 0.9_dp*best) then
                     best = err; n_best = n_outer
@@ -772,6 +800,30 @@ contains
                                        spectral=.true.)
             fl = round_off*epsilon(1.0_dp)*sqrt(squares/modes)*cells
         end function round_off_floor
+
+        !> The splitting's metric M = |A| raised to the law's steepest slope k (s0/rho) where it is
+        !> softer, the mean mode left as it is: the inner problem, M/2 |y - v|^2 + sum V(y), is then
+        !> convex (V'' >= -k), its solution unique. Returns whether a mode changed (where none is
+        !> softer than the law, or the law has no slope, nothing is done)
+        logical function floor_metric() result(changed)
+            real(dp) :: fl, qn
+            integer :: ia, ib, ij(2)
+            changed = .false.
+            floored = .true.
+            if (kind /= LAW_EXPONENTIAL .or. .not. rho > 0.0_dp) return
+            fl = (s0/rho)/(cells*gamma)
+            do ib = 1, size(ainv, 2)
+                do ia = 1, size(ainv, 1)
+                    ij = problem%kernel%grid%spectral_index(ia, ib)
+                    qn = norm2(problem%kernel%grid%wavevector(ij(1), ij(2)))
+                    if (qn > 0.0_dp .and. ainv(ia, ib) < fl) then
+                        ainv(ia, ib) = fl; changed = .true.
+                    end if
+                end do
+            end do
+            call global_any(problem%kernel%grid, changed)
+            if (changed .and. dev) call a_s%upload(ainv)
+        end function floor_metric
 
         !> sum over the whole grid, row by row and then over the rows in order
         real(dp) function total(a) result(s)
