@@ -68,7 +68,7 @@
 !> 1144 -> 707 FFT pairs at 256^2, 2613 -> 1388 at 2048^2). Where even that makes no progress
 !> (`rescue_after` doublings in a row: a contact near full cycled between contact sets), the
 !> inner problem is likely not convex, M softer than the law's steepest slope k on the long
-!> waves: the metric is floored at k (M' = max(M, k), the mean mode as it was), which makes it
+!> waves: the metric is floored (M' = max(M, gamma k), the mean mode as it was), which makes it
 !> convex and its solution unique, and the splitting restarts from y (once; it costs speed on
 !> the modes it changes, so it is not the default). gamma = 1 (the options' step when
 !> set), as measured on the sliding JKR wave (docs/adhesion.md): 0.6 is slower and 1.5 or 3
@@ -801,17 +801,18 @@ contains
             fl = round_off*epsilon(1.0_dp)*sqrt(squares/modes)*cells
         end function round_off_floor
 
-        !> The splitting's metric M = |A| raised to the law's steepest slope k (s0/rho) where it is
-        !> softer, the mean mode left as it is: the inner problem, M/2 |y - v|^2 + sum V(y), is then
-        !> convex (V'' >= -k), its solution unique. Returns whether a mode changed (where none is
-        !> softer than the law, or the law has no slope, nothing is done)
+        !> The splitting's metric over its step, M/gamma (M = |A|), raised to the law's steepest
+        !> slope k (law_stiffness, s0/rho) where it is softer, the mean mode left as it is: the inner
+        !> problem, M/(2 gamma) |y - v|^2 + sum V(y), is then convex (V'' >= -k), its solution
+        !> unique. Returns whether a mode changed (where none is softer than the law, or the law has
+        !> no slope, nothing is done)
         logical function floor_metric() result(changed)
             real(dp) :: fl, qn
             integer :: ia, ib, ij(2)
             changed = .false.
             floored = .true.
-            if (kind /= LAW_EXPONENTIAL .or. .not. rho > 0.0_dp) return
-            fl = (s0/rho)/(cells*gamma)
+            if (kind /= LAW_EXPONENTIAL) return
+            fl = law_stiffness/cells
             do ib = 1, size(ainv, 2)
                 do ia = 1, size(ainv, 1)
                     ij = problem%kernel%grid%spectral_index(ia, ib)
