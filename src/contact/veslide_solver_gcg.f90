@@ -743,12 +743,11 @@ contains
         subroutine choose_preconditioner()
             real(dp), parameter :: stiffening = 4.0_dp
             real(dp) :: a_fine, a_low, q_top, q_low, qn
-            integer :: ia, ib, ij(2)
+            integer :: ia, ib
             q_top = 0.0_dp; q_low = huge(1.0_dp)
             do ib = 1, size(ainv, 2)
                 do ia = 1, size(ainv, 1)
-                    ij = problem%kernel%grid%spectral_index(ia, ib)
-                    qn = norm2(problem%kernel%grid%wavevector(ij(1), ij(2)))
+                    qn = wavenumber(ia, ib)
                     q_top = max(q_top, qn)
                     if (qn > 0.0_dp) q_low = min(q_low, qn)
                 end do
@@ -762,8 +761,7 @@ contains
             a_fine = 0.0_dp; a_low = huge(1.0_dp)
             do ib = 1, size(ainv, 2)
                 do ia = 1, size(ainv, 1)
-                    ij = problem%kernel%grid%spectral_index(ia, ib)
-                    qn = norm2(problem%kernel%grid%wavevector(ij(1), ij(2)))
+                    qn = wavenumber(ia, ib)
                     if (qn >= 0.5_dp*q_top) a_fine = max(a_fine, ainv(ia, ib))
                     if (qn > 0.0_dp .and. qn <= 2.0_dp*q_low .and. ainv(ia, ib) > 0.0_dp) a_low = min(a_low, ainv(ia, ib))
                 end do
@@ -773,6 +771,14 @@ contains
             preconditioned = a_fine > 0.0_dp .and. law_stiffness <= stiff_law*a_fine*cells .and. &
                              a_fine >= stiffening*a_low
         end subroutine choose_preconditioner
+
+        !> |q| of the mode at (ia, ib) of the half-spectrum's storage (this process's columns)
+        real(dp) function wavenumber(ia, ib) result(qn)
+            integer, intent(in) :: ia, ib
+            integer :: ij(2)
+            ij = problem%kernel%grid%spectral_index(ia, ib)
+            qn = norm2(problem%kernel%grid%wavevector(ij(1), ij(2)))
+        end function wavenumber
 
         !> A solve stopped where its gradient `err` stalled at the round-off
         subroutine stalled(err)
@@ -808,15 +814,14 @@ contains
         !> no slope, nothing is done)
         logical function floor_metric() result(changed)
             real(dp) :: fl, qn
-            integer :: ia, ib, ij(2)
+            integer :: ia, ib
             changed = .false.
             floored = .true.
             if (kind /= LAW_EXPONENTIAL) return
             fl = law_stiffness/cells
             do ib = 1, size(ainv, 2)
                 do ia = 1, size(ainv, 1)
-                    ij = problem%kernel%grid%spectral_index(ia, ib)
-                    qn = norm2(problem%kernel%grid%wavevector(ij(1), ij(2)))
+                    qn = wavenumber(ia, ib)
                     if (qn > 0.0_dp .and. ainv(ia, ib) < fl) then
                         ainv(ia, ib) = fl; changed = .true.
                     end if
