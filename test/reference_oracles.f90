@@ -10,6 +10,7 @@ module reference_oracles
     implicit none
     private
     public :: westergaard_t, westergaard, full_contact_force, paper_solid, paper_rough, peak_speed, einf, tau, lcell
+    public :: dugdale_crack_toughening
 
     !> The paper's solid and cell: glassy modulus [Pa], retardation time [s], cell side [m]
     real(dp), parameter :: einf = 1.0e8_dp, tau = 1.0e-2_dp, lcell = 1.0e-2_dp
@@ -91,5 +92,46 @@ contains
             f = f/g%cells()**2
         end associate
     end function full_contact_force
+
+    !> A steady crack with a Dugdale zone opening into a one-term viscoelastic solid (creep
+    !> compliance J(t) E0 = 1 - (1 - E0/Einf) exp(-t/tau)) at the speed v: the far field's energy
+    !> release rate over the work of adhesion, G/w = r, as a function of v tau/a0 (a0 = pi E0* w/
+    !> (4 sigma0^2), the zone at rest) and Einf/E0. Derivation (docs/adhesion.md, *Trailing
+    !> edges*): the stress is that of the elastic crack of the same K (the material flows from the
+    !> bonded side, whose displacement is prescribed, so its elastic response is); the zone's length
+    !> a = (pi/8) (K/sigma0)^2 = a0 r; a material point crossing the zone opens by the creep
+    !> integral of the elastic opening's increments, which the zone's end makes w/sigma0:
+    !>   1/r = integral over xi in (0, 1) of J((1 - xi) a/v) E0 dD(xi),
+    !> D(xi) = b - ((1 - b^2)/2) ln((1 + b)/(1 - b)), b = sqrt(xi), the relaxed elastic opening
+    !> of the semi-infinite Dugdale crack over its end value (Schapery's and Greenwood's
+    !> steady-crack analyses; here in closed form but for the quadrature). Solved for r by damped
+    !> fixed-point iteration; the quadrature on 20000 intervals (exact D differences, the creep
+    !> term at their midpoints) is good to about 1e-7.
+    pure real(dp) function dugdale_crack_toughening(speed_ratio, einf_over_e0) result(r)
+        real(dp), intent(in) :: speed_ratio, einf_over_e0
+        integer, parameter :: intervals = 20000
+        real(dp) :: xi(0:intervals), d(0:intervals), integral, rn, b
+        integer :: k, it
+        do k = 0, intervals
+            xi(k) = real(k, dp)/intervals
+            b = sqrt(xi(k))
+            if (k == intervals) then
+                d(k) = 1.0_dp
+            else
+                d(k) = b - 0.5_dp*(1.0_dp - b*b)*log((1.0_dp + b)/(1.0_dp - b))
+            end if
+        end do
+        r = 1.0_dp
+        do it = 1, 2000
+            integral = 0.0_dp
+            do k = 1, intervals
+                integral = integral + exp(-(1.0_dp - 0.5_dp*(xi(k) + xi(k - 1)))*r/speed_ratio)*(d(k) - d(k - 1))
+            end do
+            rn = 1.0_dp/(1.0_dp - (1.0_dp - 1.0_dp/einf_over_e0)*integral)
+            if (abs(rn - r) <= 1.0e-12_dp*r) exit
+            r = 0.5_dp*(r + rn)
+        end do
+        r = rn
+    end function dugdale_crack_toughening
 
 end module reference_oracles

@@ -234,6 +234,8 @@ contains
         call r%add('adhesive_pressure_pa', field_mean(c%grid, max(-c%state%p, 0.0_dp)), 'Pa')
         call r%add('compressive_pressure_pa', field_mean(c%grid, max(c%state%p, 0.0_dp)), 'Pa')
         call r%add('adhesive_area_fraction', real(field_count(c%grid, c%state%p < 0.0_dp), dp)/c%grid%cells(), '-')
+        call r%add('trailing_edge_energy_j_m2', c%trailing_edge_energy, 'J/m^2')
+        call r%add('trailing_edges', real(c%trailing_edges, dp), '-', is_integer=.true.)
     end subroutine add_adhesion_quantities
 
     !> The solver's report: iterations, work, convergence and the four residual measures

@@ -3,7 +3,7 @@ module veslide_lapack
     use veslide_kinds, only: dp
     implicit none
     private
-    public :: dposv, dgesv
+    public :: dposv, dgesv, dgels
 
     interface
         !> Solve A X = B for symmetric positive definite A (Cholesky)
@@ -21,6 +21,15 @@ module veslide_lapack
             real(dp), intent(inout) :: a(lda, *), b(ldb, *)
             integer, intent(out) :: ipiv(*), info
         end subroutine dgesv
+        !> Least squares min |A X - B| for a general A of full rank (QR)
+        subroutine dgels(trans, m, n, nrhs, a, lda, b, ldb, work, lwork, info)
+            import :: dp
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            real(dp), intent(out) :: work(*)
+            integer, intent(out) :: info
+        end subroutine dgels
     end interface
 
 end module veslide_lapack

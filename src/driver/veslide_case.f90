@@ -3,7 +3,7 @@
 !> veslide_quantities (the catalogue) and veslide_case_file (HDF5); the memory it needs:
 !> veslide_memory; the specification from an input: veslide_case_spec.
 module veslide_case
-    use veslide_kinds, only: dp
+    use veslide_kinds, only: dp, radians
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
     use veslide_config, only: config_t
@@ -28,6 +28,7 @@ module veslide_case
     use veslide_case_data, only: case_spec_t, case_t
     use veslide_case_spec, only: case_spec_of
     use veslide_validity, only: case_validity, check_surface_scale
+    use veslide_edges, only: trailing_edge_energy
     implicit none
     private
     public :: case_t, build_surface, build_kernel, case_grid, run_case, solve_prepared
@@ -211,6 +212,9 @@ contains
             c%interfacial_force_pa = c%spec%shear_coefficient*field_mean(c%grid, c%state%p)
         call slope_force(c%grid, fft, c%state%p, c%h, c%slope_force_pa)
         call case_validity(c, fft)
+        if (c%spec%law%adhesive()) then
+            call edge_analysis(fft, c, error); if (allocated(error)) return
+        end if
         c%have_anisotropy = .false.; c%have_patches = .false.; c%have_persson = .false.
         if (c%spec%analysis%anisotropy) call anisotropy_analysis(fft, c)
         if (c%spec%analysis%persson .and. .not. c%spec%law%adhesive()) then
@@ -230,6 +234,28 @@ contains
             c%have_patches = .true.
         end if
     end subroutine solve_prepared
+
+    !> The energy release rate of an adhesive contact's trailing edges (veslide_edges), with the
+    !> relaxed solid's misfit u0 - u from the kernel at rest: zero for an elastic solid or at rest
+    subroutine edge_analysis(fft, c, error)
+        type(fft2d_t), intent(inout) :: fft
+        type(case_t), intent(inout) :: c
+        type(error_t), allocatable, intent(out) :: error
+        type(kernel_t) :: relaxed
+        real(dp), allocatable :: delta(:, :)
+        allocate (delta(size(c%state%u, 1), size(c%state%u, 2)))
+        delta = 0.0_dp
+        if (c%spec%speed_m_s > 0.0_dp .and. .not. c%spec%material%solid%is_elastic()) then
+            call new_kernel(relaxed, c%grid, c%spec%material%solid, [0.0_dp, 0.0_dp], c%spec%kernel_variant, error, &
+                            alias_tol=c%spec%alias_tol, alias_max=c%spec%alias_max, shear=c%spec%shear())
+            call add_context(error, "veslide: "//c%spec%input_path//": the relaxed kernel of the edges' measure: ")
+            if (allocated(error)) return
+            call relaxed%apply(fft, c%state%p, delta)
+            delta = delta - c%state%u
+        end if
+        call trailing_edge_energy(c%spec%law, c%state%g, delta, c%grid, radians(c%spec%direction_deg), &
+                                  c%trailing_edge_energy, c%trailing_edges)
+    end subroutine edge_analysis
 
     !> Persson's theory on the realised spectrum of the heights, with the case's solid, velocity and
     !> load (the spectral kernel: the case's own when it is spectral)

@@ -1,0 +1,196 @@
+!> The trailing edges of a sliding adhesive contact: the energy release rate of each edge where the
+!> gap opens as the solid leaves the contact (docs/adhesion.md, *Trailing edges*).
+!>
+!> Relative to the rigid surface the solid's material moves along -v: it enters a contact at the
+!> contact's leading edge (its +v side) and leaves it at the trailing edge (its -v side), where the
+!> gap opens like a crack that runs into the bonded solid at the speed v. The energy release rate
+!> of that crack as its far field sees it is G = K^2/(2 E0*), E0 the relaxed modulus: w at rest,
+!> rising with speed toward (Einf/E0) w (Persson and Brener, PRE 71 (2005) 036123; with a cohesive
+!> zone, Schapery's and Greenwood's steady-crack analyses). It is measured here without K, as the
+!> J integral of the relaxed solid over the edge's cohesive zone:
+!>   G = integral of sigma(g) d(g + Delta - P)
+!> from the edge's last closed cell along -v over the open cells, until the law's energy V(g) has
+!> risen to -1e-13 w (the attraction spent) or the next closed cell. Delta = u0 - u is the
+!> relaxed solid's misfit: u0 the displacement the solid at rest (the kernel at zero speed) would
+!> have under the case's traction, u the solid's own. P is the polynomial fitted (least squares) to
+!> Delta over the contact's cells behind the edge, up to `fit_cells` of them, of degree 3 from 16
+!> cells, 2 from 6, 1 from 2 and 0 for one: the misfit is smooth on the contact side of an opening
+!> edge (the material there has been in contact a while), and P continues it across the edge, so
+!> that g + Delta - P is the relaxed solid's opening. Between neighbouring cells the integral is
+!> (d ghat/d g) (V(g_b) - V(g_a)), exact where ghat is linear in g: an elastic solid (Delta = 0)
+!> gives exactly V(g_end) - V(0) = w (1 - 1e-13) at every edge that opens fully.
+!>
+!> The closing (leading) edge has no measure of this form: the material there has just entered
+!> the contact, and its misfit changes over v tau from the edge, so no fit on the contact side
+!> continues it (docs/adhesion.md measures how far such fits spread).
+!>
+!> The walk runs along grid lines: the motion must be along x or y (else NaN). On a grid
+!> distributed over processes each process holds whole rows, so a motion along y is not measured
+!> there (NaN). Sums line by line in order (veslide_collective): the same for any number of threads
+!> or processes.
+module veslide_edges
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use veslide_kinds, only: dp
+    use veslide_grid, only: grid_t
+    use veslide_contact_law, only: contact_law_t, ADH_ENERGY
+    use veslide_collective, only: ordered_sum
+    use veslide_lapack, only: dgels
+    implicit none
+    private
+    public :: trailing_edge_energy
+
+    !> the most contact cells behind an edge that the misfit's polynomial is fitted to
+    integer, parameter :: fit_cells = 32
+    !> the walk stops where the law's energy has risen above -spent w (the rest, -V(g_end), added at
+    !> the last step's d ghat/d g); an edge whose walk meets a closed cell first is not measured
+    real(dp), parameter :: spent = 1.0e-3_dp
+    !> an edge is measured when at least this many closed cells lie behind it
+    integer, parameter :: fit_min = 16
+
+contains
+
+    !> The mean energy release rate `energy` [J/m^2] over the trailing edges of the closed cells of
+    !> the gap `g` [m] (an adhesive law's), and the number of edges `edges`, for a motion at
+    !> `direction_rad` from x; `delta` [m] is the relaxed solid's misfit u0 - u (zero for an elastic
+    !> solid or at rest). NaN (and no edge) where there is none or the motion is off the grid's axes
+    subroutine trailing_edge_energy(law, g, delta, grid, direction_rad, energy, edges)
+        type(contact_law_t), intent(in) :: law
+        real(dp), intent(in) :: g(:, :), delta(:, :)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: direction_rad
+        real(dp), intent(out) :: energy
+        integer, intent(out) :: edges
+        real(dp), allocatable :: v(:, :), s(:, :), parts(:, :)
+        real(dp) :: cs, sn, totals(2)
+        integer :: axis, step, j
+        energy = ieee_value(1.0_dp, ieee_quiet_nan); edges = 0
+        cs = cos(direction_rad); sn = sin(direction_rad)
+        ! the walk's step into the open side: along -v
+        if (abs(sn) <= 1.0e-9_dp) then
+            axis = 1; step = -nint(sign(1.0_dp, cs))
+        else if (abs(cs) <= 1.0e-9_dp) then
+            axis = 2; step = -nint(sign(1.0_dp, sn))
+            if (grid%is_distributed()) return
+        else
+            return
+        end if
+        v = law%energy(g)
+        s = law%attraction(g)
+        if (axis == 1) then
+            allocate (parts(2, size(g, 2)))
+            do j = 1, size(g, 2)
+                call line_edges(law%param(ADH_ENERGY), g(:, j), delta(:, j), v(:, j), s(:, j), step, &
+                                parts(1, j), parts(2, j))
+            end do
+        else
+            allocate (parts(2, size(g, 1)))
+            do j = 1, size(g, 1)
+                call line_edges(law%param(ADH_ENERGY), g(j, :), delta(j, :), v(j, :), s(j, :), step, &
+                                parts(1, j), parts(2, j))
+            end do
+        end if
+        if (axis == 1) then
+            call ordered_sum(grid, parts, totals)
+        else
+            totals = sum(parts, dim=2)
+        end if
+        edges = nint(totals(2))
+        if (edges > 0) energy = totals(1)/totals(2)
+    end subroutine trailing_edge_energy
+
+    !> The trailing edges of one grid line (periodic): the sum of their energy release rates
+    !> `total` [J/m^2] and their number `count`; `step` (+1 or -1) the walk from an edge into its
+    !> open side, `w` the work of adhesion, `v` and `s` the law's energy and attraction at `g`
+    subroutine line_edges(w, g, delta, v, s, step, total, count)
+        real(dp), intent(in) :: w, g(:), delta(:), v(:), s(:)
+        integer, intent(in) :: step
+        real(dp), intent(out) :: total, count
+        real(dp) :: coef(fit_cells), gh_a, gh_b, release, ratio
+        integer :: n, i, a, b, k, m, deg
+        logical :: opened
+        n = size(g)
+        total = 0.0_dp; count = 0.0_dp
+        do i = 1, n
+            ! an edge: a closed cell whose neighbour along -v is open
+            if (.not. (g(i) <= 0.0_dp .and. g(wrap(i + step)) > 0.0_dp)) cycle
+            call fit_misfit(i, m, deg, coef)
+            if (m < fit_min) cycle
+            release = 0.0_dp; ratio = 1.0_dp
+            a = i
+            opened = .false.
+            do k = 1, n - 1
+                b = wrap(i + k*step)
+                if (g(b) <= 0.0_dp) exit
+                gh_a = g(a) + delta(a) - poly(k - 1)
+                gh_b = g(b) + delta(b) - poly(k)
+                if (g(b) /= g(a)) then
+                    ratio = (gh_b - gh_a)/(g(b) - g(a))
+                    release = release + ratio*(v(b) - v(a))
+                else
+                    release = release + 0.5_dp*(s(a) + s(b))*(gh_b - gh_a)
+                end if
+                a = b
+                if (v(b) >= -spent*w) then
+                    release = release - ratio*v(b)
+                    opened = .true.; exit
+                end if
+            end do
+            if (.not. opened) cycle
+            total = total + release; count = count + 1.0_dp
+        end do
+    contains
+        pure integer function wrap(k) result(kk)
+            integer, intent(in) :: k
+            kk = modulo(k - 1, n) + 1
+        end function wrap
+
+        !> P at `x` cells from the edge along the walk
+        pure real(dp) function poly(x) result(y)
+            integer, intent(in) :: x
+            integer :: e
+            real(dp) :: t
+            t = real(x, dp)/real(max(m - 1, 1), dp)
+            y = 0.0_dp
+            do e = deg + 1, 1, -1
+                y = y*t + coef(e)
+            end do
+        end function poly
+
+        !> The misfit's polynomial over the closed cells behind edge `i` (at -(j - 1) cells along the
+        !> walk for the j-th, up to fit_cells): their number `m`, its degree `deg` and coefficients
+        !> in t = x/(m - 1)
+        subroutine fit_misfit(i, m, deg, coef)
+            integer, intent(in) :: i
+            integer, intent(out) :: m, deg
+            real(dp), intent(out) :: coef(fit_cells)
+            real(dp) :: amat(fit_cells, 4), work(256)
+            integer :: cellsj(fit_cells), j, e, info
+            m = 0
+            do j = 1, min(fit_cells, n)
+                cellsj(j) = wrap(i - (j - 1)*step)
+                if (g(cellsj(j)) > 0.0_dp) exit
+                m = j
+            end do
+            deg = 0
+            if (m >= 2) deg = 1
+            if (m >= 6) deg = 2
+            if (m >= 16) deg = 3
+            coef = 0.0_dp
+            if (deg == 0) then
+                coef(1) = delta(i); return
+            end if
+            do j = 1, m
+                do e = 1, deg + 1
+                    amat(j, e) = (-real(j - 1, dp)/real(m - 1, dp))**(e - 1)
+                end do
+                coef(j) = delta(cellsj(j))
+            end do
+            call dgels('N', m, deg + 1, 1, amat, fit_cells, coef, fit_cells, work, size(work), info)
+            if (info /= 0) then
+                ! (not of full rank: cannot happen for distinct points; the edge's own misfit)
+                coef = 0.0_dp; coef(1) = delta(i); deg = 0
+            end if
+        end subroutine fit_misfit
+    end subroutine line_edges
+
+end module veslide_edges
