@@ -13,6 +13,12 @@ of 4 cells (resolved: a range below a cell traps the contact's edges between cel
 adhesion-sliding.csv (one row a run: speed, law, friction coefficient, contact fraction, the
 adhesive force per area, FFT pairs) and adhesion-sliding.png: the friction coefficient and the
 contact fraction against v tau/lambda, with and without adhesion.
+
+The third panel is the trailing edge's energy release rate (docs/adhesion.md, *Trailing edges*)
+of the same wave with a short range, h/64 on 4096 cells (its cohesive zone at rest 4 cells,
+against a contact of hundreds: a crack's edge; with the range of 4 cells above the zone is wider
+than the contact, and no edge is measured), from v tau/lambda = 1e-6 to 1e3, with its bounds w and
+(Einf/E0) w: adhesion-trailing-edge.csv (speed, G/w, contact fraction, FFT pairs).
 """
 import argparse
 import os
@@ -45,6 +51,22 @@ def solve(n, vt, adhesive, work):
             s.get("adhesive_pressure_pa", 0.0), s["operator_applications"])
 
 
+def trailing_edge(vt, work, n=4096):
+    """The trailing edge's G/w of the wave with range h/64 on n cells at v tau/lambda = vt"""
+    p = {"grid": {"nx": n, "ny": 1, "lx_m": LAMBDA, "ly_m": LAMBDA/n},
+         "surface": {"kind": "cosine", "amplitude_m": AMP, "wavelength_m": LAMBDA},
+         "material": {"model": "one_term", "einf_pa": RATIO*E0, "ratio": RATIO, "tau_s": TAU, "poisson": 0.0},
+         "load": {"mean_pressure_pa": 0.1*PSTAR}, "motion": {"speed_m_s": vt*LAMBDA/TAU},
+         "adhesion": {"law": "exponential", "energy_j_m2": W, "range_m": AMP/64},
+         "solver": {"tolerance": 1e-10, "fft_planner": "estimate", "max_iterations": 200000},
+         "output": {"fields": False}}
+    r = veslide.run(p, output=os.path.join(work, f"edge-{vt:.3g}.h5"), progress=None)
+    s = r.scalars
+    if s["converged"] != 1 or s["trailing_edges"] != 1:
+        raise RuntimeError(f"not converged, or not one trailing edge: v tau/lambda = {vt}")
+    return (vt, s["trailing_edge_energy_j_m2"]/W, s["contact_area_fraction_cells"], s["operator_applications"])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=os.path.join("docs", "figures"))
@@ -57,8 +79,17 @@ def main():
                 rows.append(solve(args.cells, vt, adhesive, work))
                 print("v tau/lambda = {:9.3e}  adhesion {}  friction {:.5f}  contact {:.4f}  "
                       "adhesive force {:9.3e} Pa  FFT pairs {}".format(*rows[-1]), flush=True)
+        edges = []
+        for vt in np.logspace(-6, 3, 37):
+            edges.append(trailing_edge(vt, work))
+            print("v tau/lambda = {:9.3e}  trailing edge G/w {:.5f}  contact {:.4f}  FFT pairs {}".format(*edges[-1]),
+                  flush=True)
     rows = np.array(rows, dtype=float)
+    edges = np.array(edges, dtype=float)
     os.makedirs(args.out, exist_ok=True)
+    np.savetxt(os.path.join(args.out, "adhesion-trailing-edge.csv"), edges, delimiter=",", comments="",
+               header="speed_tau_over_lambda,trailing_edge_energy_over_w,contact_area_fraction_cells,fft_pairs",
+               fmt=["%.6e", "%.9e", "%.9e", "%d"])
     np.savetxt(os.path.join(args.out, "adhesion-sliding.csv"), rows, delimiter=",", comments="",
                header="speed_tau_over_lambda,adhesion,friction_coefficient,contact_area_fraction_cells,"
                       "adhesive_pressure_pa,fft_pairs", fmt=["%.6e", "%d", "%.9e", "%.9e", "%.9e", "%d"])
@@ -66,13 +97,19 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 2, figsize=(9.5, 3.8))
+    fig, ax = plt.subplots(1, 3, figsize=(13.5, 3.8))
     for adhesive, style, label in ((0, "o-", "hard wall"), (1, "s-", "adhesion (alpha = 0.2)")):
         m = rows[:, 1] == adhesive
         ax[0].semilogx(rows[m, 0], rows[m, 2], style, label=label)
         ax[1].semilogx(rows[m, 0], rows[m, 3], style, label=label)
     ax[0].set_xlabel("v tau/lambda"); ax[0].set_ylabel("friction coefficient")
     ax[1].set_xlabel("v tau/lambda"); ax[1].set_ylabel("contact fraction (closed cells)")
+    ax[2].semilogx(edges[:, 0], edges[:, 1], "s-", color="C1", label="trailing edge")
+    ax[2].axhline(RATIO, color="k", lw=0.8, ls="--", label="Einf/E0")
+    ax[2].axhline(1.0, color="k", lw=0.8, ls=":", label="w")
+    ax[2].set_xlabel("v tau/lambda"); ax[2].set_ylabel("energy release rate G/w")
+    ax[2].set_title("range h/64, 4096 cells", fontsize=9)
+    ax[2].legend(loc=(0.03, 0.45), fontsize=8)
     ax[0].legend()
     fig.suptitle(f"Johnson's wave sliding at p = 0.1 p*, Einf/E0 = {RATIO:g}, {args.cells} cells", fontsize=10)
     fig.tight_layout()

@@ -20,6 +20,11 @@
 !> (d ghat/d g) (V(g_b) - V(g_a)), exact where ghat is linear in g: an elastic solid (Delta = 0)
 !> gives exactly V(g_end) - V(0) = w (1 - 1e-13) at every edge that opens fully.
 !>
+!> An edge is measured when at least 16 contact cells lie behind it, at least `crack` (4) times the
+!> cohesive zone its G makes (a0 G/w, a0 = pi E0* w/(4 sigma0^2) the zone at rest: the zone grows
+!> with K^2), and its attraction is spent before the next closed cell: else it is not a crack's
+!> edge (a long range's zone as wide as the contact read 10.37 w against Einf/E0 = 10 glassy).
+!>
 !> The closing (leading) edge has no measure of this form: the material there has just entered
 !> the contact, and its misfit changes over v tau from the edge, so no fit on the contact side
 !> continues it (docs/adhesion.md measures how far such fits spread).
@@ -44,24 +49,27 @@ module veslide_edges
     !> the walk stops where the law's energy has risen above -spent w (the rest, -V(g_end), added at
     !> the last step's d ghat/d g); an edge whose walk meets a closed cell first is not measured
     real(dp), parameter :: spent = 1.0e-3_dp
-    !> an edge is measured when at least this many closed cells lie behind it
+    !> an edge is measured when at least this many closed cells lie behind it, and at least
+    !> `crack` times the cohesive zone its G makes (a0 G/w, a0 the zone at rest)
     integer, parameter :: fit_min = 16
+    real(dp), parameter :: crack = 4.0_dp
 
 contains
 
     !> The mean energy release rate `energy` [J/m^2] over the trailing edges of the closed cells of
     !> the gap `g` [m] (an adhesive law's), and the number of edges `edges`, for a motion at
     !> `direction_rad` from x; `delta` [m] is the relaxed solid's misfit u0 - u (zero for an elastic
-    !> solid or at rest). NaN (and no edge) where there is none or the motion is off the grid's axes
-    subroutine trailing_edge_energy(law, g, delta, grid, direction_rad, energy, edges)
+    !> solid or at rest), `zone` [m] the law's cohesive zone at rest, pi E0* w/(4 sigma0^2). NaN
+    !> (and no edge) where there is none or the motion is off the grid's axes
+    subroutine trailing_edge_energy(law, g, delta, grid, direction_rad, zone, energy, edges)
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: g(:, :), delta(:, :)
         type(grid_t), intent(in) :: grid
-        real(dp), intent(in) :: direction_rad
+        real(dp), intent(in) :: direction_rad, zone
         real(dp), intent(out) :: energy
         integer, intent(out) :: edges
         real(dp), allocatable :: v(:, :), s(:, :), parts(:, :)
-        real(dp) :: cs, sn, totals(2)
+        real(dp) :: cs, sn, totals(2), d(2), zone_cells
         integer :: axis, step, j
         energy = ieee_value(1.0_dp, ieee_quiet_nan); edges = 0
         cs = cos(direction_rad); sn = sin(direction_rad)
@@ -74,19 +82,21 @@ contains
         else
             return
         end if
+        d = grid%spacing()
+        zone_cells = zone/d(axis)
         v = law%energy(g)
         s = law%attraction(g)
         if (axis == 1) then
             allocate (parts(2, size(g, 2)))
             do j = 1, size(g, 2)
-                call line_edges(law%param(ADH_ENERGY), g(:, j), delta(:, j), v(:, j), s(:, j), step, &
-                                parts(1, j), parts(2, j))
+                call line_edges(law%param(ADH_ENERGY), zone_cells, g(:, j), delta(:, j), v(:, j), s(:, j), &
+                                step, parts(1, j), parts(2, j))
             end do
         else
             allocate (parts(2, size(g, 1)))
             do j = 1, size(g, 1)
-                call line_edges(law%param(ADH_ENERGY), g(j, :), delta(j, :), v(j, :), s(j, :), step, &
-                                parts(1, j), parts(2, j))
+                call line_edges(law%param(ADH_ENERGY), zone_cells, g(j, :), delta(j, :), v(j, :), s(j, :), &
+                                step, parts(1, j), parts(2, j))
             end do
         end if
         if (axis == 1) then
@@ -100,13 +110,14 @@ contains
 
     !> The trailing edges of one grid line (periodic): the sum of their energy release rates
     !> `total` [J/m^2] and their number `count`; `step` (+1 or -1) the walk from an edge into its
-    !> open side, `w` the work of adhesion, `v` and `s` the law's energy and attraction at `g`
-    subroutine line_edges(w, g, delta, v, s, step, total, count)
-        real(dp), intent(in) :: w, g(:), delta(:), v(:), s(:)
+    !> open side, `w` the work of adhesion, `zone_cells` the cohesive zone at rest in cells along
+    !> the line, `v` and `s` the law's energy and attraction at `g`
+    subroutine line_edges(w, zone_cells, g, delta, v, s, step, total, count)
+        real(dp), intent(in) :: w, zone_cells, g(:), delta(:), v(:), s(:)
         integer, intent(in) :: step
         real(dp), intent(out) :: total, count
         real(dp) :: coef(fit_cells), gh_a, gh_b, release, ratio
-        integer :: n, i, a, b, k, m, deg
+        integer :: n, i, a, b, k, m, deg, run
         logical :: opened
         n = size(g)
         total = 0.0_dp; count = 0.0_dp
@@ -115,6 +126,12 @@ contains
             if (.not. (g(i) <= 0.0_dp .and. g(wrap(i + step)) > 0.0_dp)) cycle
             call fit_misfit(i, m, deg, coef)
             if (m < fit_min) cycle
+            ! the contact's length behind the edge
+            run = m
+            do while (run < n)
+                if (g(wrap(i - run*step)) > 0.0_dp) exit
+                run = run + 1
+            end do
             release = 0.0_dp; ratio = 1.0_dp
             a = i
             opened = .false.
@@ -136,6 +153,8 @@ contains
                 end if
             end do
             if (.not. opened) cycle
+            ! (a zone that is not short against the contact: not a crack's edge)
+            if (run < crack*zone_cells*release/w) cycle
             total = total + release; count = count + 1.0_dp
         end do
     contains

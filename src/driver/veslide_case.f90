@@ -3,7 +3,8 @@
 !> veslide_quantities (the catalogue) and veslide_case_file (HDF5); the memory it needs:
 !> veslide_memory; the specification from an input: veslide_case_spec.
 module veslide_case
-    use veslide_kinds, only: dp, radians
+    use veslide_kinds, only: dp, pi, radians
+    use veslide_contact_law, only: ADH_ENERGY, ADH_STRESS
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
     use veslide_config, only: config_t
@@ -243,6 +244,7 @@ contains
         type(error_t), allocatable, intent(out) :: error
         type(kernel_t) :: relaxed
         real(dp), allocatable :: delta(:, :)
+        real(dp) :: zone
         allocate (delta(size(c%state%u, 1), size(c%state%u, 2)))
         delta = 0.0_dp
         if (c%spec%speed_m_s > 0.0_dp .and. .not. c%spec%material%solid%is_elastic()) then
@@ -253,7 +255,11 @@ contains
             call relaxed%apply(fft, c%state%p, delta)
             delta = delta - c%state%u
         end if
-        call trailing_edge_energy(c%spec%law, c%state%g, delta, c%grid, radians(c%spec%direction_deg), &
+        associate (solid => c%spec%material%solid, w => c%spec%law%param(ADH_ENERGY), &
+                   s0 => c%spec%law%param(ADH_STRESS))
+            zone = pi*solid%e0_pa/(1.0_dp - solid%poisson**2)*w/(4.0_dp*s0**2)
+        end associate
+        call trailing_edge_energy(c%spec%law, c%state%g, delta, c%grid, radians(c%spec%direction_deg), zone, &
                                   c%trailing_edge_energy, c%trailing_edges)
     end subroutine edge_analysis
 
