@@ -39,7 +39,8 @@ contains
             new_unittest("sliding-force-is-the-dissipation", test_sliding_energy), &
             new_unittest("tolerance-below-round-off-ends", test_round_off_floor), &
             new_unittest("trailing-edge-rises-to-einf-over-e0", test_trailing_edge_rise), &
-            new_unittest("trailing-edge-dugdale-steady-crack", test_trailing_edge_dugdale) &
+            new_unittest("trailing-edge-dugdale-steady-crack", test_trailing_edge_dugdale), &
+            new_unittest("trailing-edge-rows-and-directions", test_trailing_edge_directions) &
             ]
     end subroutine collect_solver_gcg
 
@@ -325,20 +326,59 @@ contains
         end do
     end subroutine test_trailing_edge_dugdale
 
+    !> The trailing edge's measure along rows, columns and both senses: the wave of
+    !> test_trailing_edge_rise (1024 cells, range h/32: its zone at rest 4 cells) at v tau/lambda
+    !> = 0.01, solved as one row sliding along x (one edge), as 4 equal rows (4 edges), turned a
+    !> quarter (4 columns: the wave and the motion along y) and sliding along -x (the wave is
+    !> even, so the mirror image): the same G in each, to 1e-9 of it
+    subroutine test_trailing_edge_directions(error)
+        type(error_t), allocatable, intent(out) :: error
+        integer, parameter :: n = 1024
+        real(dp) :: w, g0
+        type(case_t) :: c
+        integer :: m
+        character(len=*), parameter :: names(4) = [character(len=16) :: 'one row', 'four rows', 'four columns', &
+                                                   'along -x']
+        w = 0.2_dp**2*pi**2*estar*amp**2/(2*lambda)
+        do m = 1, 4
+            call wave_case(n, 'exponential', w, amp/32, 0.1_dp*pi*estar*amp/lambda, 0.01_dp*lambda/tau, c, error, &
+                           rows=merge(4, 1, m == 2 .or. m == 3), turn=merge(90.0_dp, merge(180.0_dp, 0.0_dp, m == 4), &
+                           m == 3)); if (allocated(error)) return
+            call check(error, c%state%converged .and. c%trailing_edges == merge(4, 1, m == 2 .or. m == 3), &
+                       trim(names(m))//": converged, with "//str(c%trailing_edges)//" edges")
+            if (allocated(error)) return
+            if (m == 1) g0 = c%trailing_edge_energy
+            call report(trim(names(m))//": G/w", c%trailing_edge_energy/w)
+            call check(error, abs(c%trailing_edge_energy - g0) <= 1.0e-9_dp*g0, trim(names(m))//": G/w "// &
+                       str(c%trailing_edge_energy/w)//" against "//str(g0/w)); if (allocated(error)) return
+        end do
+    end subroutine test_trailing_edge_directions
+
     !> The case of the JKR wave on n cells (one row) with the adhesive law `law` of work `w`
     !> [J/m^2] and range `rho` [m] under the load p_mean [Pa], on the one-term solid (E0 = estar,
     !> Einf/E0 = ratio, nu = 0) sliding at `speed` [m/s] along x, to the tolerance 1e-10 or
-    !> `tolerance`
-    subroutine wave_case(n, law, w, rho, p_mean, speed, c, error, tolerance)
+    !> `tolerance`; as `rows` equal rows, or turned by `turn` [degree] (90: the wave and the motion
+    !> along y, the grid's sides swapped; 180: the motion along -x)
+    subroutine wave_case(n, law, w, rho, p_mean, speed, c, error, tolerance, rows, turn)
         integer, intent(in) :: n
         character(len=*), intent(in) :: law
         real(dp), intent(in) :: w, rho, p_mean, speed
         type(case_t), intent(out) :: c
         type(error_t), allocatable, intent(out) :: error
-        real(dp), intent(in), optional :: tolerance
+        real(dp), intent(in), optional :: tolerance, turn
+        integer, intent(in), optional :: rows
         type(config_t) :: cfg
+        integer :: k
         call default_config(cfg, 'edge')
-        cfg%grid%nx = n; cfg%grid%ny = 1; cfg%grid%lx_m = lambda; cfg%grid%ly_m = lambda/n
+        k = 1
+        if (present(rows)) k = rows
+        cfg%grid%nx = n; cfg%grid%ny = k; cfg%grid%lx_m = lambda; cfg%grid%ly_m = k*lambda/n
+        if (present(turn)) then
+            cfg%surface%direction_deg = turn; cfg%motion%direction_deg = turn
+            if (turn == 90.0_dp) then
+                cfg%grid%nx = k; cfg%grid%ny = n; cfg%grid%lx_m = k*lambda/n; cfg%grid%ly_m = lambda
+            end if
+        end if
         cfg%surface%kind = 'cosine'; cfg%surface%amplitude_m = amp; cfg%surface%wavelength_m = lambda
         cfg%material%model = 'one_term'; cfg%material%einf_pa = ratio*estar; cfg%material%ratio = ratio
         cfg%material%tau_s = tau; cfg%material%poisson = 0.0_dp
