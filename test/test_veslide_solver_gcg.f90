@@ -326,27 +326,33 @@ contains
         end do
     end subroutine test_trailing_edge_dugdale
 
-    !> The trailing edge's measure along rows, columns and both senses: the wave of
+    !> The trailing edge's measure along a row, a column and both senses: the wave of
     !> test_trailing_edge_rise (1024 cells, range h/32: its zone at rest 4 cells) at v tau/lambda
-    !> = 0.01, solved as one row sliding along x (one edge), as 4 equal rows (4 edges), turned a
-    !> quarter (4 columns: the wave and the motion along y) and sliding along -x (the wave is
-    !> even, so the mirror image): the same G in each, to 1e-9 of it
+    !> = 0.01, solved as one row sliding along x (one edge), turned a quarter (one column: the
+    !> wave and the motion along y) and sliding along -x (the wave is even, so the mirror image):
+    !> the same G in each, to 1e-9 of it. As 4 equal rows (a two-dimensional grid) it is not
+    !> measured: NaN, no edge (a line contact only, veslide_edges)
     subroutine test_trailing_edge_directions(error)
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 1024
         real(dp) :: w, g0
         type(case_t) :: c
         integer :: m
-        character(len=*), parameter :: names(4) = [character(len=16) :: 'one row', 'four rows', 'four columns', &
+        character(len=*), parameter :: names(4) = [character(len=16) :: 'one row', 'four rows', 'one column', &
                                                    'along -x']
         w = 0.2_dp**2*pi**2*estar*amp**2/(2*lambda)
         do m = 1, 4
             call wave_case(n, 'exponential', w, amp/32, 0.1_dp*pi*estar*amp/lambda, 0.01_dp*lambda/tau, c, error, &
-                           rows=merge(4, 1, m == 2 .or. m == 3), turn=merge(90.0_dp, merge(180.0_dp, 0.0_dp, m == 4), &
-                           m == 3)); if (allocated(error)) return
-            call check(error, c%state%converged .and. c%trailing_edges == merge(4, 1, m == 2 .or. m == 3), &
+                           rows=merge(4, 1, m == 2), turn=merge(90.0_dp, merge(180.0_dp, 0.0_dp, m == 4), m == 3))
+            if (allocated(error)) return
+            call check(error, c%state%converged .and. c%trailing_edges == merge(0, 1, m == 2), &
                        trim(names(m))//": converged, with "//str(c%trailing_edges)//" edges")
             if (allocated(error)) return
+            if (m == 2) then
+                call check(error, c%trailing_edge_energy /= c%trailing_edge_energy, "four rows: measured")
+                if (allocated(error)) return
+                cycle
+            end if
             if (m == 1) g0 = c%trailing_edge_energy
             call report(trim(names(m))//": G/w", c%trailing_edge_energy/w)
             call check(error, abs(c%trailing_edge_energy - g0) <= 1.0e-9_dp*g0, trim(names(m))//": G/w "// &
@@ -358,7 +364,7 @@ contains
     !> [J/m^2] and range `rho` [m] under the load p_mean [Pa], on the one-term solid (E0 = estar,
     !> Einf/E0 = ratio, nu = 0) sliding at `speed` [m/s] along x, to the tolerance 1e-10 or
     !> `tolerance`; as `rows` equal rows, or turned by `turn` [degree] (90: the wave and the motion
-    !> along y, the grid's sides swapped; 180: the motion along -x)
+    !> along y, the grid's sides swapped, `rows` columns; 180: the motion along -x)
     subroutine wave_case(n, law, w, rho, p_mean, speed, c, error, tolerance, rows, turn)
         integer, intent(in) :: n
         character(len=*), intent(in) :: law

@@ -6,8 +6,8 @@ What is checked, through the Python API on the namelist a user writes:
   p/p* = sin^2(pi a) - alpha sqrt(tan(pi a)) within 5e-3 (p* = pi E* h/lambda);
 - the adhesion scalars: the mean compressive less the mean tensile traction is the load, the
   law's parameters as given (the third from w = sigma0 rho), the force ratios NaN at a load <= 0;
-- the trailing edge's energy release rate: w for an elastic solid; not measured where the
-  patches are a few cells;
+- the trailing edge's energy release rate: w for an elastic solid; not measured on a
+  two-dimensional contact;
 - an adhesive law on a viscoelastic solid in motion is solved (the splitting of 'gcg').
 """
 import numpy as np
@@ -77,8 +77,8 @@ def test_approach_control_is_the_load_controlled_solution(exe, tmp_path):
 def test_adhesion_in_motion(exe, tmp_path):
     """A viscoelastic solid in motion with adhesion: 'auto' takes 'gcg' (its splitting, the
     operator not being symmetric), which converges on a small rough scene; the friction opposes
-    the motion and the tractions' parts still make the load; its patches of a few cells have no
-    trailing edge to measure."""
+    the motion and the tractions' parts still make the load; the trailing edges of a
+    two-dimensional contact are not measured."""
     g = params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8}, material={"model": "one_term"},
                motion={"speed_m_s": 0.1},
                adhesion={"law": "exponential", "energy_j_m2": 0.05, "range_m": 1e-9})
@@ -89,7 +89,7 @@ def test_adhesion_in_motion(exe, tmp_path):
     assert s["adhesive_pressure_pa"] > 0.0 and s["adhesive_area_fraction"] > 0.0
     assert s["compressive_pressure_pa"] - s["adhesive_pressure_pa"] == pytest.approx(s["mean_pressure_pa"],
                                                                                      rel=1e-9)
-    # no edge of these few-cell patches is a crack's: none measured, NaN (docs/adhesion.md)
+    # a two-dimensional contact: its edges' energy release rate is not measured (docs/adhesion.md)
     assert s["trailing_edges"] == 0 and np.isnan(s["trailing_edge_energy_j_m2"])
 
 
