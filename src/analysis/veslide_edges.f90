@@ -45,7 +45,7 @@ module veslide_edges
     use veslide_lapack, only: dgels
     implicit none
     private
-    public :: trailing_edge_energy
+    public :: trailing_edge_energy, edges_measured
 
     !> the most contact cells behind an edge that the misfit's polynomial is fitted to
     integer, parameter :: fit_cells = 32
@@ -72,19 +72,10 @@ contains
         real(dp), intent(out) :: energy
         integer, intent(out) :: edges
         real(dp), allocatable :: v(:, :), s(:, :), parts(:, :)
-        real(dp) :: cs, sn, totals(2), d(2), zone_cells
+        real(dp) :: totals(2), d(2), zone_cells
         integer :: axis, step, j
         energy = ieee_value(1.0_dp, ieee_quiet_nan); edges = 0
-        cs = cos(direction_rad); sn = sin(direction_rad)
-        ! the walk's step into the open side: along -v
-        if (abs(sn) <= 1.0e-9_dp .and. grid%ny == 1) then
-            axis = 1; step = -nint(sign(1.0_dp, cs))
-        else if (abs(cs) <= 1.0e-9_dp .and. grid%nx == 1) then
-            axis = 2; step = -nint(sign(1.0_dp, sn))
-            if (grid%is_distributed()) return
-        else
-            return
-        end if
+        if (.not. edges_measured(grid, direction_rad, axis, step)) return
         d = grid%spacing()
         zone_cells = zone/d(axis)
         v = law%energy(g)
@@ -110,6 +101,29 @@ contains
         edges = nint(totals(2))
         if (edges > 0) energy = totals(1)/totals(2)
     end subroutine trailing_edge_energy
+
+    !> Whether the trailing edges of a case on `grid` sliding at `direction_rad` from x are measured:
+    !> a line contact along the motion (one row along x, one column along y, the column not
+    !> distributed over processes); then the walk's `axis` (1: x, 2: y) and its `step` into an
+    !> edge's open side (along -v)
+    logical function edges_measured(grid, direction_rad, axis, step) result(yes)
+        type(grid_t), intent(in) :: grid
+        real(dp), intent(in) :: direction_rad
+        integer, intent(out), optional :: axis, step
+        real(dp) :: cs, sn
+        integer :: ax, st
+        cs = cos(direction_rad); sn = sin(direction_rad)
+        yes = .true.
+        if (abs(sn) <= 1.0e-9_dp .and. grid%ny == 1) then
+            ax = 1; st = -nint(sign(1.0_dp, cs))
+        else if (abs(cs) <= 1.0e-9_dp .and. grid%nx == 1 .and. .not. grid%is_distributed()) then
+            ax = 2; st = -nint(sign(1.0_dp, sn))
+        else
+            yes = .false.; ax = 0; st = 0
+        end if
+        if (present(axis)) axis = ax
+        if (present(step)) step = st
+    end function edges_measured
 
     !> The trailing edges of one grid line (periodic): the sum of their energy release rates
     !> `total` [J/m^2] and their number `count`; `step` (+1 or -1) the walk from an edge into its

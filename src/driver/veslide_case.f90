@@ -3,6 +3,7 @@
 !> veslide_quantities (the catalogue) and veslide_case_file (HDF5); the memory it needs:
 !> veslide_memory; the specification from an input: veslide_case_spec.
 module veslide_case
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use veslide_kinds, only: dp, pi, radians
     use veslide_contact_law, only: ADH_ENERGY, ADH_STRESS
     use veslide_error, only: error_t, fatal_error, add_context
@@ -29,7 +30,7 @@ module veslide_case
     use veslide_case_data, only: case_spec_t, case_t
     use veslide_case_spec, only: case_spec_of
     use veslide_validity, only: case_validity, check_surface_scale
-    use veslide_edges, only: trailing_edge_energy
+    use veslide_edges, only: trailing_edge_energy, edges_measured
     implicit none
     private
     public :: case_t, build_surface, build_kernel, case_grid, run_case, solve_prepared
@@ -237,7 +238,8 @@ contains
     end subroutine solve_prepared
 
     !> The energy release rate of an adhesive contact's trailing edges (veslide_edges), with the
-    !> relaxed solid's misfit u0 - u from the kernel at rest: zero for an elastic solid or at rest
+    !> relaxed solid's misfit u0 - u from the kernel at rest: zero for an elastic solid or at rest.
+    !> Only for a line contact along the motion (NaN otherwise, with nothing formed: no memory)
     subroutine edge_analysis(fft, c, error)
         type(fft2d_t), intent(inout) :: fft
         type(case_t), intent(inout) :: c
@@ -245,6 +247,9 @@ contains
         type(kernel_t) :: relaxed
         real(dp), allocatable :: delta(:, :)
         real(dp) :: zone
+        c%trailing_edge_energy = ieee_value(1.0_dp, ieee_quiet_nan); c%trailing_edges = 0
+        ! (a line contact along the motion only: nothing is formed otherwise)
+        if (.not. edges_measured(c%grid, radians(c%spec%direction_deg))) return
         allocate (delta(size(c%state%u, 1), size(c%state%u, 2)))
         delta = 0.0_dp
         if (c%spec%speed_m_s > 0.0_dp .and. .not. c%spec%material%solid%is_elastic()) then
