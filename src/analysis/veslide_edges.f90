@@ -10,7 +10,8 @@
 !> J integral of the relaxed solid over the edge's cohesive zone:
 !>   G = integral of sigma(g) d(g + Delta - P)
 !> from the edge's last closed cell along -v over the open cells, until the law's energy V(g) has
-!> risen to -1e-13 w (the attraction spent) or the next closed cell. Delta = u0 - u is the
+!> risen to -1e-3 w (the rest of the attraction, -V, added at the last step's d ghat/d g; a walk
+!> that meets the next closed cell first is not measured). Delta = u0 - u is the
 !> relaxed solid's misfit: u0 the displacement the solid at rest (the kernel at zero speed) would
 !> have under the case's traction, u the solid's own. P is the polynomial fitted (least squares) to
 !> Delta over the contact's cells behind the edge, up to `fit_cells` of them, of degree 3 from 16
@@ -18,7 +19,7 @@
 !> edge (the material there has been in contact a while), and P continues it across the edge, so
 !> that g + Delta - P is the relaxed solid's opening. Between neighbouring cells the integral is
 !> (d ghat/d g) (V(g_b) - V(g_a)), exact where ghat is linear in g: an elastic solid (Delta = 0)
-!> gives exactly V(g_end) - V(0) = w (1 - 1e-13) at every edge that opens fully.
+!> gives exactly w at every edge.
 !>
 !> An edge is measured when at least 16 contact cells lie behind it, at least `crack` (4) times the
 !> cohesive zone its G makes (a0 G/w, a0 = pi E0* w/(4 sigma0^2) the zone at rest: the zone grows
