@@ -305,3 +305,19 @@ def test_the_adhesion_example_input(exe, tmp_path):
     assert b.converged
     assert a.scalars["friction_coefficient"] > b.scalars["friction_coefficient"]
     assert a.scalars["contact_area_fraction"] > b.scalars["contact_area_fraction"]
+
+
+def test_the_trailing_edge_example_input(exe, tmp_path):
+    """inputs/adhesion/trailing_edge.nml (Johnson's wave sliding at v tau/lambda = 0.01, range
+    h/64) converges without a warning and reports one trailing edge whose energy release rate
+    lies between w and (Einf/E0) w (3.69 w: docs/adhesion.md, *Trailing edges*)"""
+    import f90nml
+    from pathlib import Path
+    nml = f90nml.read(Path(__file__).resolve().parents[2]/"inputs"/"adhesion"/"trailing_edge.nml")
+    p = {group: dict(values) for group, values in nml.items() if group != "output"}
+    r = veslide.run(p, output=tmp_path/"edge.h5", exe=exe, progress=None)
+    s = r.scalars
+    assert r.converged and r.warnings == []
+    w = p["adhesion"]["energy_j_m2"]
+    assert s["trailing_edges"] == 1
+    assert w < s["trailing_edge_energy_j_m2"] < p["material"]["ratio"]*w
