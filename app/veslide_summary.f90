@@ -71,6 +71,19 @@ contains
             r%get('mean_separation_m')/max(hrms, tiny(1.0_dp)), " h_rms)"
         lines = [lines, b]
         write (b, '(a,es12.5,a)') "  max pressure          ", r%get('max_pressure_pa'), " Pa"; lines = [lines, b]
+        if (c%spec%law%adhesive()) then
+            write (b, '(a,es12.5,a,f10.6,a)') "  adhesive pressure     ", r%get('adhesive_pressure_pa'), &
+                " Pa, under tension ", r%get('adhesive_area_fraction'), " of the area"
+            lines = [lines, b]
+            if (r%get('trailing_edges') > 0.0_dp) then
+                write (b, '(a,es12.5,a,f9.5,a,i0,a)') "  trailing edge         G = ", r%get('trailing_edge_energy_j_m2'), &
+                    " J/m^2 (", r%get('trailing_edge_energy_j_m2')/r%get('adhesion_energy_j_m2'), " w), ", &
+                    nint(r%get('trailing_edges')), " edge(s)"
+            else
+                b = "  trailing edge         not measured (a line contact's crack-like edges only: docs/adhesion.md)"
+            end if
+            lines = [lines, b]
+        end if
         if (.not. c%kernel%symmetric .or. c%spec%shear_coefficient > 0.0_dp) then
             write (b, '(a,es12.5)') "  friction coefficient  ", r%get('friction_coefficient'); lines = [lines, b]
             if (c%spec%shear_coefficient > 0.0_dp) then
