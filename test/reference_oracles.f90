@@ -97,10 +97,11 @@ contains
     !> compliance J(t) E0 = 1 - (1 - E0/Einf) exp(-t/tau)) at the speed v: the far field's energy
     !> release rate over the work of adhesion, G/w = r, as a function of v tau/a0 (a0 = pi E0* w/
     !> (4 sigma0^2), the zone at rest) and Einf/E0. Derivation (docs/adhesion.md, *Trailing
-    !> edges*): the stress is that of the elastic crack of the same K (the material flows from the
-    !> bonded side, whose displacement is prescribed, so its elastic response is); the zone's length
-    !> a = (pi/8) (K/sigma0)^2 = a0 r; a material point crossing the zone opens by the creep
-    !> integral of the elastic opening's increments, which the zone's end makes w/sigma0:
+    !> edges*): the stress is that of the elastic crack of the same K (each material point crosses
+    !> from the bonded side into the zone and then the free surface, so the region where tractions
+    !> are prescribed only grows along its path: Graham's and Schapery's correspondence); the
+    !> zone's length a = (pi/8) (K/sigma0)^2 = a0 r; a material point crossing the zone opens by
+    !> the creep integral of the elastic opening's increments, which the zone's end makes w/sigma0:
     !>   1/r = integral over xi in (0, 1) of J((1 - xi) a/v) E0 dD(xi),
     !> D(xi) = b - ((1 - b^2)/2) ln((1 + b)/(1 - b)), b = sqrt(xi), the relaxed elastic opening
     !> of the semi-infinite Dugdale crack over its end value (Schapery's and Greenwood's
@@ -125,7 +126,8 @@ contains
         do it = 1, 2000
             integral = 0.0_dp
             do k = 1, intervals
-                integral = integral + exp(-(1.0_dp - 0.5_dp*(xi(k) + xi(k - 1)))*r/speed_ratio)*(d(k) - d(k - 1))
+                integral = integral + &
+                           exp(-(1.0_dp - 0.5_dp*(xi(k) + xi(k - 1)))*r/speed_ratio)*(d(k) - d(k - 1))
             end do
             rn = 1.0_dp/(1.0_dp - (1.0_dp - 1.0_dp/einf_over_e0)*integral)
             if (abs(rn - r) <= 1.0e-12_dp*r) exit

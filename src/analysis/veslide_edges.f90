@@ -13,18 +13,20 @@
 !> risen to -1e-3 w (the rest of the attraction, -V, added at the last step's d ghat/d g; a walk
 !> that meets the next closed cell first is not measured). Delta = u0 - u is the
 !> relaxed solid's misfit: u0 the displacement the solid at rest (the kernel at zero speed) would
-!> have under the case's traction, u the solid's own. P is the polynomial fitted (least squares) to
-!> Delta over the contact's cells behind the edge, up to `fit_cells` of them, of degree 3 from 16
-!> cells, 2 from 6, 1 from 2 and 0 for one: the misfit is smooth on the contact side of an opening
-!> edge (the material there has been in contact a while), and P continues it across the edge, so
-!> that g + Delta - P is the relaxed solid's opening. Between neighbouring cells the integral is
-!> (d ghat/d g) (V(g_b) - V(g_a)), exact where ghat is linear in g: an elastic solid (Delta = 0)
-!> gives exactly w at every edge.
+!> have under the case's traction, u the solid's own. P is the cubic fitted (least squares) to
+!> Delta over the contact's cells behind the edge, up to `fit_cells` of them: the misfit is smooth
+!> on the contact side of an opening edge (the material there has been in contact a while), and P
+!> continues it across the edge, so that g + Delta - P is the relaxed solid's opening (a window of
+!> 64 to 256 cells moved the steady crack's G by 0.1 % and took the glassy limit from 10.002 to
+!> 10.04 w against Einf/E0 = 10, the window then spanning the wave's curvature). Between
+!> neighbouring cells the integral is (d ghat/d g) (V(g_b) - V(g_a)), exact where ghat is linear
+!> in g: an elastic solid (Delta = 0) gives exactly w at every edge.
 !>
 !> An edge is measured when at least 16 contact cells lie behind it, at least `crack` (4) times the
 !> cohesive zone its G makes (a0 G/w, a0 = pi E0* w/(4 sigma0^2) the zone at rest: the zone grows
-!> with K^2), and its attraction is spent before the next closed cell: else it is not a crack's
-!> edge (a long range's zone as wide as the contact read 10.37 w against Einf/E0 = 10 glassy).
+!> with K^2), its attraction is spent before the next closed cell, and its release is positive:
+!> else it is not an opening crack's edge (a long range's zone as wide as the contact read
+!> 10.37 w against Einf/E0 = 10 glassy).
 !>
 !> The closing (leading) edge has no measure of this form: the material there has just entered
 !> the contact, and its misfit changes over v tau from the edge, so no fit on the contact side
@@ -73,83 +75,82 @@ contains
         real(dp), intent(out) :: energy
         integer, intent(out) :: edges
         real(dp), allocatable :: v(:, :), s(:, :), parts(:, :)
-        real(dp) :: totals(2), d(2), zone_cells
-        integer :: axis, step, j
+        real(dp) :: totals(2), d(2), zone_cells, w
+        integer :: axis, step, n_edges
         energy = ieee_value(1.0_dp, ieee_quiet_nan); edges = 0
         if (.not. edges_measured(grid, direction_rad, axis, step)) return
         d = grid%spacing()
         zone_cells = zone/d(axis)
+        w = law%param(ADH_ENERGY)
         v = law%energy(g)
         s = law%attraction(g)
-        if (axis == 1) then
-            allocate (parts(2, size(g, 2)))
-            do j = 1, size(g, 2)
-                call line_edges(law%param(ADH_ENERGY), zone_cells, g(:, j), delta(:, j), v(:, j), s(:, j), &
-                                step, parts(1, j), parts(2, j))
-            end do
-        else
-            allocate (parts(2, size(g, 1)))
-            do j = 1, size(g, 1)
-                call line_edges(law%param(ADH_ENERGY), zone_cells, g(j, :), delta(j, :), v(j, :), s(j, :), &
-                                step, parts(1, j), parts(2, j))
-            end do
+        ! the one line: a row (held by one process of a distributed grid, none on the others) or
+        ! a column
+        allocate (parts(2, size(g, 3 - axis)))
+        if (size(parts, 2) > 0) then
+            if (axis == 1) then
+                call line_edges(w, zone_cells, g(:, 1), delta(:, 1), v(:, 1), s(:, 1), step, &
+                                parts(1, 1), n_edges)
+            else
+                call line_edges(w, zone_cells, g(1, :), delta(1, :), v(1, :), s(1, :), step, &
+                                parts(1, 1), n_edges)
+            end if
+            parts(2, 1) = real(n_edges, dp)
         end if
-        if (axis == 1) then
-            call ordered_sum(grid, parts, totals)
-        else
-            totals = sum(parts, dim=2)
-        end if
+        call ordered_sum(grid, parts, totals)
         edges = nint(totals(2))
         if (edges > 0) energy = totals(1)/totals(2)
     end subroutine trailing_edge_energy
 
-    !> Whether the trailing edges of a case on `grid` sliding at `direction_rad` from x are measured:
-    !> a line contact along the motion (one row along x, one column along y, the column not
-    !> distributed over processes); then the walk's `axis` (1: x, 2: y) and its `step` into an
+    !> Whether the trailing edges of a case on `grid` sliding at `direction_rad` from x are
+    !> measured: a line contact along the motion (one row along x, one column along y, the column
+    !> not distributed over processes); then the walk's `axis` (1: x, 2: y) and its `step` into an
     !> edge's open side (along -v)
     logical function edges_measured(grid, direction_rad, axis, step) result(yes)
         type(grid_t), intent(in) :: grid
         real(dp), intent(in) :: direction_rad
         integer, intent(out), optional :: axis, step
         real(dp) :: cs, sn
-        integer :: ax, st
+        integer :: axis_, step_
         cs = cos(direction_rad); sn = sin(direction_rad)
         yes = .true.
         if (abs(sn) <= 1.0e-9_dp .and. grid%ny == 1) then
-            ax = 1; st = -nint(sign(1.0_dp, cs))
+            axis_ = 1; step_ = -nint(sign(1.0_dp, cs))
         else if (abs(cs) <= 1.0e-9_dp .and. grid%nx == 1 .and. .not. grid%is_distributed()) then
-            ax = 2; st = -nint(sign(1.0_dp, sn))
+            axis_ = 2; step_ = -nint(sign(1.0_dp, sn))
         else
-            yes = .false.; ax = 0; st = 0
+            yes = .false.; axis_ = 0; step_ = 0
         end if
-        if (present(axis)) axis = ax
-        if (present(step)) step = st
+        if (present(axis)) axis = axis_
+        if (present(step)) step = step_
     end function edges_measured
 
     !> The trailing edges of one grid line (periodic): the sum of their energy release rates
-    !> `total` [J/m^2] and their number `count`; `step` (+1 or -1) the walk from an edge into its
+    !> `total` [J/m^2] and their number `edges`; `step` (+1 or -1) the walk from an edge into its
     !> open side, `w` the work of adhesion, `zone_cells` the cohesive zone at rest in cells along
     !> the line, `v` and `s` the law's energy and attraction at `g`
-    subroutine line_edges(w, zone_cells, g, delta, v, s, step, total, count)
+    subroutine line_edges(w, zone_cells, g, delta, v, s, step, total, edges)
         real(dp), intent(in) :: w, zone_cells, g(:), delta(:), v(:), s(:)
         integer, intent(in) :: step
-        real(dp), intent(out) :: total, count
-        real(dp) :: coef(fit_cells), gh_a, gh_b, release, ratio
-        integer :: n, i, a, b, k, m, deg, run
+        real(dp), intent(out) :: total
+        integer, intent(out) :: edges
+        real(dp) :: coef(4), gh_a, gh_b, release, ratio
+        integer :: n, i, a, b, k, m, run
         logical :: opened
         n = size(g)
-        total = 0.0_dp; count = 0.0_dp
+        total = 0.0_dp; edges = 0
         do i = 1, n
             ! an edge: a closed cell whose neighbour along -v is open
             if (.not. (g(i) <= 0.0_dp .and. g(wrap(i + step)) > 0.0_dp)) cycle
-            call fit_misfit(i, m, deg, coef)
-            if (m < fit_min) cycle
-            ! the contact's length behind the edge
-            run = m
+            ! the contact's length behind it, and the misfit's cubic over up to fit_cells of it
+            run = 1
             do while (run < n)
                 if (g(wrap(i - run*step)) > 0.0_dp) exit
                 run = run + 1
             end do
+            if (run < fit_min) cycle
+            m = min(run, fit_cells)
+            call fit_misfit(i, m, coef)
             release = 0.0_dp; ratio = 1.0_dp
             a = i
             opened = .false.
@@ -171,9 +172,11 @@ contains
                 end if
             end do
             if (.not. opened) cycle
-            ! (a zone that is not short against the contact: not a crack's edge)
+            ! (no release, or a NaN: not an opening crack's; a zone that is not short against the
+            ! contact: not a crack's edge)
+            if (.not. (release > 0.0_dp)) cycle
             if (run < crack*zone_cells*release/w) cycle
-            total = total + release; count = count + 1.0_dp
+            total = total + release; edges = edges + 1
         end do
     contains
         pure integer function wrap(k) result(kk)
@@ -186,47 +189,30 @@ contains
             integer, intent(in) :: x
             integer :: e
             real(dp) :: t
-            t = real(x, dp)/real(max(m - 1, 1), dp)
+            t = real(x, dp)/real(m - 1, dp)
             y = 0.0_dp
-            do e = deg + 1, 1, -1
+            do e = 4, 1, -1
                 y = y*t + coef(e)
             end do
         end function poly
 
-        !> The misfit's polynomial over the closed cells behind edge `i` (at -(j - 1) cells along the
-        !> walk for the j-th, up to fit_cells): their number `m`, its degree `deg` and coefficients
-        !> in t = x/(m - 1)
-        subroutine fit_misfit(i, m, deg, coef)
-            integer, intent(in) :: i
-            integer, intent(out) :: m, deg
-            real(dp), intent(out) :: coef(fit_cells)
-            real(dp) :: amat(fit_cells, 4), work(256)
-            integer :: cellsj(fit_cells), j, e, info
-            m = 0
-            do j = 1, min(fit_cells, n)
-                cellsj(j) = wrap(i - (j - 1)*step)
-                if (g(cellsj(j)) > 0.0_dp) exit
-                m = j
-            end do
-            deg = 0
-            if (m >= 2) deg = 1
-            if (m >= 6) deg = 2
-            if (m >= 16) deg = 3
-            coef = 0.0_dp
-            if (deg == 0) then
-                coef(1) = delta(i); return
-            end if
+        !> The misfit's cubic over the `m` (fit_min to fit_cells) closed cells behind edge `i`, the
+        !> j-th at -(j - 1) cells along the walk: its coefficients in t = x/(m - 1)
+        subroutine fit_misfit(i, m, coef)
+            integer, intent(in) :: i, m
+            real(dp), intent(out) :: coef(4)
+            real(dp) :: amat(fit_cells, 4), rhs(fit_cells), work(256)
+            integer :: j, e, info
             do j = 1, m
-                do e = 1, deg + 1
+                do e = 1, 4
                     amat(j, e) = (-real(j - 1, dp)/real(m - 1, dp))**(e - 1)
                 end do
-                coef(j) = delta(cellsj(j))
+                rhs(j) = delta(wrap(i - (j - 1)*step))
             end do
-            call dgels('N', m, deg + 1, 1, amat, fit_cells, coef, fit_cells, work, size(work), info)
-            if (info /= 0) then
-                ! (not of full rank: cannot happen for distinct points; the edge's own misfit)
-                coef = 0.0_dp; coef(1) = delta(i); deg = 0
-            end if
+            call dgels('N', m, 4, 1, amat, fit_cells, rhs, fit_cells, work, size(work), info)
+            coef = rhs(1:4)
+            ! (not of full rank: cannot happen for distinct points; the edge's own misfit)
+            if (info /= 0) coef = [delta(i), 0.0_dp, 0.0_dp, 0.0_dp]
         end subroutine fit_misfit
     end subroutine line_edges
 
