@@ -76,8 +76,9 @@ contains
                 " Pa, under tension ", r%get('adhesive_area_fraction'), " of the area"
             lines = [lines, b]
             if (r%get('trailing_edges') > 0.0_dp) then
-                write (b, '(a,es12.5,a,f9.5,a,i0,a)') "  trailing edge         G = ", r%get('trailing_edge_energy_j_m2'), &
-                    " J/m^2 (", r%get('trailing_edge_energy_j_m2')/r%get('adhesion_energy_j_m2'), " w), ", &
+                write (b, '(a,es12.5,a,f9.5,a,i0,a)') "  trailing edge         G = ", &
+                    r%get('trailing_edge_energy_j_m2'), " J/m^2 (", &
+                    r%get('trailing_edge_energy_j_m2')/r%get('adhesion_energy_j_m2'), " w), ", &
                     nint(r%get('trailing_edges')), " edge(s)"
             else
                 b = "  trailing edge         not measured (a line contact's crack-like edges only: docs/adhesion.md)"
