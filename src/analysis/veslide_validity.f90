@@ -29,7 +29,7 @@ module veslide_validity
     use veslide_collective, only: halo_rows, ordered_sum, global_max
     use veslide_fields, only: field_max
     use veslide_material, only: material_t, layer_factor
-    use veslide_contact_law, only: contact_law_t, ADH_ENERGY, ADH_STRESS
+    use veslide_contact_law, only: contact_law_t
     use veslide_warning, only: warning_t, measure_t, add_warning, add_measure, WARNS_NEVER, WARNS_ABOVE, &
                                WARNS_BELOW
     use veslide_case_data, only: case_t, case_spec_t
@@ -357,15 +357,13 @@ contains
             d = c%grid%spacing()
             cell = d(1)
             if (c%grid%ny > 1) cell = max(d(1), d(2))
-            associate (w => c%spec%law%param(ADH_ENERGY), s0 => c%spec%law%param(ADH_STRESS))
-                zone = pi*e0s*w/(4.0_dp*s0**2)
-                call measure('adhesion_zone_cells', zone/cell, '-', WARNS_BELOW, zone_cells_min, &
-                    'adhesion-zone-unresolved', "the adhesive law's cohesive zone, pi E0* w/(4 sigma0^2) = "// &
-                    sig(zone)//" m, is "//sig(zone/cell, 2)//" of a cell (below "//sig(zone_cells_min)// &
-                    "): the contact's edges are trapped between cells, and the contact at a load depends on"// &
-                    " the path to it (the JKR wave's by 12 % at half a cell, by 35 to 130 % at a quarter and"// &
-                    " below; docs/validity.md); refine the grid, or widen the range (&adhesion range_m)")
-            end associate
+            zone = c%spec%law%zone(e0s)
+            call measure('adhesion_zone_cells', zone/cell, '-', WARNS_BELOW, zone_cells_min, &
+                'adhesion-zone-unresolved', "the adhesive law's cohesive zone, pi E0* w/(4 sigma0^2) = "// &
+                sig(zone)//" m, is "//sig(zone/cell, 2)//" of a cell (below "//sig(zone_cells_min)// &
+                "): the contact's edges are trapped between cells, and the contact at a load depends on"// &
+                " the path to it (the JKR wave's by 12 % at half a cell, by 35 to 130 % at a quarter and"// &
+                " below; docs/validity.md); refine the grid, or widen the range (&adhesion range_m)")
         end subroutine zone_measure
 
         !> The largest loss tangent over the frequencies |q| v the surface excites (q in its band)

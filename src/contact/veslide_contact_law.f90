@@ -38,7 +38,7 @@
 !> that applies a law (veslide_contact_passes, veslide_dr_passes, veslide_anderson_passes), its
 !> column in the solver table, and its input group (docs/development.md).
 module veslide_contact_law
-    use veslide_kinds, only: dp
+    use veslide_kinds, only: dp, pi
     use veslide_strings, only: name_index
     implicit none
     private
@@ -73,6 +73,7 @@ module veslide_contact_law
         procedure :: repulsive => law_repulsive
         procedure :: energy => law_energy
         procedure :: closed => law_closed
+        procedure :: zone => law_zone
     end type contact_law_t
 
 contains
@@ -149,6 +150,15 @@ contains
             end select
         end associate
     end function law_energy
+
+    !> The law's cohesive zone [m] on a solid of contact modulus `modulus` [Pa]: l = pi E* w/(4
+    !> sigma0^2), the length over which the attraction acts beside a contact edge at rest (Maugis's
+    !> and Dugdale's zone in the JKR limit, with sigma0 = w/rho for the exponential law)
+    elemental real(dp) function law_zone(self, modulus) result(l)
+        class(contact_law_t), intent(in) :: self
+        real(dp), intent(in) :: modulus
+        l = pi*modulus*self%param(ADH_ENERGY)/(4.0_dp*self%param(ADH_STRESS)**2)
+    end function law_zone
 
     !> The closed cells of an adhesive law's solution: gap exactly zero (the solvers close a cell
     !> by setting its gap to 0; a fresh gap from K p is zero there to round-off only, so the

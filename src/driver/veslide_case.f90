@@ -4,8 +4,7 @@
 !> veslide_memory; the specification from an input: veslide_case_spec.
 module veslide_case
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-    use veslide_kinds, only: dp, pi, radians
-    use veslide_contact_law, only: ADH_ENERGY, ADH_STRESS
+    use veslide_kinds, only: dp, radians
     use veslide_error, only: error_t, fatal_error, add_context
     use veslide_clock, only: wall_seconds
     use veslide_config, only: config_t
@@ -260,9 +259,8 @@ contains
             call relaxed%apply(fft, c%state%p, delta)
             delta = delta - c%state%u
         end if
-        associate (solid => c%spec%material%solid, w => c%spec%law%param(ADH_ENERGY), &
-                   s0 => c%spec%law%param(ADH_STRESS))
-            zone = pi*solid%e0_pa/(1.0_dp - solid%poisson**2)*w/(4.0_dp*s0**2)
+        associate (solid => c%spec%material%solid)
+            zone = c%spec%law%zone(solid%e0_pa/(1.0_dp - solid%poisson**2))
         end associate
         call trailing_edge_energy(c%spec%law, c%state%g, delta, c%grid, radians(c%spec%direction_deg), zone, &
                                   c%trailing_edge_energy, c%trailing_edges)
