@@ -77,6 +77,8 @@ module veslide_contact
         !> where the solver's own residual stalled at its round-off, in units of the problem's
         !> pressure scale ('gcg': the adhesive gradient's largest entry); 0 where it did not
         real(dp) :: round_off = 0.0_dp
+        !> gcg's splitting retuned its mean mode's metric (docs/adhesion.md, *Sliding*)
+        logical :: mean_metric_retuned = .false.
         character(len=:), allocatable :: method  !! name of the method used
         character(len=3) :: device = 'cpu'      !! where it was solved: 'cpu' or 'gpu'
         !> on the device: the time of its set-up (memory, cuFFT plans), uploads and downloads [s]

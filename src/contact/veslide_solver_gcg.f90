@@ -76,7 +76,11 @@
 !> curvature).
 !> Under load control the metric takes the mean mode too (at the softest mode's stiffness) and
 !> the load is T's constant part (T(g) = A (g + h) + p_mean): one loop, no secant, the inner
-!> solves free of the mean gap; under approach control they hold it. The start
+!> solves free of the mean gap; under approach control they hold it. A sparse contact is far
+!> softer than that mode, and its mean gap then converges slowly: where it does, the mean's
+!> metric is retuned once to the contact's stiffness read from that rate, and restored for the
+!> last digits (retune_mean; docs/adhesion.md: 0.48 to 1.07 times the FFT pairs over 90 scenes,
+!> 0.79 in all). The start
 !> z = y + gamma M^-1 A (y + h) is the fixed point's z where y is the solution (a warm start).
 !> Every pass over the grid is a named procedure with a CPU twin and a CUDA twin
 !> (veslide_gcg_passes), so the solve runs where its fields are: on the host, or on the device
@@ -133,6 +137,13 @@ module veslide_solver_gcg
     !> the splitting's metric is floored at the law's steepest slope and the splitting restarted
     !> from y, once (floor_metric; docs/adhesion.md: a contact near full that cycled)
     integer, parameter :: rescue_after = 4
+    !> the mean mode's metric under load control (retune_mean; docs/adhesion.md): the mean gap
+    !> is read every `mean_window` outer iterations; where three readings say it converges at
+    !> `slow_mean` or slower an outer iteration, the metric is retuned to the contact's
+    !> stiffness, at least `least_mean` of the softest mode's (a tenth: the one estimate of 0.023
+    !> stalled a solve at 3e-10), and restored once the residual is below `restore_below`
+    integer, parameter :: mean_window = 3
+    real(dp), parameter :: slow_mean = 0.6_dp, least_mean = 0.1_dp, restore_below = 1.0e-4_dp
 
 contains
 
@@ -182,6 +193,9 @@ contains
         integer :: inner_cap
         !> the splitting's metric has been floored at the law's stiffness (see floor_metric)
         logical :: floored
+        !> the mean mode's metric was retuned (retune_mean), and restored to `m_first`
+        logical :: retuned, restored
+        real(dp) :: m_first
         type(progress_ticker_t) :: ticker
 
         nx = f%p%n1; ny = f%p%n2
@@ -222,7 +236,7 @@ contains
         end if
         call kd%destroy()
         floor_tol = round_off_floor()
-        reached = 0.0_dp; at_floor = .false.; floored = .false.
+        reached = 0.0_dp; at_floor = .false.; floored = .false.; retuned = .false.; restored = .false.
         softest = lowest_compliance()
         hold_mean = .true.
         if (split) then
@@ -297,6 +311,7 @@ contains
             tol = tol/10
         end do
         state%round_off = reached
+        state%mean_metric_retuned = retuned
         call hn%destroy(); call g%destroy(); call t%destroy(); call r%destroy(); call at%destroy(); call pz%destroy()
         call free%destroy(); call edge%destroy(); call a_s%destroy(); call k_s%destroy()
         if (split) then
@@ -420,8 +435,11 @@ contains
             real(dp), parameter :: inner_fraction = 0.3_dp
             real(dp) :: err, lam, ptmp, best, err_check
             logical :: iok
-            integer :: n_outer, n_best, n_doubled
+            integer :: n_outer, n_best, n_doubled, n_snap
+            !> the mean gap read every mean_window outer iterations (the last n_snap of 3)
+            real(dp) :: snaps(3)
             ok = .false.; tight = .false.
+            n_snap = 0; snaps = 0.0_dp
             best = huge(1.0_dp); n_outer = 0; n_best = 0
             inner_cap = inner_steps; err_check = huge(1.0_dp)
             n_doubled = 0
@@ -466,6 +484,24 @@ contains
                             inner_cap = inner_steps; n_doubled = 0
                         end if
                     end if
+                end if
+                ! (under load control, a mean gap that converges slowly: its metric retuned once;
+                ! not where the inner solves' bound has doubled or the metric is floored, where the
+                ! slowness is the splitting's own; restored for the last digits)
+                if (.not. (hold_mean .or. retuned .or. floored) .and. inner_cap == inner_steps .and. &
+                    mod(n_outer, mean_window) == 0) then
+                    snaps = eoshift(snaps, 1, dbar); n_snap = min(n_snap + 1, 3)
+                    if (n_snap == 3) then
+                        ptmp = retune_mean(snaps)
+                        if (ptmp > 0.0_dp) then
+                            m_first = mean_metric
+                            call set_mean_metric(ptmp)
+                            retuned = .true.
+                        end if
+                    end if
+                end if
+                if (retuned .and. .not. restored .and. err < restore_below) then
+                    call set_mean_metric(m_first); restored = .true.
                 end if
                 if (err < 0.9_dp*best) then
                     best = err; n_best = n_outer
@@ -830,6 +866,41 @@ contains
             call global_any(problem%kernel%grid, changed)
             if (changed .and. dev) call a_s%upload(ainv)
         end function floor_metric
+
+        !> The mean mode's metric for the contact's stiffness, from three mean gaps `d3` read
+        !> `mean_window` outer iterations apart; 0 where they do not converge slowly. A model of
+        !> one mode: where the operator has no stiffness (the mean mode of A is zero: the load is
+        !> its constant part) and the law's side b, over-relaxed by lambda, the error falls by
+        !> rate = 1 - lambda b/(m + b) an outer iteration in the metric m: b is read from the
+        !> rate, and m = (lambda - 1) b makes it zero
+        real(dp) function retune_mean(d3) result(m_new)
+            real(dp), intent(in) :: d3(3)
+            real(dp) :: e1, e2, rate, b
+            m_new = 0.0_dp
+            e1 = d3(2) - d3(1); e2 = d3(3) - d3(2)
+            if (.not. (e1*e2 > 0.0_dp .and. abs(e2) < abs(e1))) return
+            rate = (e2/e1)**(1.0_dp/mean_window)
+            if (rate < slow_mean) return
+            b = mean_metric*(1.0_dp - rate)/(relaxation - 1.0_dp + rate)
+            m_new = max((relaxation - 1.0_dp)*b, least_mean*mean_metric)
+        end function retune_mean
+
+        !> The mean mode's metric set to `m_new`, M (z - y) kept on it (so z's other modes, and
+        !> their progress, are kept)
+        subroutine set_mean_metric(m_new)
+            real(dp), intent(in) :: m_new
+            real(dp) :: m_old
+            integer :: ia, ib
+            m_old = mean_metric
+            do ib = 1, size(ainv, 2)
+                do ia = 1, size(ainv, 1)
+                    if (wavenumber(ia, ib) == 0.0_dp) ainv(ia, ib) = m_new/(cells*gamma)
+                end do
+            end do
+            mean_metric = m_new
+            if (dev) call a_s%upload(ainv)
+            call subtract(z, -(m_old/m_new - 1.0_dp)*(total(z) - total(g))/cells)
+        end subroutine set_mean_metric
 
         !> sum over the whole grid, row by row and then over the rows in order
         real(dp) function total(a) result(s)
