@@ -201,7 +201,7 @@ contains
 
     !> test_adhesive's checks on the profiles of the elastic or `viscoelastic` half, and on the
     !> elastic layered scenes with the elastic half (the viscoelastic layered scenes with
-    !> adhesion: docs/adhesion.md, not a test: 16 of 90 do not converge)
+    !> adhesion: docs/adhesion.md, not a test: 36 of 180 do not converge, each saying so)
     subroutine run_adhesive(viscoelastic, error)
         logical, intent(in) :: viscoelastic
         type(error_t), allocatable, intent(out) :: error
