@@ -434,6 +434,8 @@ contains
             logical, intent(out) :: ok
             real(dp), parameter :: inner_fraction = 0.3_dp
             real(dp) :: err, lam, ptmp, best, err_check
+            !> the mean mode's metric retune_mean gives (0: none)
+            real(dp) :: m_tuned
             logical :: iok
             integer :: n_outer, n_best, n_doubled, n_snap
             !> the mean gap read every mean_window outer iterations (the last n_snap of 3)
@@ -492,10 +494,10 @@ contains
                     mod(n_outer, mean_window) == 0) then
                     snaps = eoshift(snaps, 1, dbar); n_snap = min(n_snap + 1, 3)
                     if (n_snap == 3) then
-                        ptmp = retune_mean(snaps)
-                        if (ptmp > 0.0_dp) then
+                        m_tuned = retune_mean(snaps)
+                        if (m_tuned > 0.0_dp) then
                             m_first = mean_metric
-                            call set_mean_metric(ptmp)
+                            call set_mean_metric(m_tuned)
                             retuned = .true.
                         end if
                     end if
