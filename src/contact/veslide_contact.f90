@@ -79,6 +79,9 @@ module veslide_contact
         real(dp) :: round_off = 0.0_dp
         !> gcg's splitting retuned its mean mode's metric (docs/adhesion.md, *Sliding*)
         logical :: mean_metric_retuned = .false.
+        !> gcg's splitting: the inner steps that clipped a few cells and kept the conjugacy
+        !> (docs/adhesion.md, *Sliding*)
+        integer :: kept_conjugacy_steps = 0
         character(len=:), allocatable :: method  !! name of the method used
         character(len=3) :: device = 'cpu'      !! where it was solved: 'cpu' or 'gpu'
         !> on the device: the time of its set-up (memory, cuFFT plans), uploads and downloads [s]

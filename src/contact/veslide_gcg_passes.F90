@@ -249,7 +249,8 @@ contains
 
     !> g = max(g - tau t, 0); Dugdale's law (`law`, range `rho`): a cell whose step crossed the
     !> zone's edge stops there (g = rho, edge = 1; edge = 0 elsewhere). rows(1, j) = the cells of
-    !> row j stopped; gmin = the least g - tau t (this process's)
+    !> row j stopped, rows(2, j) = the cells of row j clipped (g - tau t < 0); gmin = the least
+    !> g - tau t (this process's)
     subroutine gcg_step(law, rho, g, t, tau, edge, rows, gmin)
         integer, intent(in) :: law
         real(dp), intent(in) :: rho, tau
@@ -258,18 +259,17 @@ contains
         type(iarray_t), intent(inout) :: edge
         real(dp), intent(out) :: rows(:, :), gmin
 #ifdef VESLIDE_CUDA
-        real(dp) :: out(2, g%n2)
+        real(dp) :: out(3, g%n2)
         if (g%device) then
-            call device_rows(ROWS_STEP, 2, law, 0.0_dp, rho, g%d, t%d, c_null_ptr, c_null_ptr, c_null_ptr, edge%d, &
+            call device_rows(ROWS_STEP, 3, law, 0.0_dp, rho, g%d, t%d, c_null_ptr, c_null_ptr, c_null_ptr, edge%d, &
                              tau, 0.0_dp, out, g%n1)
-            rows(1, :) = out(1, :); gmin = minval(out(2, :)); return
+            rows(1:2, :) = out(1:2, :); gmin = minval(out(3, :)); return
         end if
 #endif
         if (law == LAW_DUGDALE) then
             call step_dugdale(rho, g%h, t%h, tau, edge%h, rows, gmin)
         else
-            call step_smooth(g%h, t%h, tau, gmin)
-            rows = 0.0_dp
+            call step_smooth(g%h, t%h, tau, rows, gmin)
         end if
     end subroutine gcg_step
 
@@ -602,20 +602,23 @@ contains
         !$omp end parallel do
     end subroutine curvature_cpu
 
-    subroutine step_smooth(g, t, tau, gmin)
+    subroutine step_smooth(g, t, tau, rows, gmin)
         real(dp), intent(inout) :: g(:, :)
         real(dp), intent(in) :: t(:, :), tau
-        real(dp), intent(out) :: gmin
+        real(dp), intent(out) :: rows(:, :), gmin
         integer :: i, j
-        real(dp) :: v
+        real(dp) :: v, c
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, v) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, v, c) reduction(min:gmin)
         do j = 1, size(g, 2)
+            c = 0.0_dp
             do i = 1, size(g, 1)
                 v = g(i, j) - tau*t(i, j)
                 gmin = min(gmin, v)
+                if (v < 0.0_dp) c = c + 1.0_dp
                 g(i, j) = max(v, 0.0_dp)
             end do
+            rows(1, j) = 0.0_dp; rows(2, j) = c
         end do
         !$omp end parallel do
     end subroutine step_smooth
@@ -626,16 +629,18 @@ contains
         integer(int8), intent(out) :: edge(:, :)
         real(dp), intent(out) :: rows(:, :), gmin
         integer :: i, j
-        real(dp) :: v, s
+        real(dp) :: v, s, c
         logical :: below, stop_here
         gmin = huge(1.0_dp)
-        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) private(i, v, s, below, stop_here) reduction(min:gmin)
+        !$omp parallel do schedule(static) if (threaded(size(g), size(g, 2))) &
+        !$omp private(i, v, s, c, below, stop_here) reduction(min:gmin)
         do j = 1, size(g, 2)
-            s = 0.0_dp
+            s = 0.0_dp; c = 0.0_dp
             do i = 1, size(g, 1)
                 below = g(i, j) < rho
                 v = g(i, j) - tau*t(i, j)
                 gmin = min(gmin, v)
+                if (v < 0.0_dp) c = c + 1.0_dp
                 v = max(v, 0.0_dp)
                 ! (the step's start g - (-tau t) from the clipped end, as the array form had it)
                 stop_here = (below .and. v > rho) .or. (.not. below .and. v < rho .and. v - (-tau*t(i, j)) > rho)
@@ -645,7 +650,7 @@ contains
                 g(i, j) = v
                 edge(i, j) = merge(1_int8, 0_int8, stop_here)
             end do
-            rows(1, j) = s
+            rows(1, j) = s; rows(2, j) = c
         end do
         !$omp end parallel do
     end subroutine step_dugdale

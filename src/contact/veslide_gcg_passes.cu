@@ -145,7 +145,8 @@ struct curvature_f {
     }
 };
 
-// g = max(g - tau t, 0), stopped at Dugdale's edge; sums: [cells stopped]; minima: [g - tau t]
+// g = max(g - tau t, 0), stopped at Dugdale's edge; sums: [cells stopped, cells clipped];
+// minima: [g - tau t]
 struct step_f {
     double *g;
     const double *t;
@@ -158,6 +159,7 @@ struct step_f {
         bool below = g[n] < rho;
         double v = g[n] - tau * t[n];
         m[0] = fmin(m[0], v);
+        if (v < 0.0) s[1] += 1.0;
         v = fmax(v, 0.0);
         if (dugdale) {
             bool stop = (below && v > rho) || (!below && v < rho && v - (-(tau * t[n])) > rho);
@@ -301,7 +303,7 @@ void veslide_gcg_rows(int mode, int flag, double s0, double rho, int nx, int ny,
     case DIRECTION: vs::reduce_rows<1, 0>(direction_f{a, b, c, free, x1, nx}, nx, ny, rows); break;
     case CURVATURE: vs::reduce_rows<4, 0>(curvature_f{a, b, free, nx}, nx, ny, rows); break;
     case STEP:
-        vs::reduce_rows<1, 1>(step_f{a, b, edge, x1, rho, flag == vs::law_dugdale, nx}, nx, ny, rows);
+        vs::reduce_rows<2, 1>(step_f{a, b, edge, x1, rho, flag == vs::law_dugdale, nx}, nx, ny, rows);
         break;
     case GAP_SUMS: vs::reduce_rows<2, 0>(gap_sums_f{a, flag != 0, nx}, nx, ny, rows); break;
     case SHIFT_OPEN: vs::reduce_rows<0, 1>(shift_open_f{a, x1, nx}, nx, ny, rows); break;

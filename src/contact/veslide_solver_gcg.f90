@@ -26,8 +26,9 @@
 !>   tau = <r, t>/<t, A t> (A's curvature alone, as Polonsky and Keer and Rey et al.: that of V
 !>   is negative and would stall the step where the law is steepest), g <- max(g - tau t, 0)
 !>   with delta = 0 after a step that closed a cell (the conjugacy restarts; also where
-!>   <r, z> <= 0, which a preconditioned direction never gives in exact arithmetic), and the open
-!>   cells shifted to keep the mean gap d.
+!>   <r, z> <= 0, which a preconditioned direction never gives in exact arithmetic; in the
+!>   splitting's inner solves not after a step that closed only a few cells, few_clipped), and
+!>   the open cells shifted to keep the mean gap d.
 !> Converged when max |r| over the open cells and max(-r) over the closed ones are below the
 !> tolerance (in units of the pressure scale). An iteration costs the FFT pair of A t, one more
 !> for P where it is taken, and one for A (g + h) afresh after a step that clipped or shifted a
@@ -144,6 +145,14 @@ module veslide_solver_gcg
     !> stalled a solve at 3e-10), and restored once the residual is below `restore_below`
     integer, parameter :: mean_window = 3
     real(dp), parameter :: slow_mean = 0.6_dp, least_mean = 0.1_dp, restore_below = 1.0e-4_dp
+    !> the splitting's inner solves keep the conjugacy through a step that clipped (closed) at most
+    !> `few_clipped` cells and at most `few_share` of the free ones; more restart it, as every clip
+    !> does on a symmetric operator (docs/adhesion.md: the edge cells of a rough contact, whose gap
+    !> at the solution is a hair above 0, open and close for tens of outer iterations, and each
+    !> restart cost the other cells their conjugacy; 8 against 2 to 32. The share leaves grids of
+    !> fewer than 10^4 cells as they were: on profiles a clipped cell is a contact's edge, and
+    !> keeping the conjugacy there cost up to 4 times the FFT pairs)
+    real(dp), parameter :: few_clipped = 8.0_dp, few_share = 1.0e-4_dp
 
 contains
 
@@ -193,6 +202,8 @@ contains
         integer :: inner_cap
         !> the splitting's metric has been floored at the law's stiffness (see floor_metric)
         logical :: floored
+        !> the splitting's inner steps that kept the conjugacy through a few clipped cells
+        integer :: n_kept
         !> the mean mode's metric was retuned (retune_mean), and restored to `m_first`
         logical :: retuned, restored
         real(dp) :: m_first
@@ -237,6 +248,7 @@ contains
         call kd%destroy()
         floor_tol = round_off_floor()
         reached = 0.0_dp; at_floor = .false.; floored = .false.; retuned = .false.; restored = .false.
+        n_kept = 0
         softest = lowest_compliance()
         hold_mean = .true.
         if (split) then
@@ -312,6 +324,7 @@ contains
         end do
         state%round_off = reached
         state%mean_metric_retuned = retuned
+        state%kept_conjugacy_steps = n_kept
         call hn%destroy(); call g%destroy(); call t%destroy(); call r%destroy(); call at%destroy(); call pz%destroy()
         call free%destroy(); call edge%destroy(); call a_s%destroy(); call k_s%destroy()
         if (split) then
@@ -589,6 +602,9 @@ contains
             !> the direction's new part: the gradient (at) or its preconditioned form (pz)
             type(rarray_t), pointer :: zd
             logical :: restart, fresh, moved, shifted
+            !> the last step clipped cells and kept the conjugacy (few_clipped)
+            logical :: kept
+            real(dp) :: n_free
             integer :: n_inner, carried, n_best
             real(dp) :: tol_in, best
             logical :: stall, capped
@@ -599,7 +615,7 @@ contains
             best = huge(1.0_dp); n_best = 0
             tight = .false.
             if (hold_mean) call keep_mean(dbar)
-            gsq_prev = 1.0_dp; restart = .true.
+            gsq_prev = 1.0_dp; restart = .true.; kept = .false.
             call fill(t, 0.0_dp)
             n_inner = 0
             ok = .false.
@@ -666,6 +682,13 @@ contains
                 call gcg_direction(zd, at, t, free, beta, rows(1:1, :))
                 call ordered_sum(problem%kernel%grid, rows(1:1, :), sums(1:1))
                 num = sums(1)
+                ! (a direction carried past a step that clipped cells that is no longer one of
+                ! descent: the conjugacy restarts here instead)
+                if (kept .and. .not. num > 0.0_dp .and. beta > 0.0_dp) then
+                    call gcg_direction(zd, at, t, free, 0.0_dp, rows(1:1, :))
+                    call ordered_sum(problem%kernel%grid, rows(1:1, :), sums(1:1))
+                    num = sums(1)
+                end if
                 gsq_prev = gsq
                 ! the step along t with A's curvature (the mean over the free set removed: the
                 ! mean gap is held); pz = A t
@@ -674,7 +697,7 @@ contains
                 state%operator_applications = state%operator_applications + 1
                 call gcg_curvature(pz, t, free, rows)
                 call ordered_sum(problem%kernel%grid, rows, sums)
-                den = sums(1)
+                den = sums(1); n_free = sums(3)
                 if (hold_mean) then
                     if (sums(3) > 0.0_dp) then
                         den = den - (sums(2)/sums(3))*sums(4)
@@ -691,18 +714,27 @@ contains
                     exit
                 end if
                 tau = num/den
-                call gcg_step(kind, rho, g, t, tau, edge, rows(1:1, :), gmin)
+                call gcg_step(kind, rho, g, t, tau, edge, rows(1:2, :), gmin)
                 call global_min(problem%kernel%grid, gmin)
-                restart = gmin < 0.0_dp
-                moved = restart
+                ! a step that clipped cells (closed them) restarts the conjugacy; in the
+                ! splitting's inner solves not where it clipped at most `few_clipped` (kept)
+                moved = gmin < 0.0_dp
+                restart = moved
+                kept = .false.
+                if (kind == LAW_DUGDALE .or. split .and. moved) &
+                    call ordered_sum(problem%kernel%grid, rows(1:2, :), sums(1:2))
+                if (split .and. moved) then
+                    kept = sums(2) <= min(few_clipped, few_share*n_free)
+                    restart = .not. kept
+                end if
                 if (kind == LAW_DUGDALE) then
                     ! a step across the zone's edge stops there (the attraction's jump: a bound
                     ! like the contact's, and the conjugacy restarts)
-                    call ordered_sum(problem%kernel%grid, rows(1:1, :), sums(1:1))
                     if (sums(1) > 0.0_dp) then
-                        restart = .true.; moved = .true.
+                        restart = .true.; moved = .true.; kept = .false.
                     end if
                 end if
+                if (kept) n_kept = n_kept + 1
                 if (hold_mean) then
                     call keep_mean(dbar, shifted)
                     moved = moved .or. shifted
