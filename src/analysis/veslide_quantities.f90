@@ -222,10 +222,18 @@ contains
 
     !> An adhesive law's parameters and what it did: the mean over the nominal area of the
     !> tensile traction (the adhesive force per area, pulling) and of the compressive one (their
-    !> difference is the load), and the area under tension (docs/adhesion.md)
+    !> difference is the load), and the area under a tension larger than the solution's error
+    !> (docs/adhesion.md): the residual bounds |p + sigma(g)| on the open cells, in units of the
+    !> pressure scale, so where the attraction is below it (Dugdale's beyond its range, where it
+    !> is 0; the exponential law's far out) the sign of p is round-off and the cell not counted
     subroutine add_adhesion_quantities(r, c)
         type(results_t), intent(inout) :: r
         type(case_t), intent(in) :: c
+        real(dp) :: err
+        ! (the error: the tolerance, or the residual where the solve did not reach it; at most
+        ! the pressure scale)
+        err = c%spec%solver%tolerance
+        if (c%state%residual > err) err = min(c%state%residual, 1.0_dp)
         associate (law => c%spec%law)
             call r%add('adhesion_energy_j_m2', law%param(ADH_ENERGY), 'J/m^2')
             call r%add('adhesion_range_m', law%param(ADH_RANGE), 'm')
@@ -233,7 +241,8 @@ contains
         end associate
         call r%add('adhesive_pressure_pa', field_mean(c%grid, max(-c%state%p, 0.0_dp)), 'Pa')
         call r%add('compressive_pressure_pa', field_mean(c%grid, max(c%state%p, 0.0_dp)), 'Pa')
-        call r%add('adhesive_area_fraction', real(field_count(c%grid, c%state%p < 0.0_dp), dp)/c%grid%cells(), '-')
+        call r%add('adhesive_area_fraction', &
+                   real(field_count(c%grid, c%state%p < -err*c%state%p_scale_pa), dp)/c%grid%cells(), '-')
         call r%add('trailing_edge_energy_j_m2', c%trailing_edge_energy, 'J/m^2')
         call r%add('trailing_edges', real(c%trailing_edges, dp), '-', is_integer=.true.)
     end subroutine add_adhesion_quantities

@@ -74,6 +74,9 @@ module veslide_contact
         real(dp) :: penetration = huge(1.0_dp), complementarity = huge(1.0_dp)
         real(dp) :: negative_pressure = huge(1.0_dp), load_error = huge(1.0_dp)
         real(dp) :: residual = huge(1.0_dp)
+        !> the unit of the residuals [Pa]: the problem's pressure scale (p_mean; with an adhesive
+        !> law the larger of |p_mean| and the law's largest attraction)
+        real(dp) :: p_scale_pa = 0.0_dp
         !> where the solver's own residual stalled at its round-off, in units of the problem's
         !> pressure scale ('gcg': the adhesive gradient's largest entry); 0 where it did not
         real(dp) :: round_off = 0.0_dp

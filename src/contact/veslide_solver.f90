@@ -135,6 +135,7 @@ contains
         end select
         ! the verdict, on the number reported
         call problem%confirm(f, state, opts%tolerance)
+        state%p_scale_pa = problem%p_scale_pa
         call device_check(error, "veslide:solver:solve_contact: "//state%method//" on the device")
         call f%finish(state, keep=present(keep) .and. .not. allocated(error))
         state%device = merge('gpu', 'cpu', device)
