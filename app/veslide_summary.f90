@@ -75,15 +75,8 @@ contains
             write (b, '(a,es12.5,a,f10.6,a)') "  adhesive pressure     ", r%get('adhesive_pressure_pa'), &
                 " Pa, under tension ", r%get('adhesive_area_fraction'), " of the area"
             lines = [lines, b]
-            if (r%get('trailing_edges') > 0.0_dp) then
-                write (b, '(a,es12.5,a,f9.5,a,i0,a)') "  trailing edge         G = ", &
-                    r%get('trailing_edge_energy_j_m2'), " J/m^2 (", &
-                    r%get('trailing_edge_energy_j_m2')/r%get('adhesion_energy_j_m2'), " w), ", &
-                    nint(r%get('trailing_edges')), " edge(s)"
-            else
-                b = "  trailing edge         not measured (a line contact's crack-like edges only: docs/adhesion.md)"
-            end if
-            lines = [lines, b]
+            call edge_line('trailing')
+            call edge_line('leading')
         end if
         if (.not. c%kernel%symmetric .or. c%spec%shear_coefficient > 0.0_dp) then
             write (b, '(a,es12.5)') "  friction coefficient  ", r%get('friction_coefficient'); lines = [lines, b]
@@ -151,6 +144,21 @@ contains
                 t = t//c%warnings(k)%code
             end do
         end function codes
+
+        !> The line of the contact's `side` edges ('trailing' or 'leading'): their mean G, or why none
+        subroutine edge_line(side)
+            character(len=*), intent(in) :: side
+            character(len=22) :: label
+            label = "  "//side//" edge"
+            if (r%get(side//'_edges') > 0.0_dp) then
+                write (b, '(a,a,es12.5,a,f9.5,a,i0,a)') label, "G = ", r%get(side//'_edge_energy_j_m2'), " J/m^2 (", &
+                    r%get(side//'_edge_energy_j_m2')/r%get('adhesion_energy_j_m2'), " w), ", &
+                    nint(r%get(side//'_edges')), " edge(s)"
+            else
+                b = label//"not measured (a line contact's crack-like edges only: docs/adhesion.md)"
+            end if
+            lines = [lines, b]
+        end subroutine edge_line
     end function summary_lines
 
 end module veslide_summary

@@ -6,8 +6,8 @@ What is checked, through the Python API on the namelist a user writes:
   p/p* = sin^2(pi a) - alpha sqrt(tan(pi a)) within 5e-3 (p* = pi E* h/lambda);
 - the adhesion scalars: the mean compressive less the mean tensile traction is the load, the
   law's parameters as given (the third from w = sigma0 rho), the force ratios NaN at a load <= 0;
-- the trailing edge's energy release rate: w for an elastic solid; not measured on a
-  two-dimensional contact;
+- the edges' energy release rates (trailing and leading): w for an elastic solid; not measured
+  on a two-dimensional contact;
 - an adhesive law on a viscoelastic solid in motion is solved (the splitting of 'gcg').
 """
 import numpy as np
@@ -51,8 +51,9 @@ def test_jkr_wave(exe, tmp_path, load):
     assert s["adhesion_energy_j_m2"] == W and s["adhesion_range_m"] == RHO
     assert s["adhesion_stress_pa"] == pytest.approx(W/RHO, rel=1e-15)
     assert np.isnan(s["friction_coefficient"])
-    # the trailing edge of an elastic solid releases exactly w (docs/adhesion.md, *Trailing edges*)
+    # each edge of an elastic solid releases exactly w (docs/adhesion.md, *Contact edges*)
     assert s["trailing_edges"] == 1 and s["trailing_edge_energy_j_m2"] == pytest.approx(W, rel=1e-12)
+    assert s["leading_edges"] == 1 and s["leading_edge_energy_j_m2"] == pytest.approx(W, rel=1e-12)
 
 
 def test_approach_control_is_the_load_controlled_solution(exe, tmp_path):
@@ -67,8 +68,9 @@ def test_approach_control_is_the_load_controlled_solution(exe, tmp_path):
     assert a.scalars["converged"] == 1 and a.scalars["approach_m"] == pytest.approx(0.5*AMP, rel=1e-12)
     assert a.scalars["mean_separation_m"] == pytest.approx(AMP - 0.5*AMP, rel=1e-12)
     # (a range of 4 cells: the zone at rest 155 cells, the contact 1441, so its edge is a crack's)
-    assert a.scalars["trailing_edges"] == 1
+    assert a.scalars["trailing_edges"] == 1 and a.scalars["leading_edges"] == 1
     assert a.scalars["trailing_edge_energy_j_m2"] == pytest.approx(W, rel=1e-12)
+    assert a.scalars["leading_edge_energy_j_m2"] == pytest.approx(W, rel=1e-12)
     p["load"] = {"mean_pressure_pa": float(a.scalars["mean_pressure_pa"])}
     b = veslide.run(p, output=tmp_path/"load.h5", exe=exe, progress=None)
     assert b.scalars["converged"] == 1
@@ -80,7 +82,7 @@ def test_approach_control_is_the_load_controlled_solution(exe, tmp_path):
 def test_adhesion_in_motion(exe, tmp_path):
     """A viscoelastic solid in motion with adhesion: 'auto' takes 'gcg' (its splitting, the
     operator not being symmetric), which converges on a small rough scene; the friction opposes
-    the motion and the tractions' parts still make the load; the trailing edges of a
+    the motion and the tractions' parts still make the load; the edges of a
     two-dimensional contact are not measured."""
     g = params(grid={"nx": 32, "ny": 32}, surface={"k_cut": 8}, material={"model": "one_term"},
                motion={"speed_m_s": 0.1},
@@ -94,6 +96,7 @@ def test_adhesion_in_motion(exe, tmp_path):
                                                                                      rel=1e-9)
     # a two-dimensional contact: its edges' energy release rate is not measured (docs/adhesion.md)
     assert s["trailing_edges"] == 0 and np.isnan(s["trailing_edge_energy_j_m2"])
+    assert s["leading_edges"] == 0 and np.isnan(s["leading_edge_energy_j_m2"])
 
 
 def wave_path(approaches, n=1024, **adhesion):
@@ -320,7 +323,8 @@ def test_the_adhesion_example_input(exe, tmp_path):
 def test_the_trailing_edge_example_input(exe, tmp_path):
     """inputs/adhesion/trailing_edge.nml (Johnson's wave sliding at v tau/lambda = 0.01, range
     h/64) converges without a warning and reports one trailing edge whose energy release rate
-    lies between w and (Einf/E0) w (3.69 w: docs/adhesion.md, *Trailing edges*)"""
+    lies between w and (Einf/E0) w (3.69 w), and one leading edge whose energy release rate lies
+    between (E0/Einf) w and w (0.33 w: docs/adhesion.md, *Contact edges*)"""
     import f90nml
     from pathlib import Path
     nml = f90nml.read(Path(__file__).resolve().parents[2]/"inputs"/"adhesion"/"trailing_edge.nml")
@@ -331,3 +335,5 @@ def test_the_trailing_edge_example_input(exe, tmp_path):
     w = p["adhesion"]["energy_j_m2"]
     assert s["trailing_edges"] == 1
     assert w < s["trailing_edge_energy_j_m2"] < p["material"]["ratio"]*w
+    assert s["leading_edges"] == 1
+    assert w/p["material"]["ratio"] < s["leading_edge_energy_j_m2"] < w

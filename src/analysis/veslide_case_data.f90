@@ -107,10 +107,10 @@ module veslide_case_data
         real(dp) :: slope_force_pa(2) = 0.0_dp    !! <p grad h> [Pa] (check)
         !> mu_f <p>: the interfacial shear's force on the rigid surface per nominal area, along -v_hat [Pa]
         real(dp) :: interfacial_force_pa = 0.0_dp
-        !> an adhesive law's: the mean energy release rate of the contact's trailing edges [J/m^2]
-        !> (NaN where none is measured) and their number (veslide_edges)
-        real(dp) :: trailing_edge_energy = 0.0_dp
-        integer :: trailing_edges = 0
+        !> an adhesive law's: the mean energy release rates of the contact's trailing and leading
+        !> edges [J/m^2] (NaN where none is measured) and their numbers (veslide_edges)
+        real(dp) :: trailing_edge_energy = 0.0_dp, leading_edge_energy = 0.0_dp
+        integer :: trailing_edges = 0, leading_edges = 0
         real(dp) :: kernel_seconds = 0.0_dp, solve_seconds = 0.0_dp, surface_seconds = 0.0_dp
         integer(i8) :: memory_estimate_bytes = 0    !! estimated peak of the run, before allocating [bytes]
         integer(i8) :: device_estimate_bytes = 0    !! estimated peak on the device (0: solved on the CPU) [bytes]

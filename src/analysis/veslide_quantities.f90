@@ -245,6 +245,8 @@ contains
                    real(field_count(c%grid, c%state%p < -err*c%state%p_scale_pa), dp)/c%grid%cells(), '-')
         call r%add('trailing_edge_energy_j_m2', c%trailing_edge_energy, 'J/m^2')
         call r%add('trailing_edges', real(c%trailing_edges, dp), '-', is_integer=.true.)
+        call r%add('leading_edge_energy_j_m2', c%leading_edge_energy, 'J/m^2')
+        call r%add('leading_edges', real(c%leading_edges, dp), '-', is_integer=.true.)
     end subroutine add_adhesion_quantities
 
     !> The solver's report: iterations, work, convergence and the four residual measures

@@ -29,7 +29,7 @@ module veslide_case
     use veslide_case_data, only: case_spec_t, case_t
     use veslide_case_spec, only: case_spec_of
     use veslide_validity, only: case_validity, check_surface_scale
-    use veslide_edges, only: trailing_edge_energy, edges_measured
+    use veslide_edges, only: edge_energies, edges_measured
     implicit none
     private
     public :: case_t, build_surface, build_kernel, case_grid, run_case, solve_prepared
@@ -236,8 +236,8 @@ contains
         end if
     end subroutine solve_prepared
 
-    !> The energy release rate of an adhesive contact's trailing edges (veslide_edges), with the
-    !> relaxed solid's misfit u0 - u from the kernel at rest: zero for an elastic solid or at rest.
+    !> The energy release rates of an adhesive contact's trailing and leading edges (veslide_edges),
+    !> with the relaxed solid's misfit u0 - u from the kernel at rest: zero for an elastic solid or at rest.
     !> Only for a line contact along the motion (NaN otherwise, with nothing formed: no memory)
     subroutine edge_analysis(fft, c, error)
         type(fft2d_t), intent(inout) :: fft
@@ -247,6 +247,7 @@ contains
         real(dp), allocatable :: delta(:, :)
         real(dp) :: zone
         c%trailing_edge_energy = ieee_value(1.0_dp, ieee_quiet_nan); c%trailing_edges = 0
+        c%leading_edge_energy = c%trailing_edge_energy; c%leading_edges = 0
         ! (a line contact along the motion only: nothing is formed otherwise)
         if (.not. edges_measured(c%grid, radians(c%spec%direction_deg))) return
         allocate (delta(size(c%state%u, 1), size(c%state%u, 2)))
@@ -262,8 +263,8 @@ contains
         associate (solid => c%spec%material%solid)
             zone = c%spec%law%zone(solid%e0_pa/(1.0_dp - solid%poisson**2))
         end associate
-        call trailing_edge_energy(c%spec%law, c%state%g, delta, c%grid, radians(c%spec%direction_deg), zone, &
-                                  c%trailing_edge_energy, c%trailing_edges)
+        call edge_energies(c%spec%law, c%state%g, c%state%p, delta, c%grid, radians(c%spec%direction_deg), zone, &
+                           c%trailing_edge_energy, c%trailing_edges, c%leading_edge_energy, c%leading_edges)
     end subroutine edge_analysis
 
     !> Persson's theory on the realised spectrum of the heights, with the case's solid, velocity and
