@@ -14,11 +14,12 @@ adhesion-sliding.csv (one row a run: speed, law, friction coefficient, contact f
 adhesive force per area, FFT pairs) and adhesion-sliding.png: the friction coefficient and the
 contact fraction against v tau/lambda, with and without adhesion.
 
-The third panel is the trailing edge's energy release rate (docs/adhesion.md, *Trailing edges*)
-of the same wave with a short range, h/64 on 4096 cells (its cohesive zone at rest 4 cells,
-against a contact of hundreds: a crack's edge; with the range of 4 cells above the zone is wider
-than the contact, and no edge is measured), from v tau/lambda = 1e-6 to 1e3, with its bounds w and
-(Einf/E0) w: adhesion-trailing-edge.csv (speed, G/w, contact fraction, FFT pairs).
+The third panel is the energy release rates of the contact's trailing and leading edges
+(docs/adhesion.md, *Contact edges*) of the same wave with a short range, h/64 on 4096 cells (its
+cohesive zone at rest 4 cells, against a contact of hundreds: a crack's edge; with the range of 4
+cells above the zone is wider than the contact, and no edge is measured), from v tau/lambda = 1e-6
+to 1e3, with w, (Einf/E0) w and (E0/Einf) w: adhesion-trailing-edge.csv (speed, trailing G/w,
+leading G/w (NaN where it is not measured), contact fraction, FFT pairs).
 """
 import argparse
 import os
@@ -51,8 +52,9 @@ def solve(n, vt, adhesive, work):
             s.get("adhesive_pressure_pa", 0.0), s["operator_applications"])
 
 
-def trailing_edge(vt, work, n=4096):
-    """The trailing edge's G/w of the wave with range h/64 on n cells at v tau/lambda = vt"""
+def edges(vt, work, n=4096):
+    """The trailing and leading edges' G/w of the wave with range h/64 on n cells at v tau/lambda
+    = vt (the leading one NaN where it is not measured)"""
     p = {"grid": {"nx": n, "ny": 1, "lx_m": LAMBDA, "ly_m": LAMBDA/n},
          "surface": {"kind": "cosine", "amplitude_m": AMP, "wavelength_m": LAMBDA},
          "material": {"model": "one_term", "einf_pa": RATIO*E0, "ratio": RATIO, "tau_s": TAU, "poisson": 0.0},
@@ -64,7 +66,8 @@ def trailing_edge(vt, work, n=4096):
     s = r.scalars
     if s["converged"] != 1 or s["trailing_edges"] != 1:
         raise RuntimeError(f"not converged, or not one trailing edge: v tau/lambda = {vt}")
-    return (vt, s["trailing_edge_energy_j_m2"]/W, s["contact_area_fraction_cells"], s["operator_applications"])
+    return (vt, s["trailing_edge_energy_j_m2"]/W, s["leading_edge_energy_j_m2"]/W, s["contact_area_fraction_cells"],
+            s["operator_applications"])
 
 
 def main():
@@ -79,17 +82,17 @@ def main():
                 rows.append(solve(args.cells, vt, adhesive, work))
                 print("v tau/lambda = {:9.3e}  adhesion {}  friction {:.5f}  contact {:.4f}  "
                       "adhesive force {:9.3e} Pa  FFT pairs {}".format(*rows[-1]), flush=True)
-        edges = []
+        rates = []
         for vt in np.logspace(-6, 3, 37):
-            edges.append(trailing_edge(vt, work))
-            print("v tau/lambda = {:9.3e}  trailing edge G/w {:.5f}  contact {:.4f}  FFT pairs {}".format(*edges[-1]),
-                  flush=True)
+            rates.append(edges(vt, work))
+            print("v tau/lambda = {:9.3e}  G/w trailing {:.5f} leading {:.5f}  contact {:.4f}  "
+                  "FFT pairs {}".format(*rates[-1]), flush=True)
     rows = np.array(rows, dtype=float)
-    edges = np.array(edges, dtype=float)
+    rates = np.array(rates, dtype=float)
     os.makedirs(args.out, exist_ok=True)
-    np.savetxt(os.path.join(args.out, "adhesion-trailing-edge.csv"), edges, delimiter=",", comments="",
-               header="speed_tau_over_lambda,trailing_edge_energy_over_w,contact_area_fraction_cells,fft_pairs",
-               fmt=["%.6e", "%.9e", "%.9e", "%d"])
+    np.savetxt(os.path.join(args.out, "adhesion-trailing-edge.csv"), rates, delimiter=",", comments="",
+               header="speed_tau_over_lambda,trailing_edge_energy_over_w,leading_edge_energy_over_w,"
+                      "contact_area_fraction_cells,fft_pairs", fmt=["%.6e", "%.9e", "%.9e", "%.9e", "%d"])
     np.savetxt(os.path.join(args.out, "adhesion-sliding.csv"), rows, delimiter=",", comments="",
                header="speed_tau_over_lambda,adhesion,friction_coefficient,contact_area_fraction_cells,"
                       "adhesive_pressure_pa,fft_pairs", fmt=["%.6e", "%d", "%.9e", "%.9e", "%.9e", "%d"])
@@ -104,12 +107,14 @@ def main():
         ax[1].semilogx(rows[m, 0], rows[m, 3], style, label=label)
     ax[0].set_xlabel("v tau/lambda"); ax[0].set_ylabel("friction coefficient")
     ax[1].set_xlabel("v tau/lambda"); ax[1].set_ylabel("contact fraction (closed cells)")
-    ax[2].semilogx(edges[:, 0], edges[:, 1], "s-", color="C1", label="trailing edge")
+    ax[2].loglog(rates[:, 0], rates[:, 1], "s-", color="C1", ms=4, label="trailing edge")
+    ax[2].loglog(rates[:, 0], rates[:, 2], "o-", color="C2", ms=4, label="leading edge")
     ax[2].axhline(RATIO, color="k", lw=0.8, ls="--", label="Einf/E0")
     ax[2].axhline(1.0, color="k", lw=0.8, ls=":", label="w")
+    ax[2].axhline(1.0/RATIO, color="k", lw=0.8, ls="-.", label="E0/Einf")
     ax[2].set_xlabel("v tau/lambda"); ax[2].set_ylabel("energy release rate G/w")
     ax[2].set_title("range h/64, 4096 cells", fontsize=9)
-    ax[2].legend(loc=(0.03, 0.45), fontsize=8)
+    ax[2].legend(loc="lower right", fontsize=8)
     ax[0].legend()
     fig.suptitle(f"Johnson's wave sliding at p = 0.1 p*, Einf/E0 = {RATIO:g}, {args.cells} cells", fontsize=10)
     fig.tight_layout()
