@@ -148,7 +148,7 @@ contains
         !> The line of the contact's `side` edges ('trailing' or 'leading'): their mean G, or why none
         subroutine edge_line(side)
             character(len=*), intent(in) :: side
-            character(len=22) :: label
+            character(len=24) :: label
             label = "  "//side//" edge"
             if (r%get(side//'_edges') > 0.0_dp) then
                 write (b, '(a,a,es12.5,a,f9.5,a,i0,a)') label, "G = ", r%get(side//'_edge_energy_j_m2'), " J/m^2 (", &

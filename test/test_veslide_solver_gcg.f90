@@ -307,13 +307,14 @@ contains
     !> it by more than the measure's error (2.1e-4 below it at 1e6, bound 1e-3): the fast limit is
     !> the elastic solid of Einf, whose edge has K^2/(2 Einf*) = w, read with E0. The leading edge:
     !> exactly w at rest; slow, the mirror image of the trailing one to first order, the kernel's
-    !> first term in v tau being odd in the speed (departures of 8.1e-5 each, their sum 1.6e-8;
+    !> first term in v tau being odd in the speed (departures of 8.1e-5 each, their sum 6.7e-8;
     !> bound 1e-2 of one); in the glassy limit the same as the trailing one (1e-7 measured, bound
     !> 1e-6); below w and falling, above (E0/Einf) w, where the contact is long against v tau (1e-3
     !> and 1e-2: 0.659 and 0.331 w, the closing crack's tip glassy and its far field relaxed), the
     !> same on 8192 cells at 1e-2 (0.332 w; bound 1 %: without the edge cell's repulsion across the
     !> edge, 0.331 and 0.267); not measured at 0.1, where v tau is a third of the contact and G does
-    !> not settle as the path's lead-in grows
+    !> not settle as the path's lead-in grows; measured again from 1 on, where the contact (484
+    !> cells) is nearly glassy, above (Einf/E0) w (10.50 w at 1)
     subroutine test_trailing_edge_rise(error)
         type(error_t), allocatable, intent(out) :: error
         real(dp), parameter :: speeds(9) = [0.0_dp, 1.0e-7_dp, 1.0e-3_dp, 1.0e-2_dp, 0.1_dp, 1.0_dp, 10.0_dp, &
@@ -351,7 +352,7 @@ contains
         ! the leading edge: the mirror image to first order about each limit
         sum_dev = (rates(2) - 1.0_dp) + (leads(2) - 1.0_dp)
         call report("slow: the edges' departures from w, summed", sum_dev)
-        call check(error, abs(sum_dev) <= 1.0e-2_dp*(rates(2) - 1.0_dp), "slow: the leading edge is not the "// &
+        call check(error, abs(sum_dev) <= 1.0e-2_dp*abs(rates(2) - 1.0_dp), "slow: the leading edge is not the "// &
                    "trailing one's mirror image: "//str(leads(2))//" against "//str(rates(2)))
         if (allocated(error)) return
         call check(error, abs(leads(9) - rates(9)) <= 1.0e-6_dp*rates(9), "glassy: the leading edge "// &
@@ -375,11 +376,12 @@ contains
     !> solid (reference_oracles' dugdale_crack_toughening, Einf/E0 = 10), where the edge is one:
     !> the wave of test_trailing_edge_rise with Dugdale's law, its zone at rest a0 = 2e-3 lambda
     !> (16 cells of 8192), v tau/a0 = 0.1, 1, 10 (v tau at most 0.02 lambda, the contact about
-    !> 0.3 lambda wide): G/w within 4 % of the closed form (1.5, 2.8 and 2.5 % measured) and,
-    !> at v tau/a0 = 1 on 16384 cells (33 cells in the zone), closer (1.6 % measured): the
+    !> 0.3 lambda wide): G/w within 4 % of the closed form (1.5, 2.6 and 2.3 % measured) and,
+    !> at v tau/a0 = 1 on 16384 cells (33 cells in the zone), closer (0.34 % measured): the
     !> difference is the zone's resolution and its finite size against the contact's. The leading
     !> edge, a closing crack with no closed form here, falls with the speed from w toward
-    !> (E0/Einf) w on the 8192 cells (0.799, 0.351, 0.258 w measured)
+    !> (E0/Einf) w on the 8192 cells (0.799, 0.444, 0.342 w measured; the values move with the
+    !> discrete solution the solver reaches, docs/adhesion.md)
     subroutine test_trailing_edge_dugdale(error)
         type(error_t), allocatable, intent(out) :: error
         real(dp), parameter :: ratios(3) = [0.1_dp, 1.0_dp, 10.0_dp], a0 = 2.0e-3_dp*lambda
@@ -425,11 +427,10 @@ contains
     !> test_trailing_edge_rise (1024 cells, range h/32: its zone at rest 4 cells) at v tau/lambda
     !> = 0.01, solved as one row sliding along x (one edge), turned a quarter (one column: the
     !> wave and the motion along y) and sliding along -x (the wave is even, so the mirror image):
-    !> the same G at each edge in each: the trailing edge's to 1e-9 of it (3e-12 measured), the
-    !> leading edge's to 1e-8 (1.9e-9 measured along -x: its lead-in takes in the misfit's
-    !> imprint, whose terms exceed its 0.18 w, so the solution's error, 1e-10, is magnified). As 4
-    !> equal rows (a two-dimensional grid) it is not measured: NaN, no edge (a line contact only,
-    !> veslide_edges)
+    !> the same G at each edge in each, to 1e-9 of it (trailing 2.1e-12, leading 1.5e-10 measured:
+    !> the leading edge's lead-in takes in the misfit's imprint, whose terms exceed its 0.49 w, so
+    !> the solution's error is magnified). As 4 equal rows (a two-dimensional grid) it is not
+    !> measured: NaN, no edge (a line contact only, veslide_edges)
     subroutine test_trailing_edge_directions(error)
         type(error_t), allocatable, intent(out) :: error
         integer, parameter :: n = 1024
@@ -459,7 +460,7 @@ contains
             call report(trim(names(m))//": G/w trailing", c%trailing_edge_energy/w)
             call report(trim(names(m))//": G/w leading", c%leading_edge_energy/w)
             call check(error, abs(c%trailing_edge_energy - g0) <= 1.0e-9_dp*g0 .and. &
-                       abs(c%leading_edge_energy - g1) <= 1.0e-8_dp*g1, trim(names(m))//": G/w "// &
+                       abs(c%leading_edge_energy - g1) <= 1.0e-9_dp*g1, trim(names(m))//": G/w "// &
                        str(c%trailing_edge_energy/w)//" and "//str(c%leading_edge_energy/w)//" against "// &
                        str(g0/w)//" and "//str(g1/w)); if (allocated(error)) return
         end do

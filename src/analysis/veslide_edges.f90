@@ -19,7 +19,7 @@
 !> law's (exact steps below). Delta = u0 - u is the relaxed solid's misfit: u0 the displacement
 !> the solid at rest (the kernel at zero speed) would have under the case's traction, u the
 !> solid's own. P is the quartic fitted (least squares) to Delta over the closed cells L to
-!> L + W behind the edge (W = max(fit_width, L)), where the misfit is smooth: it continues the
+!> L + W - 1 behind the edge (W = max(fit_width, L)), where the misfit is smooth: it continues the
 !> smooth misfit across the edge, so that g + Delta - P is the relaxed solid's opening. The step
 !> from the last closed cell to the first open one takes the edge cell's repulsive traction
 !> p + sigma against the misfit's change over the trapezoid's half of the step: at a closing edge
@@ -34,8 +34,9 @@
 !> of the integral takes in once L is past it (the J integral of the relaxed solid over a path
 !> that encloses it). L doubles from lead_in (16 cells) until G at L agrees with G at L/2 to
 !> `plateau` (1e-2) of it, the fit window staying within the half of the contact behind the edge:
-!> else the edge is not measured. On Johnson's sliding wave the leading edge settles at L of 1 to
-!> 2 v tau, and where v tau is a fair part of the contact no plateau is found.
+!> else the edge is not measured. On Johnson's sliding wave the leading edge is taken at L of 2 to
+!> 3 v tau (128 and 256 cells where v tau is 41 and 123), at the first doubling where v tau is a
+!> few cells, and where v tau is a fair part of the contact no plateau is found.
 !>
 !> An edge is measured when, besides, the contact behind it is at least `crack` (4) times the
 !> cohesive zone its G makes (a0 G/w, a0 = pi E0* w/(4 sigma0^2) the zone at rest: the zone grows
@@ -64,7 +65,8 @@ module veslide_edges
     !> the first lead-in into the contact [cells], and the fit window's least width [cells]
     integer, parameter :: lead_in = 16, fit_width = 64
     !> the misfit's polynomial: its degree (a quartic: a cubic over 64 cells took the glassy limit
-    !> to 10.012 w against Einf/E0 = 10, the quartic to 9.99986 w)
+    !> to 10.012 w against Einf/E0 = 10, the quartic to 9.9999 w, 9.998 w with the step across
+    !> the edge)
     integer, parameter :: degree = 4
     !> G is taken where it changes by at most this fraction of it as the lead-in doubles
     real(dp), parameter :: plateau = 1.0e-2_dp
@@ -107,7 +109,6 @@ contains
         ! a column; the trailing edges open along -v (step), the leading ones along +v (-step)
         allocate (parts(4, size(g, 3 - axis)))
         if (size(parts, 2) > 0) then
-            parts(:, 2:) = 0.0_dp
             do side = 0, 1
                 if (axis == 1) then
                     call line_edges(w, zone_cells, g(:, 1), p(:, 1), delta(:, 1), v(:, 1), s(:, 1), &
