@@ -40,9 +40,11 @@
 !>
 !> An edge is measured when, besides, the contact behind it is at least `crack` (4) times the
 !> cohesive zone its G makes (a0 G/w, a0 = pi E0* w/(4 sigma0^2) the zone at rest: the zone grows
-!> with K^2), its attraction is spent before the next closed cell, and its release is positive:
-!> else it is not a crack's edge (a long range's zone as wide as the contact read 10.37 w against
-!> Einf/E0 = 10 glassy).
+!> with K^2), its attraction is spent before the next closed cell, its release is positive, and
+!> the misfit is smooth over the fit window where G settled (the polynomial's rms residual at most
+!> `smooth_fit` of the law's length): else it is not a crack's edge (a long range's zone as wide
+!> as the contact read 10.37 w against Einf/E0 = 10 glassy), or it has no smooth far field (a
+!> rough surface in contact: its relaxed misfit is as rough as the surface).
 !>
 !> A line contact only: a profile of one row sliding along x, or of one column sliding along y
 !> (else NaN). The integral along the line is the J integral of a straight edge uniform across
@@ -55,7 +57,7 @@ module veslide_edges
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use veslide_kinds, only: dp
     use veslide_grid, only: grid_t
-    use veslide_contact_law, only: contact_law_t, ADH_ENERGY
+    use veslide_contact_law, only: contact_law_t, ADH_ENERGY, ADH_RANGE
     use veslide_collective, only: ordered_sum
     use veslide_lapack, only: dgels
     implicit none
@@ -70,6 +72,11 @@ module veslide_edges
     integer, parameter :: degree = 4
     !> G is taken where it changes by at most this fraction of it as the lead-in doubles
     real(dp), parameter :: plateau = 1.0e-2_dp
+    !> the misfit is smooth over the fit window where the polynomial's rms residual there is at most
+    !> this fraction of the law's length (rho, or Dugdale's opening w/sigma0): an error of that
+    !> size in the opening moves G by about as much of w. Johnson's waves left at most 7e-4 of it
+    !> where G settled, rough profiles 2e-2 to 1e-1 (whose G read 17.6 to 890 w, Einf/E0 = 11)
+    real(dp), parameter :: smooth_fit = 5.0e-3_dp
     !> the walk stops where the law's energy has risen above -spent w (the rest, -V(g_end), added at
     !> the last step's d ghat/d g); an edge whose walk meets a closed cell first is not measured
     real(dp), parameter :: spent = 1.0e-3_dp
@@ -95,7 +102,7 @@ contains
         real(dp), intent(out) :: trailing, leading
         integer, intent(out) :: n_trailing, n_leading
         real(dp), allocatable :: v(:, :), s(:, :), parts(:, :)
-        real(dp) :: totals(4), d(2), zone_cells, w
+        real(dp) :: totals(4), d(2), zone_cells, w, length
         integer :: axis, step, side, n_edges
         trailing = ieee_value(1.0_dp, ieee_quiet_nan); leading = trailing
         n_trailing = 0; n_leading = 0
@@ -103,6 +110,7 @@ contains
         d = grid%spacing()
         zone_cells = zone/d(axis)
         w = law%param(ADH_ENERGY)
+        length = law%param(ADH_RANGE)
         v = law%energy(g)
         s = law%attraction(g)
         ! the one line: a row (held by one process of a distributed grid, none on the others) or
@@ -111,10 +119,10 @@ contains
         if (size(parts, 2) > 0) then
             do side = 0, 1
                 if (axis == 1) then
-                    call line_edges(w, zone_cells, g(:, 1), p(:, 1), delta(:, 1), v(:, 1), s(:, 1), &
+                    call line_edges(w, length, zone_cells, g(:, 1), p(:, 1), delta(:, 1), v(:, 1), s(:, 1), &
                                     (1 - 2*side)*step, parts(1 + 2*side, 1), n_edges)
                 else
-                    call line_edges(w, zone_cells, g(1, :), p(1, :), delta(1, :), v(1, :), s(1, :), &
+                    call line_edges(w, length, zone_cells, g(1, :), p(1, :), delta(1, :), v(1, :), s(1, :), &
                                     (1 - 2*side)*step, parts(1 + 2*side, 1), n_edges)
                 end if
                 parts(2 + 2*side, 1) = real(n_edges, dp)
@@ -151,14 +159,15 @@ contains
 
     !> The edges of one grid line (periodic) that open along `step` (+1 or -1: the walk from an
     !> edge into its open side): the sum of their energy release rates `total` [J/m^2] and their
-    !> number `edges`; `w` the work of adhesion, `zone_cells` the cohesive zone at rest in cells
-    !> along the line, `p` the traction, `v` and `s` the law's energy and attraction at `g`
-    subroutine line_edges(w, zone_cells, g, p, delta, v, s, step, total, edges)
-        real(dp), intent(in) :: w, zone_cells, g(:), p(:), delta(:), v(:), s(:)
+    !> number `edges`; `w` the work of adhesion, `length` the law's length (rho, or w/sigma0),
+    !> `zone_cells` the cohesive zone at rest in cells along the line, `p` the traction, `v` and
+    !> `s` the law's energy and attraction at `g`
+    subroutine line_edges(w, length, zone_cells, g, p, delta, v, s, step, total, edges)
+        real(dp), intent(in) :: w, length, zone_cells, g(:), p(:), delta(:), v(:), s(:)
         integer, intent(in) :: step
         real(dp), intent(out) :: total
         integer, intent(out) :: edges
-        real(dp) :: release, before
+        real(dp) :: release, before, residual
         integer :: n, i, run, lead
         logical :: opened, settled
         n = size(g)
@@ -176,7 +185,7 @@ contains
             lead = lead_in; settled = .false.
             before = 0.0_dp
             do while (2*(lead + max(fit_width, lead)) <= run)
-                call edge_release(i, lead, max(fit_width, lead), release, opened)
+                call edge_release(i, lead, max(fit_width, lead), release, residual, opened)
                 if (.not. opened) exit
                 if (lead > lead_in) then
                     if (abs(release - before) <= plateau*abs(release)) then
@@ -186,6 +195,8 @@ contains
                 before = release; lead = 2*lead
             end do
             if (.not. settled) cycle
+            ! (a misfit that no polynomial follows, as a rough surface's in contact: no far field)
+            if (residual > smooth_fit*length) cycle
             ! (no release, or a NaN: not a crack's; a zone that is not short against the contact:
             ! not a crack's edge)
             if (.not. (release > 0.0_dp)) cycle
@@ -199,16 +210,17 @@ contains
         end function wrap
 
         !> The J integral through edge `i` from `lead` closed cells behind it, the misfit's
-        !> polynomial fitted over the `width` closed cells beyond those; `opened` false where the
-        !> walk meets a closed cell before the attraction is spent
-        subroutine edge_release(i, lead, width, release, opened)
+        !> polynomial fitted over the `width` closed cells beyond those (`residual` its rms
+        !> residual [m]); `opened` false where the walk meets a closed cell before the attraction
+        !> is spent
+        subroutine edge_release(i, lead, width, release, residual, opened)
             integer, intent(in) :: i, lead, width
-            real(dp), intent(out) :: release
+            real(dp), intent(out) :: release, residual
             logical, intent(out) :: opened
             real(dp) :: coef(degree + 1), scale, gh_a, gh_b, ratio
             integer :: k, a, b
             scale = real(lead + width - 1, dp)
-            call fit_misfit(i, lead, width, scale, coef)
+            call fit_misfit(i, lead, width, scale, coef, residual)
             release = 0.0_dp; opened = .false.
             ! the contact side: the traction's trapezoids
             a = wrap(i - lead*step)
@@ -260,11 +272,12 @@ contains
         end function poly
 
         !> The misfit's polynomial over the `width` closed cells `lead` to `lead + width - 1`
-        !> behind edge `i`, the j-th at -j cells along the walk: its coefficients in t = x/scale
-        subroutine fit_misfit(i, lead, width, scale, coef)
+        !> behind edge `i`, the j-th at -j cells along the walk: its coefficients in t = x/scale,
+        !> and the rms of its residuals [m]
+        subroutine fit_misfit(i, lead, width, scale, coef, residual)
             integer, intent(in) :: i, lead, width
             real(dp), intent(in) :: scale
-            real(dp), intent(out) :: coef(degree + 1)
+            real(dp), intent(out) :: coef(degree + 1), residual
             real(dp), allocatable :: amat(:, :), rhs(:), work(:)
             integer :: j, e, info
             allocate (amat(width, degree + 1), rhs(width), work(64*(degree + 1) + width))
@@ -276,8 +289,13 @@ contains
             end do
             call dgels('N', width, degree + 1, 1, amat, width, rhs, width, work, size(work), info)
             coef = rhs(1:degree + 1)
-            ! (not of full rank: cannot happen for distinct points; the window's nearest misfit)
-            if (info /= 0) coef = [delta(wrap(i - lead*step)), (0.0_dp, e=1, degree)]
+            ! (dgels leaves the residuals' components beyond the coefficients)
+            residual = sqrt(sum(rhs(degree + 2:)**2)/width)
+            ! (not of full rank: cannot happen for distinct points; no fit, no measure)
+            if (info /= 0) then
+                coef = [delta(wrap(i - lead*step)), (0.0_dp, e=1, degree)]
+                residual = huge(1.0_dp)
+            end if
         end subroutine fit_misfit
     end subroutine line_edges
 
